@@ -1,0 +1,111 @@
+"""What a planner returns: candidates with their costs, and the verified solution."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from enum import StrEnum
+from typing import Any
+
+from glideplan.errors import PlanningError
+from glideplan.path import Path
+from glideplan.pose import Pose
+from glideplan.vehicles.base import Vehicle
+from glideplan.verify import EndpointError
+
+__all__ = ["Candidate", "Solution", "Status"]
+
+
+class Status(StrEnum):
+    """Outcome of a planning request."""
+
+    SOLVED = "solved"  # a path was found and verified by integration
+    NO_PATH = "no_path"  # no candidate satisfies the boundary conditions
+    NOT_VERIFIED = "not_verified"  # candidates exist but none passed verification
+    SOLVER_FAILED = "solver_failed"  # a numerical solver failed (e.g. IPOPT did not converge)
+
+
+@dataclass(frozen=True, eq=False)
+class Candidate:
+    """One candidate of the sufficient set: its type word, family, cost and path."""
+
+    word: str
+    family: str
+    cost: float
+    path: Path | None = None
+    status: str = "feasible"
+    info: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def feasible(self) -> bool:
+        return self.path is not None and self.status == "feasible" and math.isfinite(self.cost)
+
+    def to_dict(self) -> dict[str, Any]:
+        out: dict[str, Any] = {
+            "word": self.word,
+            "family": self.family,
+            "cost": self.cost,
+            "status": self.status,
+        }
+        out.update({k: v for k, v in self.info.items() if _jsonable(v)})
+        return out
+
+
+def _jsonable(v: Any) -> bool:
+    return isinstance(v, (int, float, str, bool, type(None), list, tuple, dict))
+
+
+@dataclass(frozen=True, eq=False)
+class Solution:
+    """The result of `plan()`: the best verified path, all candidates and diagnostics."""
+
+    status: Status
+    planner: str
+    objective: str
+    start: Pose
+    goal: Pose
+    vehicle: Vehicle
+    path: Path | None
+    cost: float
+    word: str
+    family: str
+    candidates: tuple[Candidate, ...]
+    endpoint_error: EndpointError | None
+    message: str = ""
+    stats: Mapping[str, Any] = field(default_factory=dict)
+    extras: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        return self.status is Status.SOLVED
+
+    def raise_for_status(self) -> Solution:
+        """Return self when solved, else raise `PlanningError` with the message."""
+        if not self.ok:
+            raise PlanningError(f"{self.planner}: {self.status.value}: {self.message}")
+        return self
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON object the CLI prints (see docs/ARCHITECTURE.md)."""
+        p = self.path
+        out: dict[str, Any] = {
+            "planner": self.planner,
+            "objective": self.objective,
+            "status": self.status.value,
+            "message": self.message,
+            "cost": self.cost if math.isfinite(self.cost) else None,
+            "word": self.word,
+            "family": self.family,
+            "length": p.length if p else None,
+            "duration": p.duration if p else None,
+            "endpoint_error": self.endpoint_error.to_dict() if self.endpoint_error else None,
+            "start": {"x": self.start.x, "y": self.start.y, "heading": self.start.heading},
+            "goal": {"x": self.goal.x, "y": self.goal.y, "heading": self.goal.heading},
+            "vehicle": self.vehicle.to_dict(),
+            "segments": [s.to_dict() for s in p.segments] if p else [],
+            "candidates": [c.to_dict() for c in self.candidates],
+            "stats": {k: v for k, v in self.stats.items() if _jsonable(v)},
+        }
+        out.update(self.extras)
+        return out

@@ -1,0 +1,92 @@
+"""Argument checks that raise `InvalidParameterError` naming the parameter and the rule."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from glideplan.errors import InvalidParameterError
+
+__all__ = [
+    "check_finite",
+    "check_finite_array",
+    "check_in_range",
+    "check_less",
+    "check_nonnegative",
+    "check_positive",
+]
+
+
+def _as_float(name: str, value: Any) -> float:
+    try:
+        out = float(value)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(name, value, "must be a real number") from None
+    return out
+
+
+def check_finite(name: str, value: Any) -> float:
+    """Return `value` as a float; it must be finite (no NaN or infinity)."""
+    out = _as_float(name, value)
+    if not math.isfinite(out):
+        raise InvalidParameterError(name, value, "must be finite (no NaN or infinity)")
+    return out
+
+
+def check_positive(name: str, value: Any) -> float:
+    """Return `value` as a float; it must be finite and > 0."""
+    out = check_finite(name, value)
+    if out <= 0.0:
+        raise InvalidParameterError(name, value, "must be > 0")
+    return out
+
+
+def check_nonnegative(name: str, value: Any) -> float:
+    """Return `value` as a float; it must be finite and >= 0."""
+    out = check_finite(name, value)
+    if out < 0.0:
+        raise InvalidParameterError(name, value, "must be >= 0")
+    return out
+
+
+def check_in_range(
+    name: str,
+    value: Any,
+    low: float,
+    high: float,
+    *,
+    low_open: bool = False,
+    high_open: bool = False,
+) -> float:
+    """Return `value` as a float inside [low, high] (ends open when asked)."""
+    out = check_finite(name, value)
+    lo_ok = out > low if low_open else out >= low
+    hi_ok = out < high if high_open else out <= high
+    if not (lo_ok and hi_ok):
+        lb = "(" if low_open else "["
+        hb = ")" if high_open else "]"
+        raise InvalidParameterError(name, value, f"must lie in {lb}{low:g}, {high:g}{hb}")
+    return out
+
+
+def check_less(name_a: str, a: float, name_b: str, b: float, *, strict: bool = True) -> None:
+    """Require a < b (or a <= b when not strict)."""
+    ok = a < b if strict else a <= b
+    if not ok:
+        op = "<" if strict else "<="
+        raise InvalidParameterError(name_a, a, f"must be {op} {name_b}={b:g}")
+
+
+def check_finite_array(name: str, value: Any, *, last_dim: int | None = None) -> np.ndarray:
+    """Return `value` as a float array with only finite entries (and the given last axis size)."""
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(name, value, "must be an array of real numbers") from None
+    if last_dim is not None and (arr.ndim == 0 or arr.shape[-1] != last_dim):
+        raise InvalidParameterError(name, arr.shape, f"last axis must have size {last_dim}")
+    if not np.all(np.isfinite(arr)):
+        raise InvalidParameterError(name, "array", "must be finite (no NaN or infinity)")
+    return arr
