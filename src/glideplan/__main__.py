@@ -1,0 +1,5 @@
+"""`python -m glideplan` runs the CLI."""
+
+from glideplan.cli.app import run
+
+run()

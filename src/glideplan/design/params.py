@@ -1,0 +1,207 @@
+"""Design parameter sets: a frozen bundle of the chapter 7 inputs, read from and written to TOML.
+
+Every field carries its SI unit in its name (`max_pressure_pa`, `diameter_m`, ...). A TOML
+file may instead give a field in an edge unit by swapping the suffix, e.g.
+`max_pressure_psi = 3442`, `internal_volume_in3 = 183`, `max_volume_l = 5`,
+`diameter_in = 9`, `empty_mass_lb = 8.6`, `temperature_degc = 20`; it is converted to SI on
+load. Unknown sections or keys, bad values and malformed TOML raise `InvalidParameterError`
+naming the field (`section.key`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import pathlib
+import tomllib
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import tomli_w
+
+from glideplan.design.buoyancy import VTUG_BLADDER, VTUG_HULL, Bladder, Hull
+from glideplan.design.gas import FRESH_WATER, FX23DV, Environment, Tank
+from glideplan.design.glide import SEAGLIDER_LIKE, DragPolar
+from glideplan.design.positioning import LBLConfig
+from glideplan.design.trim import VTUG_TRIM, TrimLayout
+from glideplan.errors import InvalidParameterError
+from glideplan.units import deg_to_rad, inch3_to_m3, inch_to_m, kmh_to_ms, litre_to_m3, psi_to_pa
+
+__all__ = [
+    "DesignParameters",
+    "dumps_parameters",
+    "load_parameters",
+    "loads_parameters",
+    "parameters_from_dict",
+    "parameters_to_dict",
+    "save_parameters",
+]
+
+
+@dataclass(frozen=True)
+class DesignParameters:
+    """All chapter 7 design inputs; defaults are the VTUG / FX23DV / Seaglider-like examples."""
+
+    environment: Environment = FRESH_WATER
+    tank: Tank = FX23DV
+    bladder: Bladder = VTUG_BLADDER
+    hull: Hull = VTUG_HULL
+    trim: TrimLayout = VTUG_TRIM
+    glide: DragPolar = SEAGLIDER_LIKE
+    lbl: LBLConfig = dataclasses.field(default_factory=LBLConfig)
+
+    def __post_init__(self) -> None:
+        for f in dataclasses.fields(self):
+            if not isinstance(getattr(self, f.name), _SECTIONS[f.name]):
+                raise InvalidParameterError(
+                    f.name, getattr(self, f.name), f"must be a {_SECTIONS[f.name].__name__}"
+                )
+
+    def replace(self, **changes: Any) -> DesignParameters:
+        """A copy with whole sections replaced."""
+        return dataclasses.replace(self, **changes)
+
+
+_SECTIONS: dict[str, type] = {
+    "environment": Environment,
+    "tank": Tank,
+    "bladder": Bladder,
+    "hull": Hull,
+    "trim": TrimLayout,
+    "glide": DragPolar,
+    "lbl": LBLConfig,
+}
+
+
+def _scale(k: float) -> Callable[[Any], Any]:
+    return lambda v: np.asarray(v, dtype=float) * k
+
+
+# edge suffix -> (SI suffix, converter)
+_EDGE_UNITS: dict[str, tuple[str, Callable[[Any], Any]]] = {
+    "_psi": ("_pa", psi_to_pa),
+    "_kpa": ("_pa", _scale(1e3)),
+    "_l": ("_m3", litre_to_m3),
+    "_in3": ("_m3", inch3_to_m3),
+    "_in": ("_m", inch_to_m),
+    "_ft": ("_m", _scale(0.3048)),
+    "_lb": ("_kg", _scale(0.45359237)),
+    "_deg": ("_rad", deg_to_rad),
+    "_kmh": ("_m_s", kmh_to_ms),
+    "_degc": ("_k", lambda v: np.asarray(v, dtype=float) + 273.15),
+}
+
+
+def _to_plain(value: Any) -> Any:
+    arr = np.asarray(value)
+    if arr.ndim == 0:
+        return arr.item()
+    return arr.tolist()
+
+
+def _section_kwargs(section: str, table: Any) -> dict[str, Any]:
+    cls = _SECTIONS[section]
+    if not isinstance(table, Mapping):
+        raise InvalidParameterError(section, table, "must be a TOML table ([section])")
+    names = {f.name for f in dataclasses.fields(cls)}
+    kwargs: dict[str, Any] = {}
+    for key, value in table.items():
+        field, val = key, value
+        if key not in names:
+            for edge, (si, conv) in _EDGE_UNITS.items():
+                if key.endswith(edge) and key[: -len(edge)] + si in names:
+                    field = key[: -len(edge)] + si
+                    try:
+                        val = _to_plain(conv(value))
+                    except (TypeError, ValueError):
+                        raise InvalidParameterError(
+                            f"{section}.{key}", value, "must be a number or list of numbers"
+                        ) from None
+                    break
+            else:
+                raise InvalidParameterError(
+                    f"{section}.{key}", value, f"unknown key; expected one of {sorted(names)}"
+                )
+        if field in kwargs:
+            raise InvalidParameterError(f"{section}.{key}", value, f"duplicates {section}.{field}")
+        kwargs[field] = val
+    return kwargs
+
+
+def _build(section: str, kwargs: dict[str, Any]) -> Any:
+    cls = _SECTIONS[section]
+    try:
+        return cls(**kwargs)
+    except InvalidParameterError as exc:
+        raise InvalidParameterError(f"{section}.{exc.name}", exc.value, exc.rule) from None
+    except (TypeError, ValueError) as exc:
+        raise InvalidParameterError(section, kwargs, f"bad values: {exc}") from None
+
+
+def parameters_from_dict(data: Mapping[str, Any]) -> DesignParameters:
+    """Build `DesignParameters` from nested mappings; missing sections and keys keep defaults."""
+    if not isinstance(data, Mapping):
+        raise InvalidParameterError("parameters", data, "must be a mapping of sections")
+    unknown = sorted(set(data) - set(_SECTIONS))
+    if unknown:
+        raise InvalidParameterError(
+            unknown[0], data[unknown[0]], f"unknown section; expected one of {sorted(_SECTIONS)}"
+        )
+    defaults = DesignParameters()
+    sections: dict[str, Any] = {}
+    for name in _SECTIONS:
+        if name in data:
+            base = dataclasses.asdict(getattr(defaults, name))
+            base.update(_section_kwargs(name, data[name]))
+            sections[name] = _build(name, base)
+    return DesignParameters(**sections)
+
+
+def parameters_to_dict(params: DesignParameters) -> dict[str, dict[str, Any]]:
+    """Nested plain dict (SI field names) of a parameter set, ready for TOML or JSON."""
+    out: dict[str, dict[str, Any]] = {}
+    for name in _SECTIONS:
+        section = dataclasses.asdict(getattr(params, name))
+        out[name] = {k: _to_plain(v) if not isinstance(v, str) else v for k, v in section.items()}
+    return out
+
+
+def loads_parameters(text: str, source: str = "<string>") -> DesignParameters:
+    """Parse TOML text into `DesignParameters`; malformed TOML raises naming `source`."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InvalidParameterError(source, "TOML", f"is not valid TOML: {exc}") from None
+    return parameters_from_dict(data)
+
+
+def load_parameters(path: str | pathlib.Path) -> DesignParameters:
+    """Read a TOML parameter file."""
+    p = pathlib.Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise InvalidParameterError("params", str(p), f"cannot be read: {exc.strerror}") from None
+    return loads_parameters(text, source=str(p))
+
+
+_HEADER = """\
+# glideplan design parameters (Wolek 2015, chapter 7). SI units, named in each key.
+# A key may use an edge unit instead by swapping its suffix, e.g. max_pressure_psi = 3442,
+# internal_volume_in3 = 183, max_volume_l = 5, diameter_in = 9, empty_mass_lb = 8.6.
+# bladder.elastic_coefficients_pa: c_k of p_blad(V) = sum_k c_k (V / V_max)^k (illustrative).
+"""
+
+
+def dumps_parameters(params: DesignParameters, *, header: bool = True) -> str:
+    """TOML text for a parameter set (with an explanatory comment header)."""
+    body = tomli_w.dumps(parameters_to_dict(params))
+    return (_HEADER + "\n" + body) if header else body
+
+
+def save_parameters(params: DesignParameters, path: str | pathlib.Path) -> pathlib.Path:
+    """Write a parameter set to a TOML file and return its path."""
+    p = pathlib.Path(path)
+    p.write_text(dumps_parameters(params), encoding="utf-8")
+    return p

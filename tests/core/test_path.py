@@ -1,0 +1,114 @@
+"""Path: continuity, words, costs, sampling, transforms."""
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+import pytest
+
+from glideplan import Arc, HeadingSpeedArc, InvalidParameterError, Path, Pose, Straight
+from glideplan.vehicles.base import Vehicle
+from glideplan.verify import integrate_path
+
+
+@dataclass(frozen=True)
+class ToyGlider(Vehicle):
+    """Sink rate w = 0.01 v^2 + 0.1 |u| (made up, for cost integration)."""
+
+    model: ClassVar[str] = "toy_glider"
+
+    def sink_rate(self, speed, turn_rate):
+        return 0.01 * np.asarray(speed) ** 2 + 0.1 * np.abs(turn_rate)
+
+
+def lsr(start=Pose(0, 0, 0)):
+    a = Arc(start, math.pi / 2, 1.0, 1, speed=2.0, label="C")
+    s = Straight(a.end, 3.0, speed=2.0)
+    b = Arc(s.end, 1.0, 2.0, -1, speed=2.0)
+    return Path((a, s, b))
+
+
+def test_length_duration_word_family():
+    p = lsr()
+    assert p.length == pytest.approx(math.pi / 2 + 3.0 + 2.0)
+    assert p.duration == pytest.approx(p.length / 2.0)
+    assert p.word == "LSR"
+    assert p.family == "CSB"
+
+
+def test_word_merges_same_direction_turns_and_drops_empty_segments():
+    a = Arc(Pose(0, 0, 0), 1.0, 1.0, 1, label="B")
+    c = Arc(a.end, 0.5, 0.3, 1, speed=0.3, label="C")
+    z = Straight(c.end, 0.0)
+    b = Arc(z.end, 1.0, 1.0, 1, label="B")
+    p = Path((a, c, z, b))
+    assert p.word == "L"
+    assert p.family == "BCSB"
+
+
+def test_discontinuous_segments_are_rejected():
+    a = Arc(Pose(0, 0, 0), 1.0, 1.0, 1)
+    with pytest.raises(InvalidParameterError, match="does not start"):
+        Path((a, Straight(Pose(5, 5, 0), 1.0)))
+    with pytest.raises(InvalidParameterError):
+        Path(())
+
+
+def test_costs_time_length_altitude():
+    p = lsr().with_vehicle(ToyGlider())
+    # altitude: every segment at v = 2: 0.04 per second, plus 0.1 |u| per second on arcs
+    # = 0.04 * T + 0.1 * (total heading change) = 0.04 T + 0.1 (pi/2 + 1)
+    expect = 0.04 * p.duration + 0.1 * (math.pi / 2 + 1.0)
+    assert p.cost("altitude") == pytest.approx(expect, rel=1e-12)
+    assert integrate_path(p, "altitude").cost == pytest.approx(expect, rel=1e-9)
+    assert p.cost("time") == p.duration
+    with pytest.raises(InvalidParameterError, match="objective"):
+        p.cost("fuel")
+    with pytest.raises(InvalidParameterError, match="sink"):
+        lsr().cost("altitude")
+
+
+def test_sampling_by_time_and_length_agree():
+    p = lsr()
+    smp = p.sample(n=50)
+    assert smp.t[0] == 0 and smp.t[-1] == pytest.approx(p.duration)
+    assert smp.s[-1] == pytest.approx(p.length)
+    by_len = p.sample(lengths=smp.s)
+    np.testing.assert_allclose(by_len.t, smp.t, atol=1e-9)
+    np.testing.assert_allclose(by_len.x, smp.x, atol=1e-9)
+    assert np.all(np.diff(smp.s) > 0)
+    assert (smp.x[-1], smp.y[-1]) == pytest.approx((p.end.x, p.end.y))
+
+
+def test_cumulative_cost_samples():
+    p = lsr().with_vehicle(ToyGlider())
+    smp = p.sample(n=30, objective="altitude")
+    assert smp.cost[0] == pytest.approx(0.0)
+    assert smp.cost[-1] == pytest.approx(p.cost("altitude"))
+    assert np.all(np.diff(smp.cost) >= 0)
+
+
+def test_transforms_and_concatenation():
+    p = lsr()
+    r = p.reflected()
+    assert r.word == "RSL"
+    assert (r.end.x, r.end.y, r.end.heading) == pytest.approx((p.end.x, -p.end.y, -p.end.heading))
+    t = p.translated(1.0, -2.0)
+    assert t.end.x == pytest.approx(p.end.x + 1.0)
+    q = p.rotated(math.pi)
+    assert q.end.x == pytest.approx(-p.end.x)
+    second = lsr(p.end)
+    both = p + second
+    assert both.length == pytest.approx(2 * p.length)
+    assert both.word == "LSRLSR"
+    with pytest.raises(InvalidParameterError):
+        p + p  # does not start where p ends
+
+
+def test_heading_speed_arc_in_a_path_verifies():
+    h = HeadingSpeedArc(Pose(0, 0, 0), 2.0, -1, 0.2, 30.0, 2.0, 1.0)
+    s = Straight(h.end, 100.0, speed=29.0)
+    p = Path((h, s))
+    end = integrate_path(p).end
+    assert end.distance_to(p.end) < 1e-7
