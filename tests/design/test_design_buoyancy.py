@@ -74,7 +74,9 @@ def test_depth_the_tank_cannot_inflate_at():
 
 def test_net_weight_as_tank_empties():
     # neutral at 0.9 kg of air and 2.5 L; empty tank, 5 L: 9810 * 0.0025 + 0.9 * 9.81 = 33.354 N
-    w = net_weight_n([0.9, 0.0], [2.5e-3, 5e-3], trim_air_mass_kg=0.9, trim_bladder_volume_m3=2.5e-3)
+    w = net_weight_n(
+        [0.9, 0.0], [2.5e-3, 5e-3], trim_air_mass_kg=0.9, trim_bladder_volume_m3=2.5e-3
+    )
     assert w == pytest.approx([0.0, 33.354], abs=1e-3)
 
 
@@ -131,6 +133,7 @@ def test_fig_7_7_maximum_inflation_rate():
     # W~ = 9810 * 0.8333e-3 = 8.175 N, zdot = sqrt(2 * 8.175 / 4.10433) = 1.99590 m/s,
     # ndot = 9810 * 1.6667e-3 * 1.99590 / 2437.25 = 0.013390 mol/s
     v, zdot, ndot = exchange_rate_sweep(VTUG_BLADDER, VTUG_HULL, num=3001)
+    assert np.all(zdot[v < 2.5e-3] > 0)  # heavy -> descending
     k = int(np.argmax(ndot))
     assert v[k] == pytest.approx(1.6667e-3, abs=5e-6)
     assert ndot[k] == pytest.approx(0.013390, abs=2e-6)

@@ -122,7 +122,9 @@ def test_survey_simulation_statistics_and_seed():
 
 def test_survey_without_noise_is_exact_and_bias_hurts():
     track = lawnmower_track((300.0, 900.0), (500.0, 900.0), 3, 20.0)
-    clean = simulate_survey(LBLConfig(range_noise_std_m=0.0, ping_success_probability=1.0), track, 0)
+    clean = simulate_survey(
+        LBLConfig(range_noise_std_m=0.0, ping_success_probability=1.0), track, 0
+    )
     assert clean.statistics.fix_fraction == 1.0
     assert clean.statistics.max_error_m < 1e-6
     biased = LBLConfig(

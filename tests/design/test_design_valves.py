@@ -90,7 +90,10 @@ def test_required_cv_si_matches_imperial():
         (lambda: gas_flow_scfm(1.0, -100.0, 60.0, 520.0), "inlet_pressure_psia"),
         (lambda: gas_flow_scfm(1.0, 100.0, 60.0, 520.0, choked="sometimes"), "choked"),
         (lambda: flow_coefficient(-1.0, 100.0, 60.0, 520.0), "q_scfm"),
-        (lambda: inflator_cv(VTUG_BLADDER, VTUG_HULL, 1e-3, 1e5, depth_m=100.0), "tank_pressure_pa"),
+        (
+            lambda: inflator_cv(VTUG_BLADDER, VTUG_HULL, 1e-3, 1e5, depth_m=100.0),
+            "tank_pressure_pa",
+        ),
         (lambda: inflator_cv(VTUG_BLADDER, VTUG_HULL, 3e-3, 1e7), "volume_m3"),
         (lambda: deflator_cv(VTUG_BLADDER, VTUG_HULL, 1e-3, 10.0), "volume_m3"),
         (lambda: deflator_cv(VTUG_BLADDER, VTUG_HULL, 4e-3, -10.0), "depth_m"),
