@@ -80,7 +80,8 @@ class Bladder:
             raise InvalidParameterError(
                 "elastic_coefficients_pa", coeffs, "p_blad(V) must be >= 0 on [0, max_volume_m3]"
             )
-        # (7.5) has one root in V only if V (p_atm + p_blad(V)) increases with V.
+        # (7.5) has one root in V only if V (p_amb + p_blad(V)) increases with V; checked
+        # with p_amb = half an atmosphere, below any ambient pressure met in water.
         dp = self._poly_derivative(x)
         if np.any(FRESH_WATER.atmospheric_pressure_pa * 0.5 + p + x * dp <= 0.0):
             raise InvalidParameterError(
@@ -96,7 +97,7 @@ class Bladder:
         return out
 
     def _poly_derivative(self, x: np.ndarray) -> np.ndarray:
-        # d p_blad / d x times x / x: returns d p / d x (x = V / V_max).
+        # d p_blad / d x with x = V / V_max
         out = np.zeros_like(x)
         for k, c in enumerate(self.elastic_coefficients_pa, start=1):
             out = out + k * c * x ** (k - 1)

@@ -8,6 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from glideplan.design._checks import nonnegative_array, positive_array, scalar_or_array
+from glideplan.design._units import lb_to_kg
 from glideplan.errors import InvalidParameterError
 from glideplan.units import inch3_to_m3, psi_to_pa
 from glideplan.validation import check_positive
@@ -27,7 +28,6 @@ __all__ = [
 
 R_GAS_J_PER_MOL_K = 8.314  # universal gas constant as printed under (7.1)
 M_AIR_KG_PER_MOL = 0.02897  # molar mass of dry air
-_LB_TO_KG = 0.45359237
 
 
 @dataclass(frozen=True)
@@ -127,5 +127,5 @@ FX23DV = Tank(
     name="Faber FX23DV",
     max_pressure_pa=psi_to_pa(3442.0),
     internal_volume_m3=inch3_to_m3(183.0),
-    empty_mass_kg=8.6 * _LB_TO_KG,
+    empty_mass_kg=lb_to_kg(8.6),
 )

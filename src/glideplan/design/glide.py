@@ -204,14 +204,12 @@ def spider_plot(
     g = np.linspace(polar.min_glide_angle_rad, math.pi / 2, int(num))
     u, d = glide_velocity_m_s(polar, g[None, :], w[:, None], environment)
     gamma_lines = {}
-    for gl in np.atleast_1d(finite_array("gammas_rad", gammas_rad)):
+    for gl in finite_array("gammas_rad", gammas_rad).ravel():
         ul, dl = glide_velocity_m_s(polar, np.full(v.shape, gl), w, environment)
         gamma_lines[float(gl)] = (np.asarray(ul), np.asarray(dl))
     alpha_lines = {}
     rho_s = environment.water_density_kg_m3 * polar.reference_area_m2
-    for al in np.atleast_1d(
-        positive_array("alphas_rad", alphas_rad) if np.size(alphas_rad) else ()
-    ):
+    for al in positive_array("alphas_rad", alphas_rad).ravel():
         cl = polar.lift_slope_per_rad * float(al)
         ga = math.atan((polar.zero_lift_drag_coefficient + polar.induced_drag_factor * cl**2) / cl)
         speed = np.sqrt(2.0 * w * math.cos(ga) / (rho_s * cl))  # (7.20)

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 import tomli_w
 
+from glideplan.design._units import celsius_to_kelvin, feet_to_m, lb_to_kg
 from glideplan.design.buoyancy import VTUG_BLADDER, VTUG_HULL, Bladder, Hull
 from glideplan.design.gas import FRESH_WATER, FX23DV, Environment, Tank
 from glideplan.design.glide import SEAGLIDER_LIKE, DragPolar
@@ -85,11 +86,11 @@ _EDGE_UNITS: dict[str, tuple[str, Callable[[Any], Any]]] = {
     "_l": ("_m3", litre_to_m3),
     "_in3": ("_m3", inch3_to_m3),
     "_in": ("_m", inch_to_m),
-    "_ft": ("_m", _scale(0.3048)),
-    "_lb": ("_kg", _scale(0.45359237)),
+    "_ft": ("_m", feet_to_m),
+    "_lb": ("_kg", lb_to_kg),
     "_deg": ("_rad", deg_to_rad),
     "_kmh": ("_m_s", kmh_to_ms),
-    "_degc": ("_k", lambda v: np.asarray(v, dtype=float) + 273.15),
+    "_degc": ("_k", celsius_to_kelvin),
 }
 
 

@@ -1,4 +1,4 @@
-"""Static acoustic long-baseline (LBL) position fixes and a survey simulation (7.6; Fig 7.27).
+"""Static acoustic long-baseline (LBL) position fixes and a survey simulation (sec 7.6, Fig 7.27).
 
 The receiver depth is known from its pressure sensor, so slant ranges are reduced to
 horizontal ranges rho_i = sqrt(r_i^2 - (z - z_i)^2) and the fix is solved in the plane from
@@ -100,7 +100,7 @@ def _ranges(ranges_m: ArrayLike, m: int) -> np.ndarray:
 
 
 def fix_algebraic(beacons_m: ArrayLike, ranges_m: ArrayLike) -> np.ndarray:
-    """Linearised LBL fix (..., 2) from horizontal ranges (..., m) to m >= 3 beacons (7.6)."""
+    """Linearised LBL fix (..., 2) from horizontal ranges (..., m) to m >= 3 beacons (sec 7.6)."""
     b = check_beacon_geometry(beacons_m)
     r = _ranges(ranges_m, b.shape[0])
     return _algebraic(b, r)

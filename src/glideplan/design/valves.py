@@ -148,7 +148,7 @@ def required_cv(
     *,
     choked: str = "auto",
 ) -> np.ndarray | float:
-    """C_v for a molar air flow between two absolute pressures, SI in (mol/s, Pa, K) (7.8)."""
+    """C_v for a molar air flow (sign ignored) between absolute pressures; mol/s, Pa, K (7.8)."""
     ndot = np.abs(finite_array("ndot_mol_s", ndot_mol_s))
     p1, p2 = _check_pressures(inlet_pressure_pa, outlet_pressure_pa, "pa")
     return flow_coefficient(

@@ -1,0 +1,339 @@
+"""`glideplan design ...`: chapter 7 design analyses (buoyancy engine, valves, trim, glide, LBL).
+
+Inputs at the edge in the units a designer uses (litres, psi, metres, degrees); a full
+parameter set comes from `--params FILE.toml` (`glideplan design init FILE.toml` writes one).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import pathlib
+from collections.abc import Iterator
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+
+from glideplan.cli.app import design_app
+from glideplan.cli.common import print_json
+from glideplan.errors import InvalidParameterError
+from glideplan.validation import check_nonnegative, check_positive
+
+ParamsOpt = Annotated[
+    pathlib.Path | None,
+    typer.Option("--params", help="TOML parameter set (see `glideplan design init`)."),
+]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")]
+
+
+def _params(path: pathlib.Path | None):
+    from glideplan.design import DesignParameters, load_parameters
+
+    return DesignParameters() if path is None else load_parameters(path)
+
+
+@contextlib.contextmanager
+def _flags(**names: str) -> Iterator[None]:
+    """Report a bad value under its command-line flag (`volume_m3` -> `--volume-l`)."""
+    try:
+        yield
+    except InvalidParameterError as exc:
+        if exc.name in names:
+            raise InvalidParameterError(names[exc.name], exc.value, exc.rule) from None
+        raise
+
+
+def _emit(title: str, columns: list[str], rows: list[list[Any]], data: Any, json_out: bool) -> None:
+    if json_out:
+        print_json(data)
+        return
+    from rich.console import Console
+    from rich.table import Table
+
+    table = Table(title=title)
+    for i, col in enumerate(columns):
+        table.add_column(col, justify="left" if i == 0 else "right")
+    for row in rows:
+        table.add_row(*(f"{v:.6g}" if isinstance(v, float) else str(v) for v in row))
+    Console().print(table)
+
+
+@design_app.command("init")
+def init(
+    file: Annotated[pathlib.Path, typer.Argument(help="TOML file to write.")],
+    force: Annotated[bool, typer.Option("--force", help="Overwrite an existing file.")] = False,
+) -> None:
+    """Write a template parameter set (the VTUG / FX23DV / Seaglider-like defaults)."""
+    from glideplan.design import DesignParameters, save_parameters
+
+    if file.exists() and not force:
+        raise InvalidParameterError("FILE", str(file), "exists; pass --force to overwrite")
+    save_parameters(DesignParameters(), file)
+    typer.echo(f"wrote {file}")
+
+
+@design_app.command("tank")
+def tank(
+    params: ParamsOpt = None,
+    pressure_psi: Annotated[
+        float | None, typer.Option("--pressure-psi", help="Tank pressure (default: rated).")
+    ] = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """Air in the tank by the ideal gas law (7.1) and how deep it can inflate."""
+    from glideplan.design import M_AIR_KG_PER_MOL, R_GAS_J_PER_MOL_K
+    from glideplan.units import pa_to_psi, psi_to_pa
+    from glideplan.validation import check_positive
+
+    p = _params(params)
+    t = p.tank
+    env = p.environment
+    p_pa = (
+        t.max_pressure_pa
+        if pressure_psi is None
+        else psi_to_pa(check_positive("--pressure-psi", pressure_psi))
+    )
+    n = float(t.moles(env.temperature_k, p_pa))
+    data = {
+        "tank": t.name,
+        "pressure_pa": float(p_pa),
+        "pressure_psi": float(pa_to_psi(p_pa)),
+        "internal_volume_m3": t.internal_volume_m3,
+        "temperature_k": env.temperature_k,
+        "moles": n,
+        "air_mass_kg": n * M_AIR_KG_PER_MOL,
+        "temperature_for_31_1_mol_k": p_pa * t.internal_volume_m3 / (R_GAS_J_PER_MOL_K * 31.1),
+        "max_inflation_depth_m": float(env.depth_at_pressure_m(p_pa)),
+    }
+    rows = [[k, v] for k, v in data.items()]
+    _emit("Tank air (7.1)", ["quantity", "value"], rows, data, json_out)
+
+
+@design_app.command("dives")
+def dives(
+    volume_l: Annotated[
+        list[float] | None, typer.Option("--volume-l", help="Bladder displacement, L (repeat).")
+    ] = None,
+    depth_m: Annotated[
+        list[float] | None, typer.Option("--depth-m", help="Dive depth, m (repeat).")
+    ] = None,
+    usable: Annotated[
+        bool, typer.Option("--usable", help="Leave the air that cannot leave the tank at depth.")
+    ] = False,
+    params: ParamsOpt = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """Air per dive and number of dives N = n_tank / n_cycle on a volume x depth grid (Fig 7.3)."""
+    from glideplan.design import moles_per_cycle, number_of_dives
+    from glideplan.units import litre_to_m3
+
+    p = _params(params)
+    vols = volume_l or [3.0, 5.0]
+    depths = depth_m or [50.0, 100.0]
+    rows, data = [], []
+    for v in vols:
+        check_positive("--volume-l", v)
+    with _flags(depth_m="--depth-m"):
+        for v in vols:
+            v_m3 = litre_to_m3(v)
+            for z in depths:
+                n_dives = float(number_of_dives(p.tank, v_m3, z, p.environment, usable_only=usable))
+                n_cycle = float(moles_per_cycle(v_m3, z, p.environment))
+                rows.append([f"{v:g} L", f"{z:g} m", n_cycle, n_dives, math.floor(n_dives)])
+                data.append(
+                    {"volume_l": v, "depth_m": z, "moles_per_cycle": n_cycle, "dives": n_dives}
+                )
+    cols = ["volume", "depth", "mol/dive", "dives", "full dives"]
+    _emit(f"Dives with {p.tank.name}", cols, rows, data, json_out)
+
+
+@design_app.command("valve")
+def valve(
+    volume_l: Annotated[float, typer.Option("--volume-l", help="Bladder volume to hold, L.")] = 5.0,
+    depth_m: Annotated[float, typer.Option("--depth-m", help="Depth, m (deflator).")] = 100.0,
+    tank_psi: Annotated[
+        float, typer.Option("--tank-psi", help="Tank pressure, psia (inflator).")
+    ] = 500.0,
+    drag_coefficient: Annotated[
+        float | None, typer.Option("--cd", help="Drag coefficient (default: params hull).")
+    ] = None,
+    params: ParamsOpt = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """Valve C_v to hold a bladder volume at the terminal depth rate (7.6-7.8; Fig 7.8).
+
+    Above the neutral volume the glider rises and the deflator is sized; below it the glider
+    sinks and the inflator is sized (choked, and as (7.8) is printed).
+    """
+    from glideplan.design import (
+        air_exchange_rate_mol_s,
+        deflator_cv,
+        inflator_cv,
+        molar_flow_to_scfm,
+        terminal_depth_rate_m_s,
+    )
+    from glideplan.units import litre_to_m3, psi_to_pa
+
+    p = _params(params)
+    v = litre_to_m3(volume_l)
+    b, h, env = p.bladder, p.hull, p.environment
+    cd = h.drag_coefficient if drag_coefficient is None else drag_coefficient
+    check_nonnegative("--volume-l", volume_l)
+    check_positive("--tank-psi", tank_psi)
+    with _flags(depth_m="--depth-m", drag_coefficient="--cd"):
+        zdot = float(terminal_depth_rate_m_s(b.net_weight_n(v, env), h.cross_section_m2, cd, env))
+        ndot = float(air_exchange_rate_mol_s(v, zdot, env))
+        data: dict[str, Any] = {
+            "volume_l": volume_l,
+            "drag_coefficient": cd,
+            "depth_rate_m_s": zdot,
+            "exchange_rate_mol_s": ndot,
+            "flow_scfm": float(molar_flow_to_scfm(abs(ndot))),
+        }
+        if v > b.neutral_volume_m3:
+            data |= {
+                "valve": "deflator",
+                "depth_m": depth_m,
+                "cv": float(deflator_cv(b, h, v, depth_m, env, drag_coefficient=cd)),
+            }
+        elif v < b.neutral_volume_m3:
+            kw = {"drag_coefficient": cd}
+            data |= {
+                "valve": "inflator",
+                "tank_psia": tank_psi,
+                "cv": float(inflator_cv(b, h, v, psi_to_pa(tank_psi), env, **kw)),
+                "cv_as_printed_7_8": float(
+                    inflator_cv(b, h, v, psi_to_pa(tank_psi), env, choked="never", **kw)
+                ),
+            }
+        else:
+            data |= {"valve": "none (neutral: no flow needed)", "cv": 0.0}
+    rows = [[k, v] for k, v in data.items()]
+    _emit("Valve sizing (7.6-7.8)", ["quantity", "value"], rows, data, json_out)
+
+
+@design_app.command("trim")
+def trim(
+    bladder_l: Annotated[float, typer.Option("--bladder-l", help="Bladder volume, L.")] = 2.5,
+    steps: Annotated[int, typer.Option("--steps", help="Moving-mass stations to list.")] = 5,
+    params: ParamsOpt = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """Equilibrium pitch over the moving-mass travel, with CG and CB (7.9-7.14)."""
+    from glideplan.design import (
+        centre_of_buoyancy_m,
+        centre_of_gravity_m,
+        equilibrium_pitch_rad,
+        net_vertical_force_n,
+    )
+    from glideplan.units import litre_to_m3
+
+    if steps < 2:
+        raise InvalidParameterError("--steps", steps, "must be >= 2")
+    p = _params(params)
+    lay = p.trim
+    v = litre_to_m3(bladder_l)
+    stations = np.linspace(lay.moving_mass_min_station_m, lay.moving_mass_max_station_m, steps)
+    check_nonnegative("--bladder-l", bladder_l)
+    theta = np.degrees(equilibrium_pitch_rad(lay, stations, v, p.environment))
+    cgx, cgz = centre_of_gravity_m(lay, stations)
+    cbx = float(centre_of_buoyancy_m(lay, v))
+    rows = [
+        [f"{s:.3f} m", float(cx), float(cgz), cbx, float(t)]
+        for s, cx, t in zip(stations, np.atleast_1d(cgx), theta, strict=True)
+    ]
+    data = {
+        "bladder_l": bladder_l,
+        "net_vertical_force_n": float(net_vertical_force_n(lay, v, p.environment)),
+        "centre_of_buoyancy_x_m": cbx,
+        "stations_m": stations,
+        "cg_x_m": cgx,
+        "cg_z_m": float(cgz),
+        "pitch_deg": theta,
+    }
+    cols = ["moving mass", "CG x (m)", "CG z (m)", "CB x (m)", "pitch (deg)"]
+    _emit("Pitch trim (7.10, + nose-up)", cols, rows, data, json_out)
+
+
+@design_app.command("glide")
+def glide(
+    volume_l: Annotated[
+        list[float] | None,
+        typer.Option("--volume-l", help="Net buoyancy |V - V_neutral|, L (repeat)."),
+    ] = None,
+    params: ParamsOpt = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """Top forward speed and dive speed from the parabolic polar (7.15-7.20; Fig 7.17)."""
+    from glideplan.design import glide_velocity_m_s, max_forward_speed
+    from glideplan.units import litre_to_m3
+
+    p = _params(params)
+    env, polar = p.environment, p.glide
+    vols = volume_l or [0.5, 1.0, 1.5, 2.0, 2.5]
+    rows, data = [], []
+    for v in vols:
+        check_positive("--volume-l", v)
+    for v in vols:
+        w = env.specific_weight_n_m3 * litre_to_m3(v)
+        u, g = max_forward_speed(polar, w, env)
+        _, dive = glide_velocity_m_s(polar, math.pi / 2, w, env)
+        rows.append([f"{v:g} L", w, u, math.degrees(g), float(dive)])
+        data.append(
+            {
+                "volume_l": v,
+                "net_weight_n": w,
+                "max_forward_speed_m_s": u,
+                "gamma_at_max_deg": math.degrees(g),
+                "vertical_dive_speed_m_s": float(dive),
+            }
+        )
+    cols = ["net buoyancy", "W~ (N)", "u max (m/s)", "gamma (deg)", "dive (m/s)"]
+    title = f"{polar.name}: gamma_min = {math.degrees(polar.min_glide_angle_rad):.2f} deg"
+    _emit(title, cols, rows, data, json_out)
+
+
+@design_app.command("lbl")
+def lbl(
+    seed: Annotated[int, typer.Option("--seed", help="Random seed.")] = 0,
+    noise_m: Annotated[
+        float | None, typer.Option("--noise-m", help="Range noise std, m (default: params).")
+    ] = None,
+    success: Annotated[
+        float | None, typer.Option("--success", help="Ping success probability.")
+    ] = None,
+    swaths: Annotated[int, typer.Option("--swaths", help="North-south swaths.")] = 7,
+    step_m: Annotated[float, typer.Option("--step-m", help="Distance between pings, m.")] = 5.0,
+    params: ParamsOpt = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """Simulate an LBL survey (lawn-mower track) and report position error stats (sec 7.6)."""
+    import dataclasses
+
+    from glideplan.design import lawnmower_track, simulate_survey
+
+    p = _params(params)
+    cfg = p.lbl
+    changes: dict[str, float] = {}
+    if noise_m is not None:
+        changes["range_noise_std_m"] = noise_m
+    if success is not None:
+        changes["ping_success_probability"] = success
+    try:
+        cfg = dataclasses.replace(cfg, **changes)
+    except InvalidParameterError as exc:
+        flag = {"range_noise_std_m": "--noise-m", "ping_success_probability": "--success"}
+        raise InvalidParameterError(flag.get(exc.name, exc.name), exc.value, exc.rule) from None
+    b = np.asarray(cfg.beacons_m)
+    pad = 0.1 * float(np.max(np.ptp(b, axis=0)))
+    track = lawnmower_track(
+        (float(b[:, 0].min() - pad), float(b[:, 0].max() + pad)),
+        (float(b[:, 1].min() - pad), float(b[:, 1].max() + pad)),
+        swaths,
+        step_m,
+    )
+    stats = simulate_survey(cfg, track, seed).statistics
+    data = stats.to_dict() | {"seed": seed, "beacons": len(b), "method": cfg.method}
+    rows = [[k, v] for k, v in data.items()]
+    _emit("LBL survey (section 7.6)", ["quantity", "value"], rows, data, json_out)
