@@ -41,6 +41,9 @@ class Problem:
     goal: Pose
     vehicle: Vehicle
     objective: str
+    # The world pose of the planner's origin (the request's start): planners whose vehicle
+    # carries world-fixed data, such as a wind vector, rotate it into the planner's frame.
+    frame: Pose = Pose(0.0, 0.0, 0.0)
 
 
 @dataclass(frozen=True, eq=False)
@@ -167,7 +170,7 @@ def plan(
             f"is not an option of planner {spec.name!r} (known: {known})",
         )
     local_goal = goal_p.relative_to(start_p)
-    problem = Problem(Pose(0.0, 0.0, 0.0), local_goal, vehicle, objective)
+    problem = Problem(Pose(0.0, 0.0, 0.0), local_goal, vehicle, objective, start_p)
     t0 = time.perf_counter()
     out = spec.function(problem, **options)
     elapsed = time.perf_counter() - t0

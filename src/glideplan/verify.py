@@ -4,6 +4,9 @@ The kinematics x' = v cos psi, y' = v sin psi, psi' = u (eqs. 2.1, 4.1, 5.1-5.3,
 are integrated with SciPy's DOP853 from the path's start pose using only the speed and
 turn-rate histories the segments report, never their closed-form positions. The difference
 between the integrated end state and the goal is the endpoint error every solution carries.
+A segment flown in a steady uniform wind or current reports it as `drift = (wx, wy)` (m/s),
+which is added to the velocity (eq. A.4 with no unknown part); segments without the
+attribute have no drift.
 """
 
 from __future__ import annotations
@@ -55,11 +58,12 @@ def integrate_path(
     for seg in path.segments:
         if seg.duration <= 0.0:
             continue
+        wx, wy = (float(c) for c in getattr(seg, "drift", (0.0, 0.0)))
 
-        def rhs(t: float, z: np.ndarray, seg=seg) -> np.ndarray:
+        def rhs(t: float, z: np.ndarray, seg=seg, wx=wx, wy=wy) -> np.ndarray:
             v, u = seg.controls(np.array([t]))
             r = rate(v, u)[0] if rate is not None else 0.0
-            return np.array([v[0] * math.cos(z[2]), v[0] * math.sin(z[2]), u[0], r])
+            return np.array([v[0] * math.cos(z[2]) + wx, v[0] * math.sin(z[2]) + wy, u[0], r])
 
         bps = seg.breakpoints()
         pieces = bps if bps.size <= 8 else np.array([0.0, seg.duration])

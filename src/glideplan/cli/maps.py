@@ -1,0 +1,156 @@
+"""`glideplan map partition|tradespace`: Dubins partition and tradespace maps (Figs 3.1, 3.2)."""
+
+from __future__ import annotations
+
+import csv
+import math
+import pathlib
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+
+from glideplan.cli.app import map_app
+from glideplan.errors import InvalidParameterError
+
+HeadingOpt = Annotated[
+    float, typer.Option("--heading", help="Final heading psi1 (degrees).", show_default=False)
+]
+ExtentOpt = Annotated[
+    float, typer.Option("--extent", help="Half-width L of the grid [-L, L]^2 (units of R0).")
+]
+GridOpt = Annotated[int, typer.Option("--n", help="Grid points per axis (n x n goals).")]
+OutOpt = Annotated[pathlib.Path | None, typer.Option("--out", help="Figure file (PNG, PDF, SVG).")]
+DataOpt = Annotated[
+    pathlib.Path | None, typer.Option("--data", help="Grid data file (.csv or .npz).")
+]
+SchedulerOpt = Annotated[
+    str | None,
+    typer.Option("--scheduler", help="Dask scheduler address (default: local processes)."),
+]
+ProcessesOpt = Annotated[
+    int | None, typer.Option("--processes", help="Local worker processes (1: in-process).")
+]
+
+
+def _check_data_file(path: pathlib.Path | None) -> None:
+    if path is not None and path.suffix.lower() not in (".csv", ".npz"):
+        raise InvalidParameterError("data", str(path), "must end in .csv or .npz")
+
+
+def _batch_options(scheduler: str | None, processes: int | None) -> dict[str, Any]:
+    opts: dict[str, Any] = {"progress": True, "description": "map"}
+    if scheduler is not None:
+        opts["scheduler"] = scheduler
+    if processes is not None:
+        if processes < 1:
+            raise InvalidParameterError("processes", processes, "must be >= 1")
+        opts["processes"] = processes
+    return opts
+
+
+def _write_data(path: pathlib.Path, columns: dict[str, np.ndarray], meta: dict[str, Any]) -> None:
+    if path.suffix.lower() == ".npz":
+        np.savez_compressed(path, **columns, **{k: np.asarray(v) for k, v in meta.items()})
+        return
+    names = list(columns)
+    with path.open("w", newline="") as fh:
+        fh.write("".join(f"# {k} = {v}\n" for k, v in meta.items()))
+        writer = csv.writer(fh)
+        writer.writerow(names)
+        for row in zip(*(columns[k].tolist() for k in names), strict=True):
+            writer.writerow(
+                [f"{v:.12g}" if isinstance(v, float) and math.isfinite(v) else v for v in row]
+            )
+
+
+def _save_plot(ax: Any, path: pathlib.Path) -> None:
+    from glideplan.plotting import save_figure
+
+    save_figure(ax, str(path))
+
+
+@map_app.command("partition")
+def partition_command(
+    heading: HeadingOpt,
+    eps: Annotated[
+        float, typer.Option("--eps", help="Plan with R0 (1 + eps)^2 (eps in [0, 1)).")
+    ] = 0.0,
+    extent: ExtentOpt = 6.0,
+    n: GridOpt = 121,
+    out: OutOpt = None,
+    data: DataOpt = None,
+    scheduler: SchedulerOpt = None,
+    processes: ProcessesOpt = None,
+) -> None:
+    """Partition of the plane by optimal Dubins word for final heading psi1 (Fig 3.1)."""
+    from rich.console import Console
+    from rich.table import Table
+
+    from glideplan.studies.maps import partition_map
+
+    _check_data_file(data)
+    psi1 = math.radians(_finite("heading", heading))
+    pmap = partition_map(psi1, extent, n, eps, **_batch_options(scheduler, processes))
+    table = Table(title=f"Dubins partition, heading {heading:g} deg, eps {eps:g}, {n}x{n} grid")
+    table.add_column("optimal word(s)")
+    table.add_column("share of grid", justify="right")
+    for label, frac in sorted(pmap.fractions().items(), key=lambda kv: -kv[1]):
+        table.add_row(label, f"{100 * frac:.2f} %")
+    Console().print(table)
+    meta = {"map": "partition", "heading_rad": psi1, "eps": eps, "extent": extent, "n": n}
+    if data is not None:
+        _write_data(data, pmap.columns(), meta)
+        typer.echo(f"wrote {data}")
+    if out is not None:
+        from glideplan.studies.map_plots import plot_partition
+
+        _save_plot(plot_partition(pmap), out)
+        typer.echo(f"wrote {out}")
+
+
+@map_app.command("tradespace")
+def tradespace_command(
+    heading: HeadingOpt,
+    eps: Annotated[float, typer.Option("--eps", help="Disturbance ratio eps in [0, 1).")] = 0.25,
+    extent: ExtentOpt = 6.0,
+    n: GridOpt = 121,
+    out: OutOpt = None,
+    data: DataOpt = None,
+    scheduler: SchedulerOpt = None,
+    processes: ProcessesOpt = None,
+) -> None:
+    """Ratio T = d_feasible / d_optimal of path lengths with R0 (1 + eps)^2 and R0 (Fig 3.2)."""
+    from rich.console import Console
+    from rich.table import Table
+
+    from glideplan.studies.maps import tradespace_map
+
+    _check_data_file(data)
+    psi1 = math.radians(_finite("heading", heading))
+    tmap = tradespace_map(psi1, eps, extent, n, **_batch_options(scheduler, processes))
+    ratio = tmap.ratio[np.isfinite(tmap.ratio)]
+    table = Table(title=f"Tradespace T, heading {heading:g} deg, eps {eps:g}, {n}x{n} grid")
+    table.add_column("quantity")
+    table.add_column("value", justify="right")
+    table.add_row("min T", f"{ratio.min():.4f}")
+    table.add_row("median T", f"{np.median(ratio):.4f}")
+    table.add_row("max T", f"{ratio.max():.4f}")
+    table.add_row("share with T > 2", f"{100 * np.mean(ratio > 2):.2f} %")
+    table.add_row("share with T > 5 (truncated)", f"{100 * np.mean(ratio > 5):.2f} %")
+    Console().print(table)
+    meta = {"map": "tradespace", "heading_rad": psi1, "eps": eps, "extent": extent, "n": n}
+    if data is not None:
+        _write_data(data, tmap.columns(), meta)
+        typer.echo(f"wrote {data}")
+    if out is not None:
+        from glideplan.studies.map_plots import plot_tradespace
+
+        _save_plot(plot_tradespace(tmap), out)
+        typer.echo(f"wrote {out}")
+
+
+def _finite(name: str, value: float) -> float:
+    from glideplan.validation import check_finite
+
+    return check_finite(name, value)

@@ -1,0 +1,138 @@
+"""`glideplan plan min-altitude`: minimum altitude loss with a quadratic glide polar (ch. 5)."""
+
+from __future__ import annotations
+
+import pathlib
+from typing import Annotated
+
+import typer
+
+from glideplan.cli.app import plan_app
+from glideplan.cli.common import emit_solution, parse_pose
+from glideplan.errors import InvalidParameterError
+
+VEHICLES = ("dg1001m",)
+METHODS = ("synthesis", "direct")
+
+
+@plan_app.command("min-altitude")
+def plan_min_altitude_command(
+    goal: Annotated[
+        tuple[float, float, float],
+        typer.Option(
+            "--goal",
+            help="Goal pose X Y HEADING_DEG (m, or units of R_stf with --normalized; degrees).",
+            show_default=False,
+        ),
+    ],
+    start: Annotated[
+        tuple[float, float, float],
+        typer.Option("--start", help="Start pose X Y HEADING_DEG (same units as --goal)."),
+    ] = (0.0, 0.0, 0.0),
+    vehicle: Annotated[
+        str | None,
+        typer.Option(
+            "--vehicle",
+            help="Preset glider: dg1001m (section 5.9). The default when --polar is not given.",
+        ),
+    ] = None,
+    polar: Annotated[
+        tuple[float, float, float] | None,
+        typer.Option(
+            "--polar",
+            help="Sink-rate polar w = A v^2 + B v + C in SI: A (s/m), B (-), C (m/s); "
+            "needs --v-stall, --v-max and --u-max.",
+            show_default=False,
+        ),
+    ] = None,
+    v_stall: Annotated[
+        float | None, typer.Option("--v-stall", help="Stall speed (m/s), with --polar.")
+    ] = None,
+    v_max: Annotated[
+        float | None, typer.Option("--v-max", help="Maximum speed (m/s), with --polar.")
+    ] = None,
+    u_max: Annotated[
+        float | None, typer.Option("--u-max", help="Maximum turn rate (rad/s), with --polar.")
+    ] = None,
+    normalized: Annotated[
+        bool,
+        typer.Option(
+            "--normalized", help="Read X and Y of --goal/--start in units of R_stf = v_stf/u_max."
+        ),
+    ] = False,
+    method: Annotated[
+        str, typer.Option("--method", help="synthesis (default) or direct (collocation + IPOPT).")
+    ] = "synthesis",
+    json_out: Annotated[
+        bool,
+        typer.Option(
+            "--json",
+            help="Print one JSON object (cost = altitude loss in m; dubins_cost; profile).",
+        ),
+    ] = False,
+    plot: Annotated[
+        pathlib.Path | None,
+        typer.Option("--plot", help="Draw the candidates and the control history to FILE."),
+    ] = None,
+) -> None:
+    """Minimum-altitude-loss path of a glider with a quadratic polar (dissertation ch. 5).
+
+    The JSON adds `dubins_cost` (altitude loss of the Dubins path flown at v_stf with radius
+    R_stf, m), `improvement` (m), `length_unit` (R_stf, m) and `profile` (time, arc length,
+    pose, speed, turn rate and cumulative altitude loss along the path).
+    """
+    from glideplan.planners.min_altitude import flight_profile
+    from glideplan.planning import plan
+    from glideplan.pose import Pose
+
+    if method not in METHODS:
+        raise InvalidParameterError("method", method, f"must be one of {', '.join(METHODS)}")
+    glider = _glider(vehicle, polar, v_stall, v_max, u_max)
+    start_pose = parse_pose(start, "start")
+    goal_pose = parse_pose(goal, "goal")
+    if normalized:
+        k = glider.radius_stf
+        start_pose = Pose(start_pose.x * k, start_pose.y * k, start_pose.heading)
+        goal_pose = Pose(goal_pose.x * k, goal_pose.y * k, goal_pose.heading)
+    if goal_pose.relative_to(start_pose).as_array().tolist() == [0.0, 0.0, 0.0]:
+        raise InvalidParameterError("goal", goal, "must differ from the start")
+    solution = plan(start_pose, goal_pose, glider, "altitude", method)
+    extra: dict[str, object] = {"length_unit": glider.radius_stf}
+    if solution.ok and solution.path is not None:
+        extra["profile"] = flight_profile(solution.path)
+        ref = solution.extras.get("dubins_cost")
+        if isinstance(ref, float):
+            extra["improvement"] = ref - solution.cost
+        if plot is not None:
+            from glideplan.figures.ch5 import draw_solution
+
+            draw_solution(solution, plot)
+    emit_solution(solution, json_out, None, extra=extra)
+
+
+def _glider(
+    vehicle: str | None,
+    polar: tuple[float, float, float] | None,
+    v_stall: float | None,
+    v_max: float | None,
+    u_max: float | None,
+):
+    from glideplan.vehicles import QuadraticPolarGlider, dg1001m
+
+    if polar is None:
+        extras = {"--v-stall": v_stall, "--v-max": v_max, "--u-max": u_max}
+        given = [k for k, v in extras.items() if v is not None]
+        if given:
+            raise InvalidParameterError(given[0], extras[given[0]], "is only used with --polar")
+        name = (vehicle or "dg1001m").lower()
+        if name not in VEHICLES:
+            raise InvalidParameterError("vehicle", vehicle, f"must be one of {', '.join(VEHICLES)}")
+        return dg1001m()
+    if vehicle is not None:
+        raise InvalidParameterError("vehicle", vehicle, "give either --vehicle or --polar, not both")
+    needed = {"v_stall": v_stall, "v_max": v_max, "u_max": u_max}
+    for name, value in needed.items():
+        if value is None:
+            raise InvalidParameterError(name, None, f"--{name.replace('_', '-')} is needed with --polar")
+    a, b, c = polar
+    return QuadraticPolarGlider(a, b, c, v_stall, v_max, u_max)

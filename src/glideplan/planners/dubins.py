@@ -1,0 +1,498 @@
+"""Dubins shortest paths: the six words in closed form, batched over pose arrays.
+
+Implements dissertation section 2.7 (eqs. 2.10-2.11: the candidate set LSL, LSR, RSL, RSR,
+RLR, LRL) and the feasible turn radius R0' = R0 (1 + eps)^2 of section 3.2 (eq. 3.3,
+appendix A). The closed forms are those of REFERENCE_NOTES section 4.2 (Shkel & Lumelsky
+2001), rewritten in the start frame with the turning-circle centres: for a unit radius the
+start circles are centred at (0, +-1), the goal circles at (x -+ sin psi, y +- cos psi), and
+every word follows from the vector V between the two circle centres it uses:
+
+- LSL / RSR: straight length |V|, straight heading atan2(V);
+- LSR / RSL: straight length sqrt(|V|^2 - 4), heading atan2(V) +- atan2(2, p);
+- LRL / RLR: middle arc 2 pi - acos(1 - |V|^2 / 8) (needs |V| <= 4).
+
+All functions broadcast over `(..., 3)` pose arrays (x, y, heading in rad) without a Python
+loop per query.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from glideplan.errors import InvalidParameterError
+from glideplan.path import Path
+from glideplan.planning import PlannerOutput, Problem, register_planner
+from glideplan.pose import Pose
+from glideplan.segments import Arc, Segment, Straight
+from glideplan.solution import Candidate
+from glideplan.validation import check_finite_array, check_in_range, check_positive
+from glideplan.vehicles.dubins_car import DubinsCar
+
+__all__ = [
+    "WORDS",
+    "DubinsBatch",
+    "dubins_distance",
+    "dubins_path",
+    "dubins_segment_lengths",
+    "dubins_shortest",
+    "dubins_word_lengths",
+    "feasible_radius",
+    "word_directions",
+]
+
+WORDS: tuple[str, ...] = ("LSL", "LSR", "RSL", "RSR", "RLR", "LRL")
+"""The Dubins candidate set (eq. 2.11); indices into it are the `word_index` of results."""
+
+_DIRECTIONS: dict[str, tuple[int, int, int]] = {
+    "LSL": (1, 0, 1),
+    "LSR": (1, 0, -1),
+    "RSL": (-1, 0, 1),
+    "RSR": (-1, 0, -1),
+    "RLR": (-1, 1, -1),
+    "LRL": (1, -1, 1),
+}
+
+TWO_PI = 2.0 * math.pi
+_INV_2PI = 1.0 / TWO_PI
+# Angles within _SNAP turns below a multiple of 2 pi count as that multiple: a heading change of
+# -1e-17 rad from rounding is a zero-length arc, not a full circle (6e-11 rad at most).
+_SNAP = 1e-11
+# Words whose squared straight length (or CCC cosine) misses feasibility by rounding only.
+_FEAS_TOL = 1e-10
+_ZERO_TURN = 2.0 * TWO_PI * _SNAP  # turns shorter than this (rad, unit radius) are rounding
+_CHUNK = 8192
+
+
+def word_directions(word: str) -> tuple[int, int, int]:
+    """Turn directions (+1 left, -1 right, 0 straight) of the three segments of a word."""
+    try:
+        return _DIRECTIONS[word.upper()]
+    except (KeyError, AttributeError):
+        raise InvalidParameterError("word", word, f"must be one of {', '.join(WORDS)}") from None
+
+
+def feasible_radius(radius: ArrayLike, eps: ArrayLike) -> np.ndarray | float:
+    """Feasible turn radius R0' = R0 (1 + eps)^2 (eq. 3.3) for a disturbance ratio eps in [0, 1).
+
+    `radius` is the vehicle's minimum turn radius R0 (m) and `eps = delta_max / v` the ratio of
+    the disturbance bound to the flow-relative speed (eq. 3.1). A Dubins path planned with R0'
+    can be tracked under any disturbance of magnitude <= delta_max (appendix A).
+    """
+    r = np.asarray(radius, dtype=float)
+    e = np.asarray(eps, dtype=float)
+    if not np.all(np.isfinite(r)) or np.any(r <= 0.0):
+        raise InvalidParameterError("radius", radius, "must be finite and > 0")
+    if not np.all(np.isfinite(e)) or np.any(e < 0.0) or np.any(e >= 1.0):
+        raise InvalidParameterError(
+            "disturbance_ratio", eps, "must lie in [0, 1) (disturbance bound below the speed)"
+        )
+    out = r * (1.0 + e) ** 2
+    return float(out) if out.ndim == 0 else out
+
+
+# ----- kernels on normalised start-frame goals (x, y, psi), unit radius ---------------------
+
+
+def _mod(a: np.ndarray) -> np.ndarray:
+    """Angles to [-2 pi * _SNAP, 2 pi - 2 pi * _SNAP) (mod 2 pi; rounding noise below 0 kept)."""
+    return a - TWO_PI * np.floor(a * _INV_2PI + _SNAP)
+
+
+def _normalise(start: ArrayLike, goal: ArrayLike, radius: ArrayLike) -> tuple[np.ndarray, ...]:
+    """Validated goals in the start frame scaled by 1/radius: x, y, psi in [0, 2 pi)."""
+    s = check_finite_array("start", start, last_dim=3)
+    g = check_finite_array("goal", goal, last_dim=3)
+    r = np.asarray(radius, dtype=float)
+    if not np.all(np.isfinite(r)) or np.any(r <= 0.0):
+        raise InvalidParameterError(
+            "radius", radius if r.ndim == 0 else "array", "must be finite and > 0"
+        )
+    dx = g[..., 0] - s[..., 0]
+    dy = g[..., 1] - s[..., 1]
+    c, sn = np.cos(s[..., 2]), np.sin(s[..., 2])
+    inv = 1.0 / r
+    x = (c * dx + sn * dy) * inv
+    y = (c * dy - sn * dx) * inv
+    psi = _mod(g[..., 2] - s[..., 2])
+    x, y, psi, r = np.broadcast_arrays(x, y, psi, r)
+    return x, y, psi, r
+
+
+def _table(x: np.ndarray, y: np.ndarray, psi: np.ndarray) -> np.ndarray:
+    """Segment lengths (t, p, q) of the six words for unit radius: `(..., 6, 3)`, NaN infeasible.
+
+    Dissertation eq. 2.11; closed forms of REFERENCE_NOTES 4.2 in circle-centre form.
+    """
+    sp, cp = np.sin(psi), np.cos(psi)
+    out = np.full((*x.shape, 6, 3), np.nan)
+    # LSL: start left circle (0, 1), goal left circle (x - sin, y + cos).
+    vx, vy = x - sp, y + cp - 1.0
+    d2_ll = vx * vx + vy * vy
+    phi_ll = np.arctan2(vy, vx)
+    out[..., 0, :] = np.stack([_mod(phi_ll), np.sqrt(d2_ll), _mod(psi - phi_ll)], axis=-1)
+    # RSR: start right circle (0, -1), goal right circle (x + sin, y - cos).
+    vx, vy = x + sp, y - cp + 1.0
+    d2_rr = vx * vx + vy * vy
+    phi_rr = np.arctan2(vy, vx)
+    out[..., 3, :] = np.stack([_mod(-phi_rr), np.sqrt(d2_rr), _mod(phi_rr - psi)], axis=-1)
+    # LSR: start left (0, 1) to goal right circle; internal tangent.
+    vx, vy = x + sp, y - cp - 1.0
+    p2 = vx * vx + vy * vy - 4.0
+    ok = p2 >= -_FEAS_TOL
+    p = np.sqrt(np.maximum(p2, 0.0))
+    phi = np.arctan2(vy * p + 2.0 * vx, vx * p - 2.0 * vy)
+    row = np.stack([_mod(phi), p, _mod(phi - psi)], axis=-1)
+    out[..., 1, :] = np.where(ok[..., None], row, np.nan)
+    # RSL: start right (0, -1) to goal left circle.
+    vx, vy = x - sp, y + cp + 1.0
+    p2 = vx * vx + vy * vy - 4.0
+    ok = p2 >= -_FEAS_TOL
+    p = np.sqrt(np.maximum(p2, 0.0))
+    phi = np.arctan2(vy * p - 2.0 * vx, vx * p + 2.0 * vy)
+    row = np.stack([_mod(-phi), p, _mod(psi - phi)], axis=-1)
+    out[..., 2, :] = np.where(ok[..., None], row, np.nan)
+    # RLR: both right circles, |V| <= 4; middle arc p = 2 pi - acos(1 - |V|^2 / 8).
+    c = 1.0 - d2_rr * 0.125
+    ok = c >= -1.0 - _FEAS_TOL
+    pm = TWO_PI - np.arccos(np.clip(c, -1.0, 1.0))
+    t = _mod(0.5 * pm - phi_rr)
+    row = np.stack([t, pm, _mod(pm - t - psi)], axis=-1)
+    out[..., 4, :] = np.where(ok[..., None], row, np.nan)
+    # LRL: both left circles.
+    c = 1.0 - d2_ll * 0.125
+    ok = c >= -1.0 - _FEAS_TOL
+    pm = TWO_PI - np.arccos(np.clip(c, -1.0, 1.0))
+    t = _mod(phi_ll + 0.5 * pm)
+    row = np.stack([t, pm, _mod(psi - t + pm)], axis=-1)
+    out[..., 5, :] = np.where(ok[..., None], row, np.nan)
+    # Rounding noise around zero (see _mod) is a zero-length turn.
+    turns = out[..., [0, 2]]
+    turns[np.abs(turns) < _ZERO_TURN] = 0.0
+    out[..., [0, 2]] = turns
+    np.maximum(out, 0.0, out=out, where=~np.isnan(out))
+    return out
+
+
+def _word_totals_chunk(
+    start: np.ndarray, goal: np.ndarray, inv_radius: np.ndarray | float, tot: np.ndarray
+) -> None:
+    """Fill `tot` (6, m) with the six words' total lengths in units of R (inf infeasible).
+
+    The fast path of `_table` for flat `(m, 3)` start/goal chunks: the goal is moved into the
+    start frame here, and each word's two turn angles are summed in closed form. With
+    t' = M(phi), psi' = M(psi) in [0, 2 pi): LSL turns sum to psi' (+ 2 pi when t' > psi'),
+    RSR to M(-psi) (+ 2 pi when M(-phi) > M(-psi)), LSR to 2 t' - psi' (+ 2 pi when t' < psi'),
+    RSL to 2 M(-phi) + psi' (- 2 pi when that reaches 2 pi). The CCC words are evaluated only
+    where their circle centres are at most 4 R apart.
+    """
+    tiny = TWO_PI * _SNAP
+    sh = start[:, 2]
+    c0, s0 = np.cos(sh), np.sin(sh)
+    dx = goal[:, 0] - start[:, 0]
+    dy = goal[:, 1] - start[:, 1]
+    x = c0 * dx
+    x += s0 * dy
+    x *= inv_radius
+    y = c0 * dy
+    y -= s0 * dx
+    y *= inv_radius
+    psi = goal[:, 2] - sh
+    psi = _mod(psi)  # [-tiny, 2 pi - tiny)
+    sp, cp = np.sin(psi), np.cos(psi)
+    np.maximum(psi, 0.0, out=psi)
+    psi_neg = TWO_PI - psi  # M(-psi), with M(-0) = 0
+    psi_neg[psi <= tiny] = 0.0
+    xm = x - sp
+    xp = x + sp
+    yp = y + cp
+    ym = y - cp
+
+    # LSL: left-left centre vector (xm, yp - 1).
+    vy = yp - 1.0
+    d2_ll = xm * xm
+    d2_ll += vy * vy
+    phi_ll = np.arctan2(vy, xm)
+    t = phi_ll + TWO_PI * (phi_ll < -tiny)
+    row = tot[0]
+    np.sqrt(d2_ll, out=row)
+    row += psi
+    row += TWO_PI * (t > psi + tiny)
+
+    # RSR: right-right centre vector (xp, ym + 1).
+    vy = ym + 1.0
+    d2_rr = xp * xp
+    d2_rr += vy * vy
+    phi_rr = np.arctan2(vy, xp)
+    t = TWO_PI * (phi_rr > tiny)
+    t -= phi_rr
+    row = tot[3]
+    np.sqrt(d2_rr, out=row)
+    row += psi_neg
+    row += TWO_PI * (t > psi_neg + tiny)
+
+    # LSR: left to right circle, straight sqrt(|V|^2 - 4), heading atan2(V) + atan2(2, p).
+    vy = ym - 1.0
+    p = xp * xp
+    p += vy * vy
+    p -= 4.0
+    bad = p < -_FEAS_TOL
+    np.maximum(p, 0.0, out=p)
+    np.sqrt(p, out=p)
+    phi = np.arctan2(vy * p + 2.0 * xp, xp * p - 2.0 * vy)
+    t = phi + TWO_PI * (phi < -tiny)
+    np.maximum(t, 0.0, out=t)  # rounding noise below zero is a zero-length turn
+    row = tot[1]
+    np.subtract(p, psi, out=row)
+    row += 2.0 * t
+    row += TWO_PI * (t < psi - tiny)
+    row[bad] = np.inf
+
+    # RSL: right to left circle, heading atan2(V) - atan2(2, p).
+    vy = yp + 1.0
+    p = xm * xm
+    p += vy * vy
+    p -= 4.0
+    bad = p < -_FEAS_TOL
+    np.maximum(p, 0.0, out=p)
+    np.sqrt(p, out=p)
+    phi = np.arctan2(vy * p - 2.0 * xm, xm * p + 2.0 * vy)
+    t = TWO_PI * (phi > tiny)
+    t -= phi
+    np.maximum(t, 0.0, out=t)
+    t += psi  # t + psi' in [0, 4 pi): the last turn is its value mod 2 pi
+    row = tot[2]
+    np.add(p, t, out=row)
+    row += t
+    row -= psi
+    row -= TWO_PI * (t >= TWO_PI - tiny)
+    row[bad] = np.inf
+
+    # RLR / LRL: middle arc 2 pi - acos(1 - |V|^2 / 8), only where |V| <= 4.
+    for k, d2, phi_c, sign in ((4, d2_rr, phi_rr, -1.0), (5, d2_ll, phi_ll, 1.0)):
+        row = tot[k]
+        row.fill(np.inf)
+        near = np.flatnonzero(d2 <= 16.0 + 8.0 * _FEAS_TOL)
+        if near.size == 0:
+            continue
+        c = 1.0 - 0.125 * d2[near]
+        np.clip(c, -1.0, 1.0, out=c)
+        pm = TWO_PI - np.arccos(c)
+        ps = psi[near]
+        t = _mod(0.5 * pm + sign * phi_c[near])
+        row[near] = pm + t + _mod(pm - t + sign * ps)
+
+
+def _word_totals(start: np.ndarray, goal: np.ndarray, radius: np.ndarray) -> np.ndarray:
+    """Total lengths `(6, m)` (units of R, inf infeasible) for flat `(m, 3)` poses, in chunks."""
+    m = start.shape[0]
+    tot = np.empty((6, m))
+    inv = 1.0 / radius
+    scalar = inv.ndim == 0
+    for i in range(0, m, _CHUNK):
+        j = min(m, i + _CHUNK)
+        _word_totals_chunk(start[i:j], goal[i:j], inv if scalar else inv[i:j], tot[:, i:j])
+    return tot
+
+
+def _flat_queries(
+    start: ArrayLike, goal: ArrayLike, radius: ArrayLike
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[int, ...]]:
+    """Validated, broadcast `(m, 3)` start and goal arrays, radius (scalar or `(m,)`), shape."""
+    s = check_finite_array("start", start, last_dim=3)
+    g = check_finite_array("goal", goal, last_dim=3)
+    r = np.asarray(radius, dtype=float)
+    if not np.all(np.isfinite(r)) or np.any(r <= 0.0):
+        raise InvalidParameterError(
+            "radius", radius if r.ndim == 0 else "array", "must be finite and > 0"
+        )
+    shape = np.broadcast_shapes(s.shape[:-1], g.shape[:-1], r.shape)
+    s = np.broadcast_to(s, (*shape, 3)).reshape(-1, 3)
+    g = np.broadcast_to(g, (*shape, 3)).reshape(-1, 3)
+    if r.ndim:
+        r = np.broadcast_to(r, shape).reshape(-1)
+    return s, g, r, shape
+
+
+# ----- public batch functions -----------------------------------------------------------------
+
+
+def dubins_segment_lengths(start: ArrayLike, goal: ArrayLike, radius: ArrayLike) -> np.ndarray:
+    """Segment lengths of all six Dubins words (eq. 2.11): `(..., 6, 3)`, NaN when infeasible.
+
+    `start`, `goal`: `(..., 3)` poses (x, y in m; heading in rad), broadcast together;
+    `radius`: minimum turn radius (m), scalar or broadcastable to `(...)`. Row k is word
+    `WORDS[k]`; the three lengths (m) are those of its first turn, middle segment and last turn.
+    """
+    x, y, psi, r = _normalise(start, goal, radius)
+    return _table(x, y, psi) * r[..., None, None]
+
+
+def dubins_word_lengths(start: ArrayLike, goal: ArrayLike, radius: ArrayLike) -> np.ndarray:
+    """Total lengths (m) of the six Dubins words (eq. 2.11): `(..., 6)`, NaN when infeasible."""
+    s, g, r, shape = _flat_queries(start, goal, radius)
+    tot = _word_totals(s, g, r)
+    tot[np.isinf(tot)] = np.nan
+    np.maximum(tot, 0.0, out=tot, where=~np.isnan(tot))
+    tot *= r
+    return tot.T.reshape(*shape, 6)
+
+
+def dubins_distance(
+    start: ArrayLike, goal: ArrayLike, radius: ArrayLike = 1.0, *, return_index: bool = False
+) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
+    """Optimal Dubins path length (m) for `(..., 3)` start/goal poses (section 2.7): `(...)`.
+
+    The fast path of `dubins_shortest`: only the six word lengths are formed, in chunks, and
+    the minimum taken. With `return_index`, also the index of the optimal word in `WORDS`
+    (ties go to the first word).
+    """
+    s, g, r, shape = _flat_queries(start, goal, radius)
+    tot = _word_totals(s, g, r)
+    length = tot[0].copy()
+    if return_index:
+        idx = np.zeros(length.shape, dtype=np.intp)
+        for k in range(1, 6):
+            np.putmask(idx, tot[k] < length, k)
+            np.minimum(length, tot[k], out=length)
+    else:
+        np.min(tot, axis=0, out=length)
+    np.maximum(length, 0.0, out=length)
+    length *= r
+    if return_index:
+        return length.reshape(shape), idx.reshape(shape)
+    return length.reshape(shape)
+
+
+@dataclass(frozen=True, eq=False)
+class DubinsBatch:
+    """Optimal Dubins paths for a batch of queries: length (m), word index and segment lengths."""
+
+    length: np.ndarray
+    word_index: np.ndarray
+    segment_lengths: np.ndarray
+
+    @property
+    def words(self) -> np.ndarray:
+        """The optimal words as a string array of the batch shape."""
+        return np.asarray(WORDS)[self.word_index]
+
+
+def dubins_shortest(start: ArrayLike, goal: ArrayLike, radius: ArrayLike = 1.0) -> DubinsBatch:
+    """Optimal Dubins path for each `(..., 3)` start/goal pair (section 2.7, eq. 2.11).
+
+    Returns `DubinsBatch(length (...), word_index (...), segment_lengths (..., 3))` with
+    lengths in the units of the positions; ties go to the first word in `WORDS`.
+    """
+    table = dubins_segment_lengths(start, goal, radius)
+    totals = np.where(np.isnan(table[..., 0]), np.inf, table.sum(axis=-1))
+    idx = np.argmin(totals, axis=-1)
+    seg = np.take_along_axis(table, idx[..., None, None], axis=-2)[..., 0, :]
+    length = np.take_along_axis(totals, idx[..., None], axis=-1)[..., 0]
+    return DubinsBatch(length=length, word_index=idx, segment_lengths=seg)
+
+
+def dubins_path(
+    start: Pose,
+    goal: Pose,
+    radius: float,
+    speed: float = 1.0,
+    word: str | None = None,
+    label_turn: str = "B",
+) -> Path | None:
+    """The Dubins path of `word` (the shortest when None) from `start` to `goal` (section 2.7).
+
+    Arcs of `radius` (m) and straights flown at `speed` (m/s); arcs carry label `label_turn`.
+    Returns None when `word` is infeasible for these poses. Zero-length pieces are kept so the
+    path always has three segments (its `word` property drops them).
+    """
+    radius = check_positive("radius", radius)
+    speed = check_positive("speed", speed)
+    table = dubins_segment_lengths(start.as_array(), goal.as_array(), radius)
+    if word is None:
+        totals = np.where(np.isnan(table[:, 0]), np.inf, table.sum(axis=-1))
+        k = int(np.argmin(totals))
+    else:
+        word_directions(word)
+        k = WORDS.index(word.upper())
+    if np.isnan(table[k, 0]):
+        return None
+    return _build_path(start, WORDS[k], table[k], radius, speed, label_turn)
+
+
+def _build_path(
+    start: Pose, word: str, lengths: np.ndarray, radius: float, speed: float, label_turn: str
+) -> Path:
+    segments: list[Segment] = []
+    pose = start
+    for direction, length in zip(_DIRECTIONS[word], lengths, strict=True):
+        seg: Segment
+        if direction == 0:
+            seg = Straight(pose, float(length), speed)
+        else:
+            seg = Arc(pose, float(length) / radius, radius, direction, speed, label_turn)
+        segments.append(seg)
+        pose = seg.end
+    return Path(tuple(segments))
+
+
+# ----- registered planners -------------------------------------------------------------------
+
+
+def _candidates(
+    problem: Problem, disturbance_ratio: float, objective: str
+) -> tuple[PlannerOutput, float]:
+    vehicle = problem.vehicle
+    assert isinstance(vehicle, DubinsCar)
+    eps = check_in_range("disturbance_ratio", disturbance_ratio, 0.0, 1.0, high_open=True)
+    radius = float(feasible_radius(vehicle.turn_radius, eps))
+    table = dubins_segment_lengths(problem.start.as_array(), problem.goal.as_array(), radius)
+    cands = []
+    for k, word in enumerate(WORDS):
+        info: dict[str, Any] = {"radius": radius}
+        if np.isnan(table[k, 0]):
+            cands.append(Candidate(word, "", math.inf, None, "infeasible", info))
+            continue
+        path = _build_path(problem.start, word, table[k], radius, vehicle.speed, "B")
+        info["segment_lengths"] = [float(v) for v in table[k]]
+        cost = path.length if objective == "length" else path.length / vehicle.speed
+        cands.append(Candidate(word, path.family, cost, path, "feasible", info))
+    extras = {
+        "radius": radius,
+        "nominal_radius": vehicle.turn_radius,
+        "disturbance_ratio": eps,
+    }
+    return PlannerOutput(candidates=tuple(cands), extras=extras), radius
+
+
+@register_planner(
+    "dubins",
+    vehicle=DubinsCar,
+    objective="length",
+    description="Dubins shortest paths, feasible turn radius R0 (1 + eps)^2 (2.7, 3.2)",
+)
+def plan_dubins(problem: Problem, *, disturbance_ratio: float = 0.0) -> PlannerOutput:
+    """Shortest Dubins path (eq. 2.11) with the feasible radius R0' = R0 (1 + eps)^2 (eq. 3.3).
+
+    Every word is a candidate; cost is the length (m). `disturbance_ratio` is eps = delta_max / v
+    in [0, 1) (eq. 3.1); 0 plans with the vehicle's own minimum turn radius.
+    """
+    return _candidates(problem, disturbance_ratio, "length")[0]
+
+
+@register_planner(
+    "dubins",
+    vehicle=DubinsCar,
+    objective="time",
+    description="Dubins minimum-time paths at constant speed (2.7, 3.2)",
+)
+def plan_dubins_time(problem: Problem, *, disturbance_ratio: float = 0.0) -> PlannerOutput:
+    """Minimum-time Dubins path: the shortest path flown at constant speed (cost = length / v, s).
+
+    Same candidates as `plan_dubins` (eqs. 2.11, 3.3).
+    """
+    return _candidates(problem, disturbance_ratio, "time")[0]

@@ -1,0 +1,508 @@
+"""Path synthesis: every member of every family of `FAMILIES` that reaches the goal.
+
+The start is the origin with heading 0 (the planner's frame); the goal is (x1, y1, psi1) in
+metres and radians. Orientations whose first turn is R are solved as the mirror image (goal
+(x1, -y1, -psi1)) of the L orientation and reflected back. Every candidate is an explicit
+`Path` of `HeadingSpeedArc`, `Arc` and `Straight` segments; its cost is the closed-form
+altitude loss (m).
+
+Solvers (one per `Family.solver`):
+
+- "bsb": with lambda = v_stf - v_ms fixed, the component of the boundary condition normal to
+  the straight is a trigonometric polynomial of degree 2 in the first arc's angle alpha
+  (the projection form of (C.16)-(C.21): no division by cos(alpha), so cos(alpha) = 0 needs
+  no special case). With z = e^{i alpha} it is a quartic; `numpy.roots` gives all its roots,
+  each polished by Newton's method. The straight's length follows from the parallel
+  component and must be >= 0.
+- "chain": a chain of n B arcs. H = 0 puts every switch where v = v_stf, i.e. at
+  phi = psi - theta = +-s with cos s = -(v_stf - v_ms)/lambda, so interior arcs turn exactly
+  2 s and the chain is fixed by (s, first arc angle); the last arc follows from the final
+  heading. The two position equations are solved by scanning a grid over
+  s in (pi/2, pi] x first-arc fraction in [0, 1] for cells that may hold a root and
+  polishing each with a vectorised Newton iteration (deterministic multi-start).
+- "single_b": one B arc; without clipping the position is linear in lambda e^{i theta}
+  (solved exactly); with clipping, Newton from that solution.
+- "constant_speed": B_ms and B_stall^n (n = 1..4, middle arcs of pi): the position
+  equations are linear in e^{i a1}, solved algebraically (re-derived (C.26)-(C.28), with the
+  y condition that the extracted text omits); these reach only a measure-zero set of goals.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from glideplan.path import Path
+from glideplan.planners.min_altitude.extremals import (
+    Kernel,
+    b_arc_segments,
+    constant_speed_segment,
+    straight_segment,
+)
+from glideplan.planners.min_altitude.families import FAMILIES, Family
+from glideplan.pose import Pose
+from glideplan.segments import Segment
+from glideplan.solution import Candidate
+from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider
+
+__all__ = ["DEFAULT_GRID", "synthesize"]
+
+TWO_PI = 2.0 * math.pi
+DEFAULT_GRID = (40, 64)  # chain solver: switch-angle x first-arc samples
+_MIRROR = str.maketrans("LR", "RL")
+_S_MIN = 0.5 * math.pi + 1e-4  # s -> pi/2 is lambda -> infinity (bang-bang speed)
+_ROOT_TOL = 1e-11  # position residual accepted from the root finders, in units of R_stf
+_ANGLE_TOL = 1e-9
+
+
+@dataclass(frozen=True)
+class _Setup:
+    glider: QuadraticPolarGlider
+    kern: Kernel
+    lam_s: float  # v_stf - v_ms, the BSB multiplier and the lower end of chain multipliers
+    scale: float  # R_stf (m)
+
+    @classmethod
+    def of(cls, glider: QuadraticPolarGlider) -> _Setup:
+        return cls(glider, Kernel.of(glider), glider.v_stf - glider.v_ms, glider.radius_stf)
+
+
+@dataclass(frozen=True)
+class _Found:
+    """A solution in the solver's frame: its segments, closed-form cost and parameters."""
+
+    segments: list[Segment]
+    cost: float
+    info: dict[str, Any]
+
+
+def synthesize(
+    goal: Pose,
+    glider: QuadraticPolarGlider,
+    *,
+    families: Sequence[Family] = FAMILIES,
+    grid: tuple[int, int] = DEFAULT_GRID,
+) -> tuple[Candidate, ...]:
+    """All candidates of `families` from the origin (heading 0) to `goal`, lowest cost first.
+
+    Args:
+        goal: final pose (m, rad) in the frame of the start.
+        glider: the vehicle (its polar, speed range and turn-rate limit).
+        families: rows of the candidate table to search (default: all of `FAMILIES`).
+        grid: samples of the chain solver's scan (switch angle, first-arc fraction).
+
+    Returns:
+        Feasible candidates (each with its `Path`, carrying `glider`), sorted by altitude loss
+        (m); duplicates (same turn word and cost) are kept once.
+    """
+    st = _Setup.of(glider)
+    tasks = [_Task.of(fam, word, goal) for fam in families for word in fam.words]
+    out: list[Candidate] = []
+    for solver in dict.fromkeys(task.family.solver for task in tasks):
+        group = [task for task in tasks if task.family.solver == solver]
+        for task, found in _SOLVERS[solver](group, st, grid):
+            if not found.segments:
+                continue
+            path = Path(tuple(found.segments), glider)
+            if task.reflect:
+                path = path.reflected()
+            info = {"orientation": task.word, **found.info}
+            out.append(Candidate(path.word, task.family.name, found.cost, path, "feasible", info))
+    return _unique(out)
+
+
+@dataclass(frozen=True)
+class _Task:
+    """One orientation of one family, posed with an L first turn (mirrored if needed)."""
+
+    family: Family
+    word: str  # the orientation asked for
+    reflect: bool  # solved as the mirror image
+    goal: Pose  # the goal in the solver's (possibly mirrored) frame
+    local_word: str  # the orientation in that frame (first turn L)
+
+    @classmethod
+    def of(cls, family: Family, word: str, goal: Pose) -> _Task:
+        if word[0] == "R":
+            mirrored = Pose(goal.x, -goal.y, -goal.heading)
+            return cls(family, word, True, mirrored, word.translate(_MIRROR))
+        return cls(family, word, False, goal, word)
+
+
+def _each(
+    solve: Callable[[Pose, _Setup, Family, str], list[_Found]],
+) -> Callable[[list[_Task], _Setup, tuple[int, int]], list[tuple[_Task, _Found]]]:
+    """A solver of one task applied to each task of a group."""
+
+    def run(tasks: list[_Task], st: _Setup, grid: tuple[int, int]) -> list[tuple[_Task, _Found]]:
+        return [(t, f) for t in tasks for f in solve(t.goal, st, t.family, t.local_word)]
+
+    return run
+
+
+def _unique(cands: list[Candidate]) -> tuple[Candidate, ...]:
+    cands.sort(key=lambda c: (c.cost, len(c.family)))
+    kept: list[Candidate] = []
+    for c in cands:
+        if any(k.word == c.word and abs(k.cost - c.cost) <= 1e-9 * max(1.0, c.cost) for k in kept):
+            continue
+        kept.append(c)
+    return tuple(kept)
+
+
+def _wrap(angle: np.ndarray | float, low: np.ndarray | float) -> np.ndarray:
+    """angle modulo 2 pi, into [low, low + 2 pi)."""
+    return np.mod(np.asarray(angle) - low, TWO_PI) + low
+
+
+# ----- BSB: all roots of a quartic in e^{i alpha} -------------------------------------------
+
+
+def _solve_bsb(goal: Pose, st: _Setup, fam: Family, word: str) -> list[_Found]:
+    g, kern, lam, u = st.glider, st.kern, st.lam_s, st.glider.u_max
+    sa = 1.0 if word[0] == "L" else -1.0
+    sg = 1.0 if word[2] == "L" else -1.0
+    x1, y1, p1 = goal.x, goal.y, goal.heading
+    vms, q = g.v_ms, lam / 4.0
+    # (x1 + i y1) e^{-i alpha} = L - (1/u) [sa (P(pi) - P(pi - alpha)) + sg (P(pi + gamma) - P(pi))]
+    # with gamma = psi1 - alpha; its imaginary part is
+    # g(alpha) = c0 + c1 cos a + s1 sin a + c2 cos 2a + s2 sin 2a = 0.
+    c0 = (sa - sg) * (vms + q) / u
+    c1 = y1 + (-sa * vms + sg * vms * math.cos(p1)) / u
+    s1 = -x1 + sg * vms * math.sin(p1) / u
+    c2 = (-sa + sg * math.cos(2 * p1)) * q / u
+    s2 = sg * q * math.sin(2 * p1) / u
+    coeffs = np.array(
+        [(c2 - 1j * s2) / 2, (c1 - 1j * s1) / 2, c0, (c1 + 1j * s1) / 2, (c2 + 1j * s2) / 2]
+    )
+    big = np.max(np.abs(coeffs))
+    if big == 0.0:  # the goal is the start: nothing to fly
+        return []
+    coeffs = np.where(np.abs(coeffs) < 1e-14 * big, 0.0, coeffs)
+    nz = np.flatnonzero(coeffs)
+    roots = np.roots(coeffs[nz[0] :]) if nz.size > 1 else np.array([])
+
+    def gfun(a: float) -> tuple[float, float]:
+        val = c0 + c1 * math.cos(a) + s1 * math.sin(a) + c2 * math.cos(2 * a) + s2 * math.sin(2 * a)
+        der = (
+            -c1 * math.sin(a)
+            + s1 * math.cos(a)
+            - 2 * c2 * math.sin(2 * a)
+            + 2 * s2 * math.cos(2 * a)
+        )
+        return val, der
+
+    out: list[_Found] = []
+    seen: list[float] = []
+    for z in roots:
+        if not abs(abs(z) - 1.0) < 1e-4:
+            continue
+        a0 = float(np.angle(z))
+        for _ in range(6):
+            val, der = gfun(a0)
+            if der == 0.0:
+                break
+            a0 -= val / der
+        if abs(gfun(a0)[0]) > 1e-9 * st.scale:
+            continue
+        a0 = float(_wrap(a0, 0.0))
+        if a0 > TWO_PI - _ANGLE_TOL or a0 < _ANGLE_TOL:
+            a0 = 0.0
+        if any(abs(a0 - b) < 1e-10 for b in seen):
+            continue
+        seen.append(a0)
+        alpha = a0 if (sa > 0 or a0 == 0.0) else a0 - TWO_PI
+        gamma = float(_wrap(p1 - alpha, 0.0))
+        if gamma > TWO_PI - _ANGLE_TOL or gamma < _ANGLE_TOL:
+            gamma = 0.0
+        if sg < 0 and gamma > 0.0:
+            gamma -= TWO_PI
+        P, W, _ = kern.primitives(np.array([math.pi - alpha, math.pi, math.pi + gamma]), lam)
+        rest = (sa * (P[1] - P[0]) + sg * (P[2] - P[1])) / u
+        e = complex(math.cos(alpha), -math.sin(alpha))
+        length = ((x1 + 1j * y1) * e).real + rest.real
+        if length < -1e-9 * st.scale:
+            continue
+        length = max(length, 0.0)
+        theta = alpha - math.pi  # the straight is flown at heading theta + pi
+        cost = (sa * (W[1] - W[0]) + sg * (W[2] - W[1])) / u + length * g.w_stf / g.v_stf
+        segs = b_arc_segments(Pose(), int(sa), abs(alpha), lam, theta, g)
+        pose = segs[-1].end if segs else Pose()
+        segs += straight_segment(pose, length, g)
+        pose = segs[-1].end if segs else pose
+        segs += b_arc_segments(pose, int(sg), abs(gamma), lam, theta, g)
+        info = {
+            "lambda": lam,
+            "angles": [alpha, gamma],
+            "straight_length": length,
+        }
+        out.append(_Found(segs, float(cost), info))
+    return out
+
+
+# ----- chains of B arcs: 2-D root finding over (s, first-arc fraction) -----------------------
+
+
+def _chain_eval(
+    st: _Setup,
+    n: np.ndarray,
+    s: np.ndarray,
+    t: np.ndarray,
+    goal: np.ndarray,
+    with_cost: bool = False,
+) -> tuple[np.ndarray, ...]:
+    """Chains of n B arcs (first turn L) with switch angle s and first arc 2 s t.
+
+    All inputs broadcast (`goal` has a last axis (x, y, psi)). Returns the residual
+    (end - goal)/R_stf (complex), the last arc's angle, lambda, theta [and the cost, m].
+    """
+    kern = st.kern
+    n, s, t = np.broadcast_arrays(np.asarray(n), np.asarray(s, dtype=float), np.asarray(t))
+    gx, gy, gpsi = goal[..., 0], goal[..., 1], goal[..., 2]
+    lam = st.lam_s / -np.cos(s)
+    a1 = 2.0 * s * t
+    theta = a1 - s
+    even = n % 2 == 0
+    # n even: the last arc turns R from +s; n odd: it turns L from -s
+    an = _wrap(np.where(even, a1 - gpsi, gpsi - a1 + 2.0 * s), s - math.pi)
+    last_lo = np.where(even, s - an, -s)
+    last_hi = np.where(even, s, -s + an)
+    phi = np.stack(np.broadcast_arrays(s, -s, s - a1, last_lo, last_hi))
+    P, W, _ = kern.primitives(phi, np.broadcast_to(lam, phi.shape))
+    inner = n - 2
+    tot = (P[0] - P[2]) + inner * (P[0] - P[1]) + (P[4] - P[3])
+    z = np.exp(1j * theta) * tot / kern.u_max
+    res = (z - (gx + 1j * gy)) / st.scale
+    if not with_cost:
+        return res, an, lam, theta
+    cost = ((W[0] - W[2]) + inner * (W[0] - W[1]) + (W[4] - W[3])) / kern.u_max
+    return res, an, lam, theta, cost
+
+
+def _newton_2d(
+    fun: Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray],
+    p: np.ndarray,
+    q: np.ndarray,
+    *,
+    lower: tuple[float, float],
+    upper: tuple[float, float],
+    iterations: int = 40,
+    step: float = 1e-7,
+    max_step: float = 0.25,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Vectorised Newton on a complex residual fun(p, q, index) of two real unknowns
+    (central differences; `index` selects the start's data). Each start is clipped to the
+    box and retired once converged or clearly not converging; returns (p, q, |residual|)."""
+    p, q = p.astype(float).copy(), q.astype(float).copy()
+    active = np.arange(p.size)
+    err = np.full(p.size, np.inf)
+    for it in range(iterations):
+        if active.size == 0:
+            break
+        m = active.size
+        pa, qa = p[active], q[active]
+        idx = np.tile(active, 5)
+        hp = np.concatenate([pa, pa + step, pa - step, pa, pa])
+        hq = np.concatenate([qa, qa, qa, qa + step, qa - step])
+        f = fun(hp, hq, idx)
+        f0 = f[:m]
+        err[active] = np.abs(f0)
+        dp = (f[m : 2 * m] - f[2 * m : 3 * m]) / (2 * step)
+        dq = (f[3 * m : 4 * m] - f[4 * m :]) / (2 * step)
+        a, b, c, d = dp.real, dq.real, dp.imag, dq.imag
+        det = a * d - b * c
+        ok = np.abs(det) > 1e-300
+        safe = np.where(ok, det, 1.0)
+        sp = np.where(ok, -(d * f0.real - b * f0.imag) / safe, 0.0)
+        sq = np.where(ok, -(-c * f0.real + a * f0.imag) / safe, 0.0)
+        big = np.maximum(np.maximum(np.abs(sp), np.abs(sq)) / max_step, 1.0)
+        p[active] = np.clip(pa + sp / big, lower[0], upper[0])
+        q[active] = np.clip(qa + sq / big, lower[1], upper[1])
+        done = (np.abs(f0) < 1e-14) | ((np.abs(sp) + np.abs(sq)) < 1e-14) | ~ok
+        if it >= 12:
+            done |= np.abs(f0) > 1e-4
+        active = active[~done]
+    final = np.abs(fun(p, q, np.arange(p.size)))
+    return p, q, np.minimum(final, np.where(np.isfinite(err), final, err))
+
+
+def _solve_chains(
+    tasks: list[_Task], st: _Setup, grid: tuple[int, int]
+) -> list[tuple[_Task, _Found]]:
+    """All chains of all tasks at once: one grid scan and one Newton run (vectorised)."""
+    if not tasks:
+        return []
+    ns, nt = grid
+    n = np.array([task.family.arcs for task in tasks])[:, None, None]
+    goals = np.array([task.goal.as_array() for task in tasks])[:, None, None, :]
+    S = np.linspace(_S_MIN, math.pi, ns)[None, :, None]
+    T = np.linspace(-0.05, 1.05, nt)[None, None, :]
+    res = _chain_eval(st, n, S, T, goals)[0]
+    cells = np.ones((len(tasks), ns - 1, nt - 1), dtype=bool)
+    for comp in (res.real, res.imag):
+        corners = np.stack([comp[:, :-1, :-1], comp[:, 1:, :-1], comp[:, :-1, 1:], comp[:, 1:, 1:]])
+        lo, hi = corners.min(axis=0), corners.max(axis=0)
+        margin = 0.5 * (hi - lo)  # allow for curvature inside the cell
+        cells &= (lo - margin <= 0.0) & (hi + margin >= 0.0)
+    k, i, j = np.nonzero(cells)
+    if k.size == 0:
+        return []
+    s0 = 0.5 * (S[0, i, 0] + S[0, i + 1, 0])
+    t0 = 0.5 * (T[0, 0, j] + T[0, 0, j + 1])
+    nk, gk = n[k, 0, 0], goals[k, 0, 0, :]
+
+    def fun(s: np.ndarray, t: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        return _chain_eval(st, nk[idx], s, t, gk[idx])[0]
+
+    s1, t1, err = _newton_2d(fun, s0, t0, lower=(_S_MIN * 0.999, -0.3), upper=(math.pi, 1.3))
+    keep = (err < 1e-9) & (t1 >= -1e-9) & (t1 <= 1 + 1e-9)
+    k, s1, t1 = k[keep], s1[keep], np.clip(t1[keep], 0.0, 1.0)
+    res, an, lam, theta, cost = _chain_eval(st, nk[keep], s1, t1, gk[keep], with_cost=True)
+    out: list[tuple[_Task, _Found]] = []
+    seen: set[tuple] = set()
+    for m in range(k.size):
+        s, a_n = float(s1[m]), float(an[m])
+        key = (int(k[m]), round(s, 7), round(float(t1[m]), 7))
+        if key in seen or abs(res[m]) > 1e-9 or not -_ANGLE_TOL <= a_n <= 2 * s + _ANGLE_TOL:
+            continue
+        seen.add(key)
+        task = tasks[int(k[m])]
+        a_n = min(max(a_n, 0.0), 2 * s)
+        found = _chain_found(
+            task, st, s, 2 * s * float(t1[m]), a_n, float(lam[m]), float(theta[m]), float(cost[m])
+        )
+        out.append((task, found))
+    return out
+
+
+def _chain_found(
+    task: _Task,
+    st: _Setup,
+    s: float,
+    a1: float,
+    an: float,
+    lam: float,
+    theta: float,
+    cost: float,
+) -> _Found:
+    n, g = task.family.arcs, st.glider
+    angles = [a1, *([2.0 * s] * (n - 2)), an]
+    segs: list[Segment] = []
+    pose = Pose()
+    for k, angle in enumerate(angles):
+        segs += b_arc_segments(pose, 1 if k % 2 == 0 else -1, angle, lam, theta, g)
+        pose = segs[-1].end if segs else pose
+    sign = -1.0 if task.reflect else 1.0
+    info = {
+        "lambda": lam,
+        "switch_angle": s,
+        "angles": [sign * a * (1 if k % 2 == 0 else -1) for k, a in enumerate(angles)],
+        "saturated_time": float(sum(sg.duration for sg in segs if sg.label != "B")),
+    }
+    return _Found(segs, cost, info)
+
+
+# ----- a single B arc --------------------------------------------------------------------------
+
+
+def _solve_single_b(goal: Pose, st: _Setup, fam: Family, word: str) -> list[_Found]:
+    g, kern, u = st.glider, st.kern, st.glider.u_max
+    a1 = float(_wrap(goal.heading, 0.0))
+    if a1 < _ANGLE_TOL or a1 > TWO_PI - _ANGLE_TOL:
+        return []
+    z1 = complex(goal.x, goal.y)
+    # unclipped: mu a1/2 + conj(mu) K = -u z1 - i v_ms (e^{i a1} - 1), mu = lam e^{i theta}
+    K = (np.exp(2j * a1) - 1.0) / 4j
+    rhs = -u * z1 - 1j * g.v_ms * (np.exp(1j * a1) - 1.0)
+    A = np.array([[a1 / 2 + K.real, K.imag], [K.imag, a1 / 2 - K.real]])
+    try:
+        m1, m2 = np.linalg.solve(A, np.array([rhs.real, rhs.imag]))
+    except np.linalg.LinAlgError:
+        return []
+
+    def fun(p: np.ndarray, q: np.ndarray, idx: np.ndarray | None = None) -> np.ndarray:
+        lam, theta = np.hypot(p, q), np.arctan2(q, p)
+        P, _, _ = kern.primitives(np.stack([-theta, a1 - theta]), np.stack([lam, lam]))
+        return (np.exp(1j * theta) * (P[1] - P[0]) / u - z1) / st.scale
+
+    if math.hypot(m1, m2) <= g.v_ms - g.v_stall:
+        p, q = np.array([m1]), np.array([m2])
+    else:  # the clipped arc: Newton from a few scalings of the unclipped solution
+        rot = np.exp(1j * np.array([0.0, 0.0, 0.0, 0.5, -0.5]))
+        mu = complex(m1, m2) * np.array([1.0, 0.6, 1.6, 1.0, 1.0]) * rot
+        big = 50.0 * g.v_ms
+        p, q, _ = _newton_2d(fun, mu.real, mu.imag, lower=(-big, -big), upper=(big, big))
+    out: list[_Found] = []
+    for m1, m2 in zip(p, q, strict=True):
+        if abs(fun(np.array([m1]), np.array([m2]))[0]) > 1e-10:
+            continue
+        lam, theta = math.hypot(m1, m2), math.atan2(m2, m1)
+        if lam > st.lam_s:  # H = 0: no switch inside, so v <= v_stf on the whole arc
+            s = math.acos(-st.lam_s / lam)
+            lo = float(_wrap(-theta, -math.pi))
+            if lo < -s - _ANGLE_TOL or lo + a1 > s + _ANGLE_TOL:
+                continue
+        if any(abs(f.info["lambda"] - lam) < 1e-9 * (1 + lam) for f in out):
+            continue
+        segs = b_arc_segments(Pose(), 1, a1, lam, theta, g)
+        _, W, _ = kern.primitives(np.array([-theta, a1 - theta]), lam)
+        stall = sum(sg.duration for sg in segs if sg.label != "B")
+        info = {"lambda": lam, "angles": [a1 if word == "L" else -a1], "saturated_time": stall}
+        out.append(_Found(segs, float((W[1] - W[0]) / u), info))
+    return out
+
+
+# ----- constant-speed families: B_ms and B_stall^n (algebraic) ----------------------------------
+
+
+def _solve_constant_speed(goal: Pose, st: _Setup, fam: Family, word: str) -> list[_Found]:
+    g, n = st.glider, fam.arcs
+    v = g.v_ms if fam.speed == "v_ms" else g.v_stall
+    r = v / g.u_max
+    label = "Bms" if fam.speed == "v_ms" else "Bstall"
+    z1, p1 = complex(goal.x, goal.y), goal.heading
+    limit = TWO_PI if fam.speed == "v_ms" else math.pi
+    if n == 1:
+        angles = [float(_wrap(p1, 0.0))]
+        if not _ANGLE_TOL < angles[0] < limit:
+            return []
+    else:
+        # L a1, (R pi, L pi, ...), last: z = i r (1 +- e^{i psi1}) - 2 i r (n - 1) e^{i a1}
+        sign = 1.0 if n % 2 == 0 else -1.0
+        e1 = (1j * r * (1.0 + sign * np.exp(1j * p1)) - z1) / (2j * r * (n - 1))
+        if abs(abs(e1) - 1.0) > 1e-9:
+            return []
+        a1 = float(_wrap(np.angle(e1), 0.0))
+        an = float(_wrap(a1 - p1 if n % 2 == 0 else p1 - a1 + math.pi, 0.0))
+        an = 0.0 if an > TWO_PI - _ANGLE_TOL else an
+        angles = [a1, *([math.pi] * (n - 2)), an]
+        if a1 > math.pi + _ANGLE_TOL or an > math.pi + _ANGLE_TOL:
+            return []
+        if n == 4 and a1 + an >= math.pi:
+            return []
+    segs: list[Segment] = []
+    pose = Pose()
+    for k, angle in enumerate(angles):
+        segs += constant_speed_segment(pose, 1 if k % 2 == 0 else -1, angle, v, g, label)
+        pose = segs[-1].end if segs else pose
+    if not segs or Path(tuple(segs)).end.distance_to(goal) > 1e-9 * st.scale:
+        return []
+    cost = sum(angles) / g.u_max * float(g.sink_rate(v, 0.0))
+    sign = 1.0 if word[0] == "L" else -1.0
+    info = {
+        "speed": v,
+        "angles": [sign * a * (1 if k % 2 == 0 else -1) for k, a in enumerate(angles)],
+    }
+    return [_Found(segs, cost, info)]
+
+
+_SOLVERS: dict[str, Callable[[list[_Task], _Setup, tuple[int, int]], list]] = {
+    "bsb": _each(_solve_bsb),
+    "chain": _solve_chains,
+    "single_b": _each(_solve_single_b),
+    "constant_speed": _each(_solve_constant_speed),
+}

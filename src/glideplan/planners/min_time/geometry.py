@@ -1,0 +1,78 @@
+"""Normalised arc geometry for the chapter 4 extremals (R = 1, u_max = 1, v_max = 1).
+
+Lengths are in units of the bang radius R = v_max/u_max and time in units of 1/u_max, so a B
+arc has radius 1, a C arc radius rho = v_min/v_max, an S segment moves at unit speed, and the
+cost of a path is its total heading change plus its straight length (eq. 4.6 with 4.18-4.19).
+Everything here is vectorised over a leading array shape (one entry per value of a family
+parameter) and free of Python loops over samples.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+__all__ = [
+    "circle_center",
+    "compose",
+    "normal",
+    "rotate",
+    "tangent",
+]
+
+TWO_PI = 2.0 * np.pi
+
+
+def tangent(h: np.ndarray) -> np.ndarray:
+    """Unit vectors (cos h, sin h), shape h.shape + (2,)."""
+    h = np.asarray(h, dtype=float)
+    return np.stack([np.cos(h), np.sin(h)], axis=-1)
+
+
+def normal(h: np.ndarray) -> np.ndarray:
+    """Left unit normals (-sin h, cos h), shape h.shape + (2,)."""
+    h = np.asarray(h, dtype=float)
+    return np.stack([-np.sin(h), np.cos(h)], axis=-1)
+
+
+def rotate(h: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Rotate vectors v (..., 2) counter-clockwise by angles h (broadcast)."""
+    h = np.asarray(h, dtype=float)
+    v = np.asarray(v, dtype=float)
+    c, s = np.cos(h), np.sin(h)
+    return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
+
+
+def circle_center(p: np.ndarray, h: np.ndarray, direction: int, radius: float) -> np.ndarray:
+    """Centre of the turning circle of `radius` through position p with heading h."""
+    return np.asarray(p, dtype=float) + direction * radius * normal(h)
+
+
+def compose(
+    moves: Sequence[tuple[str, int, np.ndarray]],
+    rho: float,
+    shape: tuple[int, ...],
+    start: tuple[np.ndarray, np.ndarray] | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """End position (shape + (2,)) and heading of a chain of moves from `start` (default origin).
+
+    A move is (label, direction, amount): label "B" (radius 1) or "C" (radius rho) with the
+    heading change `amount` >= 0 turned in `direction` (+1 left, -1 right), or "S" with the
+    length `amount` (4.18-4.19 applied arc by arc).
+    """
+    if start is None:
+        p = np.zeros((*shape, 2))
+        h = np.zeros(shape)
+    else:
+        p, h = np.broadcast_to(start[0], (*shape, 2)).copy(), np.broadcast_to(start[1], shape)
+    for label, d, amount in moves:
+        amount = np.asarray(amount, dtype=float)
+        if label == "S":
+            p = p + amount[..., None] * tangent(h)
+            continue
+        radius = 1.0 if label == "B" else rho
+        c = p + d * radius * normal(h)
+        h = h + d * amount
+        p = c - d * radius * normal(h)
+    return p, h

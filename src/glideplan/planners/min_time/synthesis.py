@@ -1,0 +1,233 @@
+"""Minimum-time synthesis (section 4.8): solve every candidate type, build paths, pick the best.
+
+`synthesize` walks `CANDIDATE_TYPES` in normalised units and returns every extremal found;
+`plan_time_optimal` is the planner registered for `VariableSpeedCar` with objective "time".
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from glideplan.path import Path
+from glideplan.planners.dubins import WORDS as DUBINS_WORDS
+from glideplan.planners.dubins import dubins_segment_lengths
+from glideplan.planners.min_time.fixed_turn_rate import cheapest_fixed_turn_rate
+from glideplan.planners.min_time.solvers import Extremal, solve_type
+from glideplan.planners.min_time.table import CANDIDATE_TYPES, GROUPS, CandidateType
+from glideplan.planning import PlannerOutput, Problem, register_planner
+from glideplan.pose import Pose
+from glideplan.segments import Arc, Segment, Straight
+from glideplan.solution import Candidate
+from glideplan.vehicles.variable_speed_car import VariableSpeedCar
+
+__all__ = [
+    "SynthesisResult",
+    "extremal_path",
+    "normalised_goal",
+    "plan_time_optimal",
+    "synthesize",
+]
+
+PI = math.pi
+_ZERO = 1e-12
+
+
+@dataclass(frozen=True)
+class SynthesisResult:
+    """All extremals found for one goal (normalised units) and the seconds spent per group."""
+
+    extremals: tuple[Extremal, ...]
+    seconds: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def best(self) -> Extremal | None:
+        return min(self.extremals, key=lambda e: e.cost, default=None)
+
+
+def normalised_goal(goal: Pose, vehicle: VariableSpeedCar) -> np.ndarray:
+    """The goal (from the origin) in units of R = v_max/u_max: array (x, y, heading)."""
+    scale = vehicle.bang_radius
+    return np.array([goal.x / scale, goal.y / scale, goal.heading])
+
+
+def _dubins_extremals(types: list[CandidateType], goal: np.ndarray, rho: float) -> list[Extremal]:
+    """Gamma_Dubins: BSB and BBB at radius 1 (speed 1), CCC at radius rho (speed rho).
+
+    Lengths from `glideplan.planners.dubins`; the time of a CCC path at speed rho on radius
+    rho equals its total heading change, so every cost below is a time (eq. 4.6).
+    """
+    origin = np.zeros(3)
+    out: list[Extremal] = []
+    tables = {}
+    for ctype in types:
+        radius, label = (rho, "C") if ctype.word == "CCC" else (1.0, "B")
+        if radius not in tables:
+            tables[radius] = dubins_segment_lengths(origin, goal, radius)
+        row = tables[radius][DUBINS_WORDS.index(ctype.orientation)]
+        if np.isnan(row[0]):
+            continue
+        moves = []
+        for letter, length in zip(ctype.orientation, row, strict=True):
+            if letter == "S":
+                moves.append(("S", 0, float(length)))
+            else:
+                moves.append((label, 1 if letter == "L" else -1, float(length) / radius))
+        cost = sum(x for _, _, x in moves)
+        out.append(Extremal(ctype, tuple(moves), cost, {"lengths": [float(v) for v in row]}))
+    return out
+
+
+def _umax_extremals(types: list[CandidateType], goal: np.ndarray, rho: float) -> list[Extremal]:
+    """Gamma_umax: the cheapest fixed-turn-rate path of each orientation (singular speed)."""
+    out: list[Extremal] = []
+    for d in (1, -1):
+        of_d = [t for t in types if t.directions[0] == d]
+        if not of_d:
+            continue
+        found = cheapest_fixed_turn_rate(goal, rho, d)
+        if found is None:
+            continue
+        moves, cost, loops = found
+        pattern = "".join(m[0] for m in moves)
+        n_c = pattern.count("C")
+        if n_c == 2:  # the Gamma_umax word it realises: two C arcs in two simple turns
+            word = {"CBCB": "CBBCB", "BCBC": "BCBBC", "CBC": "CBBC"}.get(pattern, "BCBBCB")
+        else:  # fewer or more C arcs: a face of (or loops beyond) the most general word
+            word = "BCBBCB"
+        ctype = next((t for t in of_d if t.word == word), of_d[0])
+        out.append(
+            Extremal(ctype, tuple(moves), cost, {"pattern": pattern, "loops": loops})
+        )
+    return out
+
+
+def synthesize(
+    goal: np.ndarray, rho: float, *, types: Iterable[CandidateType] = CANDIDATE_TYPES
+) -> SynthesisResult:
+    """Every extremal of every candidate type for a normalised goal (x, y, heading).
+
+    Units: R = 1, u_max = 1, rho = v_min/v_max; costs are times in units of 1/u_max. With
+    rho = 1 (equal speeds) only the Dubins candidates BSB and BBB are solved.
+    """
+    goal = np.asarray(goal, dtype=float)
+    by_group: dict[str, list[CandidateType]] = {g: [] for g in GROUPS}
+    for t in types:
+        by_group[t.group].append(t)
+    if rho >= 1.0:
+        by_group = {"Dubins": [t for t in by_group["Dubins"] if t.word != "CCC"]}
+    found: list[Extremal] = []
+    seconds: dict[str, float] = {}
+    for group, members in by_group.items():
+        if not members:
+            continue
+        t0 = time.perf_counter()
+        if group in ("TST", "TTTT"):
+            for ctype in members:
+                found.extend(solve_type(ctype, goal, rho))
+        elif group == "umax":
+            found.extend(_umax_extremals(members, goal, rho))
+        else:
+            found.extend(_dubins_extremals(members, goal, rho))
+        seconds[group] = time.perf_counter() - t0
+    return SynthesisResult(tuple(_deduplicate(found)), seconds)
+
+
+def _signature(ext: Extremal) -> tuple:
+    merged: list[list] = []
+    for lab, d, x in ext.moves:
+        if x <= _ZERO:
+            continue
+        if merged and merged[-1][0] == lab and merged[-1][1] == d:
+            merged[-1][2] += x
+        else:
+            merged.append([lab, d, x])
+    return tuple((lab, d, round(x, 7)) for lab, d, x in merged)
+
+
+def _deduplicate(found: list[Extremal]) -> list[Extremal]:
+    """Drop repeated paths (types sharing a face), keeping the first in table order."""
+    seen: dict[tuple, Extremal] = {}
+    out: list[Extremal] = []
+    for ext in found:
+        key = _signature(ext)
+        if key in seen:
+            first = seen[key]
+            first.params.setdefault("also", []).append(ext.ctype.name)
+            continue
+        seen[key] = ext
+        out.append(ext)
+    return out
+
+
+def extremal_path(ext: Extremal, vehicle: VariableSpeedCar, start: Pose = Pose()) -> Path:
+    """The physical path of a normalised extremal: B arcs (R, v_max), C arcs (r, v_min), S."""
+    big, small = vehicle.bang_radius, vehicle.corner_radius
+    segments: list[Segment] = []
+    pose = start
+    moves = [m for m in ext.moves if m[2] > _ZERO] or [ext.moves[0]]
+    for lab, d, x in moves:
+        seg: Segment
+        if lab == "S":
+            seg = Straight(pose, x * big, vehicle.v_max)
+        elif lab == "B":
+            seg = Arc(pose, x, big, d, vehicle.v_max, "B")
+        else:
+            seg = Arc(pose, x, small, d, vehicle.v_min, "C")
+        segments.append(seg)
+        pose = seg.end
+    return Path(tuple(segments), vehicle)
+
+
+def _candidate(ext: Extremal, vehicle: VariableSpeedCar) -> Candidate:
+    path = extremal_path(ext, vehicle)
+    violated = sorted(k for k, ok in ext.conditions.items() if not ok)
+    info: dict[str, Any] = {
+        "group": ext.ctype.group,
+        "type": ext.ctype.name,
+        "parameters": {
+            k: (float(v) if isinstance(v, (float, np.floating)) else v)
+            for k, v in ext.params.items()
+        },
+    }
+    if violated:
+        info["violates"] = violated  # strict sub-optimality bounds (4.22), (4.24)
+    return Candidate(path.word, path.family, ext.cost / vehicle.u_max, path, "feasible", info)
+
+
+@register_planner(
+    "time-optimal",
+    vehicle=VariableSpeedCar,
+    objective="time",
+    method="synthesis",
+    description="Minimum-time paths with variable speed: synthesis over the 72 types (4.26)",
+)
+def plan_time_optimal(problem: Problem) -> PlannerOutput:
+    """Every locally optimal extremal of each candidate type of (4.26); the lowest wins.
+
+    Costs are times (s). Candidates that break a strict sub-optimality bound of the
+    dissertation ((4.22), (4.24)) are kept and flagged in `info["violates"]`.
+    """
+    vehicle = problem.vehicle
+    assert isinstance(vehicle, VariableSpeedCar)
+    goal = normalised_goal(problem.goal, vehicle)
+    if np.hypot(goal[0], goal[1]) < _ZERO and abs(math.remainder(goal[2], 2 * PI)) < _ZERO:
+        path = Path((Straight(Pose(), 0.0, vehicle.v_max),), vehicle)
+        return PlannerOutput((Candidate("", "S", 0.0, path, info={"group": "trivial"}),))
+    result = synthesize(goal, vehicle.speed_ratio)
+    candidates = tuple(_candidate(e, vehicle) for e in result.extremals)
+    counts: dict[str, int] = {}
+    for e in result.extremals:
+        counts[e.ctype.group] = counts.get(e.ctype.group, 0) + 1
+    stats = {
+        "candidate_types": len(CANDIDATE_TYPES),
+        "extremals_found": len(result.extremals),
+        "extremals_by_group": counts,
+        "seconds_by_group": dict(result.seconds),
+    }
+    return PlannerOutput(candidates, stats)

@@ -1,0 +1,534 @@
+"""Time-optimal paths in a known steady uniform wind or current ("convected" Dubins paths).
+
+Dissertation §3.2 and appendix A (eq. A.4, Corollary A.2); Techy & Woolsey (2009); McGee &
+Hedrick (2007); Bakolas & Tsiotras (2010). In the air- (water-) relative frame F_A, which
+drifts with the wind w, the kinematics are those of the Dubins car, so a time-optimal path is
+an air-frame Dubins path — circular arcs and straights, trochoids over ground — that reaches
+the goal when the goal, seen from F_A, has moved to the *virtual target*
+g(T) = (x1 - wx T, y1 - wy T, psi1). For each of the six words W the arrival time T_W is the
+smallest root of
+
+    F_W(T) = L_W(start -> g(T)) - v T            (REFERENCE_NOTES §3.4)
+
+with L_W the air-frame length of W (F_W(0) > 0). T* = min_W T_W. The roots are bracketed on a
+grid of T (one vectorised call of `dubins_word_lengths` for all words) and polished with
+Brent's method on a scalar, independent implementation of the six words (REFERENCE_NOTES
+§4.2, the (alpha, beta) form). A bracket across one of L_W's 2 pi R jumps (an arc wrapping
+through a full turn) is not a root and is discarded.
+
+Corollary A.2: with an unknown bounded disturbance eps v on top of the known wind, planning in
+F_A with the feasible radius R0' = R0 (1 + eps)^2 keeps the path trackable, provided
+w + eps v < v.
+
+Over ground the path is made of `TrochoidArc` and `DriftingStraight` segments: an air-frame
+arc or straight plus the drift w t. They report `drift = (wx, wy)`, so `glideplan.verify`
+integrates the inertial dynamics (A.4) along their controls. Their `length` is the air-relative
+distance flown (v times the duration); `ground_length` is the length of the ground track.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.optimize import brentq
+
+from glideplan.errors import InvalidParameterError
+from glideplan.path import Path
+from glideplan.planners.dubins import WORDS, dubins_word_lengths, feasible_radius, word_directions
+from glideplan.planning import PlannerOutput, Problem, register_planner
+from glideplan.pose import Pose, to_world
+from glideplan.segments import Segment
+from glideplan.solution import Candidate
+from glideplan.validation import check_finite, check_in_range, check_nonnegative, check_positive
+from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
+
+__all__ = [
+    "DriftingStraight",
+    "TrochoidArc",
+    "WindSolution",
+    "convected_dubins",
+    "convected_dubins_path",
+    "virtual_target_residual",
+]
+
+TWO_PI = 2.0 * math.pi
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(24)
+# Grid step for bracketing the roots of F_W, in units of R / v. F_W changes by at most about
+# (1 + w |grad L_W|) per unit; a pair of roots closer than this could be missed (measure-zero).
+_GRID_STEP = 0.05
+# A bracket whose polished |F_W| (units of R) exceeds this straddles a 2 pi jump, not a root.
+_ROOT_TOL = 1e-7
+_SNAP = 1e-10
+
+
+# ----- segments over ground ---------------------------------------------------------------
+
+
+def _map_drift(drift: tuple[float, float], frame: Pose, reflect: bool) -> tuple[float, float]:
+    wx, wy = drift
+    if reflect:
+        wy = -wy
+    c, s = math.cos(frame.heading), math.sin(frame.heading)
+    return (c * wx - s * wy, s * wx + c * wy)
+
+
+def _check_drift(drift: Any) -> tuple[float, float]:
+    try:
+        wx, wy = drift
+    except (TypeError, ValueError):
+        raise InvalidParameterError("drift", drift, "must be a pair (wx, wy) in m/s") from None
+    return (check_finite("drift x", wx), check_finite("drift y", wy))
+
+
+class _Drifting(Segment):
+    """Shared parts of the segments flown in a steady uniform wind."""
+
+    drift: tuple[float, float]
+    speed: float
+
+    @property
+    def length(self) -> float:
+        return self.speed * self.duration
+
+    def time_at_length(self, s: ArrayLike) -> np.ndarray:
+        return np.asarray(s, dtype=float) / self.speed
+
+    def _air_states(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        raise NotImplementedError
+
+    def states(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Ground position (air-frame position plus drift w t) and heading at local times t."""
+        tt = np.asarray(t, dtype=float)
+        x, y, h = self._air_states(tt)
+        return x + self.drift[0] * tt, y + self.drift[1] * tt, h
+
+    @property
+    def ground_length(self) -> float:
+        """Length of the ground track (m), by Gauss-Legendre quadrature of the ground speed."""
+        if self.duration <= 0.0:
+            return 0.0
+        half = 0.5 * self.duration
+        t = half * (_GL_X + 1.0)
+        v, u = self.controls(t)
+        h = self.states(t)[2]
+        gx = v * np.cos(h) + self.drift[0]
+        gy = v * np.sin(h) + self.drift[1]
+        return float(half * np.hypot(gx, gy) @ _GL_W)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            **super().to_dict(),
+            "speed": self.speed,
+            "drift": list(self.drift),
+            "ground_length": self.ground_length,
+        }
+
+
+@dataclass(frozen=True)
+class TrochoidArc(_Drifting):
+    """A maximum-rate turn flown in a steady wind: an air-frame circle of `radius` (m) through
+    heading change `angle` (rad) at airspeed `speed` (m/s), drifting with `drift` (m/s) — a
+    trochoid over ground (Techy & Woolsey 2009; dissertation §3.2)."""
+
+    start: Pose
+    angle: float
+    radius: float
+    direction: int
+    speed: float = 1.0
+    drift: tuple[float, float] = (0.0, 0.0)
+    label: str = "B"
+
+    kind: ClassVar[str] = "trochoid_arc"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "angle", check_nonnegative("angle", self.angle))
+        object.__setattr__(self, "radius", check_positive("radius", self.radius))
+        if self.direction not in (1, -1):
+            raise InvalidParameterError("direction", self.direction, "must be +1 or -1")
+        object.__setattr__(self, "direction", int(self.direction))
+        object.__setattr__(self, "speed", check_positive("speed", self.speed))
+        object.__setattr__(self, "drift", _check_drift(self.drift))
+
+    @property
+    def duration(self) -> float:
+        return self.radius * self.angle / self.speed
+
+    @property
+    def turn_rate(self) -> float:
+        """Signed turn rate (rad/s)."""
+        return self.direction * self.speed / self.radius
+
+    def _air_states(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        s, r, d = self.start, self.radius, self.direction
+        h = s.heading + self.turn_rate * t
+        x = s.x + d * r * (np.sin(h) - math.sin(s.heading))
+        y = s.y - d * r * (np.cos(h) - math.cos(s.heading))
+        return x, y, h
+
+    def controls(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+        tt = np.asarray(t, dtype=float)
+        return np.full_like(tt, self.speed), np.full_like(tt, self.turn_rate)
+
+    def transformed(self, frame: Pose, reflect: bool = False) -> TrochoidArc:
+        start = Pose.from_array(to_world(self.start.as_array(), frame.as_array(), reflect=reflect))
+        return TrochoidArc(
+            start,
+            self.angle,
+            self.radius,
+            -self.direction if reflect else self.direction,
+            self.speed,
+            _map_drift(self.drift, frame, reflect),
+            self.label,
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            **super().to_dict(),
+            "angle": self.angle,
+            "radius": self.radius,
+            "turn_rate": self.turn_rate,
+        }
+
+
+@dataclass(frozen=True)
+class DriftingStraight(_Drifting):
+    """A straight flown at constant heading and airspeed `speed` (m/s) for an air-relative
+    distance `length_m` (m), drifting with `drift` (m/s): a straight over ground along
+    v (cos psi, sin psi) + w."""
+
+    start: Pose
+    length_m: float
+    speed: float = 1.0
+    drift: tuple[float, float] = (0.0, 0.0)
+    label: str = "S"
+
+    kind: ClassVar[str] = "drifting_straight"
+
+    @property
+    def direction(self) -> int:  # type: ignore[override]
+        return 0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "length_m", check_nonnegative("length", self.length_m))
+        object.__setattr__(self, "speed", check_positive("speed", self.speed))
+        object.__setattr__(self, "drift", _check_drift(self.drift))
+
+    @property
+    def duration(self) -> float:
+        return self.length_m / self.speed
+
+    def _air_states(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        d = self.speed * t
+        s = self.start
+        return s.x + d * math.cos(s.heading), s.y + d * math.sin(s.heading), np.full_like(
+            d, s.heading
+        )
+
+    def controls(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+        tt = np.asarray(t, dtype=float)
+        return np.full_like(tt, self.speed), np.zeros_like(tt)
+
+    def transformed(self, frame: Pose, reflect: bool = False) -> DriftingStraight:
+        start = Pose.from_array(to_world(self.start.as_array(), frame.as_array(), reflect=reflect))
+        return DriftingStraight(
+            start, self.length_m, self.speed, _map_drift(self.drift, frame, reflect), self.label
+        )
+
+
+# ----- scalar Dubins words (unit radius, start at the origin with heading 0) -----------------
+
+
+def _m(a: float) -> float:
+    r = a % TWO_PI
+    return 0.0 if r > TWO_PI - _SNAP else r
+
+
+def _word_tpq(k: int, x: float, y: float, psi: float) -> tuple[float, float, float] | None:
+    """Segment lengths (t, p, q) of word WORDS[k] to (x, y, psi), unit radius; None infeasible.
+
+    The (alpha, beta) closed forms of REFERENCE_NOTES §4.2 (Shkel & Lumelsky 2001).
+    """
+    d = math.hypot(x, y)
+    th = math.atan2(y, x) if d > 0.0 else 0.0
+    a = _m(-th)
+    b = _m(psi - th)
+    sa, ca, sb, cb = math.sin(a), math.cos(a), math.sin(b), math.cos(b)
+    cab = math.cos(a - b)
+    word = WORDS[k]
+    if word == "LSL":
+        p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)
+        if p2 < 0.0:
+            return None
+        tau = math.atan2(cb - ca, d + sa - sb)
+        return _m(tau - a), math.sqrt(p2), _m(b - tau)
+    if word == "RSR":
+        p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)
+        if p2 < 0.0:
+            return None
+        tau = math.atan2(ca - cb, d - sa + sb)
+        return _m(a - tau), math.sqrt(p2), _m(tau - b)
+    if word == "LSR":
+        p2 = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)
+        if p2 < 0.0:
+            return None
+        p = math.sqrt(p2)
+        tau = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
+        return _m(tau - a), p, _m(tau - b)
+    if word == "RSL":
+        p2 = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb)
+        if p2 < 0.0:
+            return None
+        p = math.sqrt(p2)
+        tau = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
+        return _m(a - tau), p, _m(b - tau)
+    if word == "RLR":
+        c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0
+        if abs(c) > 1.0:
+            return None
+        p = _m(TWO_PI - math.acos(c))
+        t = _m(a - math.atan2(ca - cb, d - sa + sb) + 0.5 * p)
+        return t, p, _m(a - b - t + p)
+    # LRL
+    c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0
+    if abs(c) > 1.0:
+        return None
+    p = _m(TWO_PI - math.acos(c))
+    t = _m(-a - math.atan2(ca - cb, d + sa - sb) + 0.5 * p)
+    return t, p, _m(b - a - t + p)
+
+
+def virtual_target_residual(
+    tau: float, k: int, goal: tuple[float, float, float], wind: tuple[float, float]
+) -> float:
+    """F_W(tau) = L_W(g(tau)) - tau in units of R and R / v (NaN when W is infeasible).
+
+    `goal` is normalised by the planning radius R, `wind` by the airspeed v, `tau` = T v / R.
+    """
+    x1, y1, psi1 = goal
+    tpq = _word_tpq(k, x1 - wind[0] * tau, y1 - wind[1] * tau, psi1)
+    if tpq is None:
+        return math.nan
+    return tpq[0] + tpq[1] + tpq[2] - tau
+
+
+# ----- the solver ---------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class WindSolution:
+    """Arrival time of each word (s; inf when none) and its air-frame segment lengths (m)."""
+
+    times: np.ndarray
+    segment_lengths: np.ndarray
+    radius: float
+
+    @property
+    def best(self) -> int:
+        """Index into WORDS of the fastest word."""
+        return int(np.argmin(self.times))
+
+    @property
+    def time(self) -> float:
+        """The minimum time T* (s)."""
+        return float(np.min(self.times))
+
+
+def _feasible_end(
+    fn: Callable[[float], float], a: float, b: float, left_feasible: bool
+) -> tuple[float, float]:
+    """Shrink [a, b] to its feasible part, given that fn is finite at one end only."""
+    lo, hi = (a, b) if left_feasible else (b, a)  # lo finite, hi NaN
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if math.isfinite(fn(mid)):
+            lo = mid
+        else:
+            hi = mid
+    return (a, lo) if left_feasible else (lo, b)
+
+
+def _polish(
+    k: int, a: float, b: float, goal: tuple[float, float, float], wind: tuple[float, float]
+) -> float | None:
+    """The smallest valid root of F_W in the grid cell [a, b], or None.
+
+    Tried on the branch of F_W through F(a) (unwrapped by multiples of 2 pi: a root just
+    before an arc wraps) and on F_W itself (a root just after a wrap); a root is valid when
+    F_W itself vanishes there (the principal branch: every arc in [0, 2 pi)).
+    """
+
+    def raw(tau: float) -> float:
+        return virtual_target_residual(tau, k, goal, wind)
+
+    fa, fb = raw(a), raw(b)
+    # a word that exists at only one end of the cell: move that end to the feasibility
+    # boundary (F_W is steep there, so roots crowd towards it)
+    if math.isfinite(fa) != math.isfinite(fb):
+        a, b = _feasible_end(raw, a, b, math.isfinite(fa))
+        fa, fb = raw(a), raw(b)
+    if not (fa > 0.0 and math.isfinite(fb)):
+        return None
+
+    def unwrapped(tau: float) -> float:
+        f = raw(tau)
+        return f - TWO_PI * round((f - fa) / TWO_PI) if math.isfinite(f) else f
+
+    best: float | None = None
+    for fn in (unwrapped, raw):
+        fend = fn(b)
+        if not fend <= 0.0:
+            continue
+        try:
+            root = b if fend == 0.0 else brentq(fn, a, b, xtol=1e-14, rtol=1e-15)
+        except ValueError:  # NaN inside the cell (a word's feasibility boundary)
+            continue
+        if abs(raw(root)) <= _ROOT_TOL * max(1.0, root) and (best is None or root < best):
+            best = root
+    return best
+
+
+def _first_roots(
+    goal: tuple[float, float, float], wind: tuple[float, float]
+) -> tuple[np.ndarray, np.ndarray]:
+    """Smallest root tau_W of each word's F_W (normalised units) and its (t, p, q)."""
+    x1, y1, psi1 = goal
+    taus = np.full(6, np.inf)
+    tpqs = np.full((6, 3), np.nan)
+    wmag = math.hypot(*wind)
+    if wmag == 0.0:  # still air: T_W = L_W / v
+        for k in range(6):
+            tpq = _word_tpq(k, x1, y1, psi1)
+            if tpq is not None:
+                taus[k] = sum(tpq)
+                tpqs[k] = tpq
+        return taus, tpqs
+    # F_LSL(tau) <= 0 once tau >= (|goal| + 2 + 4 pi) / (1 - w): an upper bound on T*.
+    tau_max = (math.hypot(x1, y1) + 2.0 + 2.0 * TWO_PI) / (1.0 - wmag)
+    grid = np.linspace(0.0, tau_max, max(3, math.ceil(tau_max / _GRID_STEP) + 1))
+    targets = np.stack(
+        [x1 - wind[0] * grid, y1 - wind[1] * grid, np.full_like(grid, psi1)], axis=-1
+    )
+    f = dubins_word_lengths(np.zeros(3), targets, 1.0) - grid[:, None]  # (n, 6)
+    fa, fb = f[:-1], f[1:]
+    with np.errstate(invalid="ignore"):
+        # L_W jumps by multiples of 2 pi where an arc wraps through a full turn; within a cell
+        # the branch through the cell's left end is F unwrapped relative to F(a).
+        jumps = np.round((fb - fa) / TWO_PI)
+        cand = (fa > 0.0) & ((fb - TWO_PI * jumps <= 0.0) | (fb <= 0.0) | np.isnan(fb))
+        cand |= np.isnan(fa) & (fb <= 0.0)
+    for k in range(6):
+        for i in np.nonzero(cand[:, k])[0]:
+            root = _polish(k, float(grid[i]), float(grid[i + 1]), goal, wind)
+            if root is not None:
+                tpq = _word_tpq(k, x1 - wind[0] * root, y1 - wind[1] * root, psi1)
+                assert tpq is not None
+                taus[k] = root
+                tpqs[k] = tpq
+                break
+    return taus, tpqs
+
+
+def convected_dubins(
+    goal: Pose | ArrayLike,
+    *,
+    speed: float,
+    radius: float,
+    wind: tuple[float, float],
+    eps: float = 0.0,
+) -> WindSolution:
+    """Minimum-time arrival of each Dubins word from the origin (heading 0) to `goal` over ground.
+
+    `goal` (x, y in m, heading in rad) is given in the start frame; `speed` is the airspeed v
+    (m/s), `radius` the minimum turn radius R0 (m), `wind` (wx, wy) (m/s) in the same frame and
+    `eps` the bound on an additional unknown disturbance, as a fraction of v: the path is
+    planned with R0 (1 + eps)^2 (Corollary A.2), which needs |w| + eps v < v.
+    """
+    g = goal if isinstance(goal, Pose) else Pose.from_array(goal)
+    v = check_positive("speed", speed)
+    r0 = check_positive("radius", radius)
+    eps = check_in_range("eps", eps, 0.0, 1.0, high_open=True)
+    wx, wy = check_finite("wind x", wind[0]), check_finite("wind y", wind[1])
+    w = math.hypot(wx, wy)
+    if w + eps * v >= v:
+        raise InvalidParameterError(
+            "wind",
+            w,
+            f"wind speed + eps * speed must be < speed (here {w:g} + {eps:g} * {v:g} >= {v:g})",
+        )
+    r = float(feasible_radius(r0, eps))
+    taus, tpqs = _first_roots((g.x / r, g.y / r, g.heading), (wx / v, wy / v))
+    return WindSolution(times=taus * r / v, segment_lengths=tpqs * r, radius=r)
+
+
+def convected_dubins_path(
+    start: Pose,
+    word: str,
+    segment_lengths: ArrayLike,
+    *,
+    radius: float,
+    speed: float,
+    wind: tuple[float, float],
+) -> Path:
+    """The ground path of an air-frame Dubins `word` with air-frame `segment_lengths` (m)."""
+    segments: list[Segment] = []
+    pose = start
+    drift = (float(wind[0]), float(wind[1]))
+    for direction, length in zip(word_directions(word), np.asarray(segment_lengths), strict=True):
+        seg: Segment
+        if direction == 0:
+            seg = DriftingStraight(pose, float(length), speed, drift)
+        else:
+            seg = TrochoidArc(pose, float(length) / radius, radius, direction, speed, drift)
+        segments.append(seg)
+        pose = seg.end
+    return Path(tuple(segments))
+
+
+@register_planner(
+    "wind",
+    vehicle=DubinsCarInWind,
+    objective="time",
+    description="Time-optimal paths in a steady uniform wind (convected Dubins; 3.2, A.4)",
+)
+def plan_wind(problem: Problem, *, eps: float = 0.0) -> PlannerOutput:
+    """Time-optimal convected Dubins path (Techy & Woolsey 2009) to the goal over ground.
+
+    Every word is a candidate (cost: arrival time, s). `eps` = delta_max / v plans with the
+    feasible radius R0 (1 + eps)^2 of Corollary A.2 (needs w + eps v < v).
+    """
+    vehicle = problem.vehicle
+    assert isinstance(vehicle, DubinsCarInWind)
+    # the wind is given in the world; the planner works in the start frame
+    psi_w = vehicle.wind_direction - problem.frame.heading
+    wind = (vehicle.wind_speed * math.cos(psi_w), vehicle.wind_speed * math.sin(psi_w))
+    sol = convected_dubins(
+        problem.goal, speed=vehicle.speed, radius=vehicle.turn_radius, wind=wind, eps=eps
+    )
+    cands = []
+    for k, word in enumerate(WORDS):
+        info: dict[str, Any] = {"radius": sol.radius}
+        if not math.isfinite(sol.times[k]):
+            cands.append(Candidate(word, "", math.inf, None, "infeasible", info))
+            continue
+        path = convected_dubins_path(
+            problem.start,
+            word,
+            sol.segment_lengths[k],
+            radius=sol.radius,
+            speed=vehicle.speed,
+            wind=wind,
+        )
+        info["air_segment_lengths"] = [float(s) for s in sol.segment_lengths[k]]
+        cands.append(Candidate(word, path.family, float(sol.times[k]), path, "feasible", info))
+    extras = {
+        "radius": sol.radius,
+        "nominal_radius": vehicle.turn_radius,
+        "eps": float(eps),
+        "wind": {"speed": vehicle.wind_speed, "direction": vehicle.wind_direction},
+    }
+    return PlannerOutput(candidates=tuple(cands), extras=extras)

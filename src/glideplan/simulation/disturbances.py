@@ -1,0 +1,172 @@
+"""Velocity disturbances for the disturbed car (3.2): steady uniform wind and Dryden gusts.
+
+A disturbance is a recipe; `stream(rows, dt, rng)` starts an independent realisation for
+`rows` vehicles (or samples) and returns a `DisturbanceStream` whose `next()` gives the
+disturbance velocity (rows, 2) in m/s for the next time step. Everything is vectorised
+across rows and driven by an explicit `numpy.random.Generator` (no global random state).
+
+Dryden turbulence (dissertation §3.4; Gage 2003; MIL-F-8785C longitudinal spectrum
+Phi(Omega) = sigma_c^2 (2 L / pi) / (1 + (L Omega)^2)): each horizontal inertial component is
+a stationary Gauss-Markov process with autocorrelation sigma_c^2 exp(-V tau / L), the Dryden
+longitudinal correlation for a vehicle flying at airspeed V through a frozen field. It is
+stepped with the exact AR(1) recursion g[k+1] = a g[k] + sigma_c sqrt(1 - a^2) eta[k],
+a = exp(-V dt / L) (REFERENCE_NOTES §2.3), which has the exact variance and correlation for
+any dt (no sqrt(pi / dt) noise-normalisation pitfall). sigma is the RMS of the gust
+magnitude, so each component has sigma_c = sigma / sqrt(2) (unless `per_component`). The
+vector is saturated at |delta| <= saturation (the dissertation's eps v) after the filter.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from glideplan.errors import InvalidParameterError
+from glideplan.validation import check_finite_array, check_nonnegative, check_positive
+
+__all__ = [
+    "DisturbanceStream",
+    "DrydenTurbulence",
+    "SteadyDisturbance",
+    "saturate",
+]
+
+
+class DisturbanceStream(Protocol):
+    """One realisation of a disturbance for `rows` vehicles, stepped once per time step."""
+
+    rows: int
+
+    def next(self) -> np.ndarray:
+        """Disturbance velocity (rows, 2) in m/s over the next step."""
+        ...
+
+
+def saturate(vectors: np.ndarray, limit: float | np.ndarray) -> np.ndarray:
+    """Scale each row vector (..., 2) down to magnitude <= limit (m/s); others unchanged."""
+    mag = np.hypot(vectors[..., 0], vectors[..., 1])
+    lim = np.asarray(limit, dtype=float)
+    scale = np.where(mag > lim, lim / np.where(mag > 0.0, mag, 1.0), 1.0)
+    return vectors * scale[..., None]
+
+
+@dataclass(frozen=True, eq=False)
+class _ConstantStream:
+    velocity: np.ndarray
+
+    @property
+    def rows(self) -> int:
+        return int(self.velocity.shape[0])
+
+    def next(self) -> np.ndarray:
+        return self.velocity
+
+
+@dataclass(frozen=True, eq=False)
+class SteadyDisturbance:
+    """A constant uniform disturbance per row: magnitude `speed` (m/s) towards `direction`
+    (rad, counter-clockwise from +x); scalars broadcast to every row."""
+
+    speed: ArrayLike
+    direction: ArrayLike
+
+    def __post_init__(self) -> None:
+        speed = check_finite_array("speed", self.speed)
+        if np.any(speed < 0.0):
+            raise InvalidParameterError("speed", "array", "must be >= 0")
+        object.__setattr__(self, "speed", speed)
+        object.__setattr__(self, "direction", check_finite_array("direction", self.direction))
+
+    def velocity(self, rows: int) -> np.ndarray:
+        """The constant velocity (rows, 2) in m/s."""
+        try:
+            s = np.broadcast_to(np.asarray(self.speed).reshape(-1), (rows,))
+            d = np.broadcast_to(np.asarray(self.direction).reshape(-1), (rows,))
+        except ValueError:
+            raise InvalidParameterError(
+                "rows", rows, "must match the number of wind values"
+            ) from None
+        return np.stack([s * np.cos(d), s * np.sin(d)], axis=-1)
+
+    def stream(
+        self, rows: int, dt: float, rng: np.random.Generator | None = None
+    ) -> DisturbanceStream:
+        return _ConstantStream(self.velocity(rows))
+
+
+class _DrydenStream:
+    def __init__(self, model: DrydenTurbulence, rows: int, dt: float, rng: np.random.Generator):
+        self.rows = rows
+        self._rng = rng
+        self._a = math.exp(-model.airspeed * dt / model.scale_length)
+        self._sigma_c = model.component_sigma
+        self._b = self._sigma_c * math.sqrt(max(0.0, 1.0 - self._a * self._a))
+        self._limit = model.saturation
+        # stationary start: each component ~ N(0, sigma_c^2)
+        self._g = self._sigma_c * rng.standard_normal((rows, 2))
+        self._first = True
+
+    def next(self) -> np.ndarray:
+        if self._first:
+            self._first = False
+        else:
+            self._g *= self._a
+            self._g += self._b * self._rng.standard_normal((self.rows, 2))
+        if self._limit is None:
+            return self._g.copy()
+        return saturate(self._g, self._limit)
+
+
+@dataclass(frozen=True)
+class DrydenTurbulence:
+    """Horizontal Dryden gusts (see module docstring).
+
+    sigma: RMS of the gust magnitude (m/s), before saturation; scale_length: L (m), default
+    263 m (MIL-F-8785C low altitude at h = 100 m, REFERENCE_NOTES §2.2); airspeed: V (m/s);
+    saturation: bound on |delta| (m/s), None for none; per_component: sigma is the RMS of each
+    component instead of the magnitude.
+    """
+
+    sigma: float
+    scale_length: float = 263.0
+    airspeed: float = 20.0
+    saturation: float | None = None
+    per_component: bool = False
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "sigma", check_nonnegative("sigma", self.sigma))
+        object.__setattr__(self, "scale_length", check_positive("scale_length", self.scale_length))
+        object.__setattr__(self, "airspeed", check_positive("airspeed", self.airspeed))
+        if self.saturation is not None:
+            object.__setattr__(self, "saturation", check_nonnegative("saturation", self.saturation))
+
+    @property
+    def component_sigma(self) -> float:
+        """RMS of each inertial component (m/s)."""
+        return self.sigma if self.per_component else self.sigma / math.sqrt(2.0)
+
+    @property
+    def correlation_time(self) -> float:
+        """L / V (s): the components' autocorrelation is sigma_c^2 exp(-tau V / L)."""
+        return self.scale_length / self.airspeed
+
+    def autocorrelation(self, lag: ArrayLike) -> np.ndarray:
+        """Model autocorrelation of each component (before saturation) at time lags (s)."""
+        tau = np.abs(np.asarray(lag, dtype=float))
+        return self.component_sigma**2 * np.exp(-tau / self.correlation_time)
+
+    def stream(self, rows: int, dt: float, rng: np.random.Generator) -> DisturbanceStream:
+        """Start a realisation for `rows` rows with time step dt (s)."""
+        check_positive("dt", dt)
+        if not isinstance(rng, np.random.Generator):
+            raise InvalidParameterError("rng", rng, "must be a numpy.random.Generator")
+        return _DrydenStream(self, int(rows), float(dt), rng)
+
+    def sample(self, steps: int, rows: int, dt: float, rng: np.random.Generator) -> np.ndarray:
+        """A realisation as an array (steps, rows, 2) in m/s (for analysis and tests)."""
+        s = self.stream(rows, dt, rng)
+        return np.stack([s.next() for _ in range(int(steps))])

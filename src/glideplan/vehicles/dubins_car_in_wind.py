@@ -1,0 +1,62 @@
+"""A Dubins car in a known steady uniform wind or current (dissertation eq. A.4, Techy & Woolsey 2009)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+from glideplan.errors import InvalidParameterError
+from glideplan.validation import check_finite, check_nonnegative, check_positive
+from glideplan.vehicles.base import Vehicle
+
+__all__ = ["DubinsCarInWind"]
+
+
+@dataclass(frozen=True)
+class DubinsCarInWind(Vehicle):
+    """Air- (or water-) relative speed `speed` (m/s), minimum turn radius `turn_radius` (m) in the
+    air frame, and a steady uniform wind of `wind_speed` (m/s) blowing towards `wind_direction`
+    (rad, counter-clockwise from +x). Kinematics (A.4) with no unknown part:
+    x' = v cos psi + w cos psi_w, y' = v sin psi + w sin psi_w, psi' = u, |u| <= v / R0.
+    The wind must be slower than the vehicle (w < v).
+    """
+
+    speed: float = 1.0
+    turn_radius: float = 1.0
+    wind_speed: float = 0.0
+    wind_direction: float = 0.0
+
+    model: ClassVar[str] = "dubins_car_in_wind"
+    default_objective: ClassVar[str] = "time"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "speed", check_positive("speed", self.speed))
+        object.__setattr__(self, "turn_radius", check_positive("turn_radius", self.turn_radius))
+        object.__setattr__(self, "wind_speed", check_nonnegative("wind_speed", self.wind_speed))
+        object.__setattr__(
+            self, "wind_direction", check_finite("wind_direction", self.wind_direction)
+        )
+        if self.wind_speed >= self.speed:
+            raise InvalidParameterError(
+                "wind_speed",
+                self.wind_speed,
+                f"must be < the vehicle's speed {self.speed:g} (else some goals are unreachable)",
+            )
+
+    @property
+    def wind(self) -> tuple[float, float]:
+        """The wind velocity (wx, wy) in m/s."""
+        return (
+            self.wind_speed * math.cos(self.wind_direction),
+            self.wind_speed * math.sin(self.wind_direction),
+        )
+
+    @property
+    def max_turn_rate(self) -> float:
+        """u_max = v / R0 (rad/s)."""
+        return self.speed / self.turn_radius
+
+    @property
+    def length_scale(self) -> float:
+        return self.turn_radius
