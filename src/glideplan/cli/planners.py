@@ -13,12 +13,16 @@ def list_planners() -> None:
 
     from glideplan.planning import registered_planners
 
-    table = Table(title="glideplan planners")
-    for col in ("planner", "vehicle", "objective", "method", "options", "description"):
-        table.add_column(col)
+    table = Table(title="glideplan planners", show_lines=True)
+    table.add_column("planner", no_wrap=True)
+    table.add_column("vehicle / objective / method", no_wrap=True)
+    table.add_column("description and options", ratio=1)
     for s in sorted(registered_planners(), key=lambda s: (s.vehicle.__name__, s.method)):
         method = s.method + (" (default)" if s.default else "")
+        opts = ", ".join(s.options) or "none"
         table.add_row(
-            s.name, s.vehicle.__name__, s.objective, method, ", ".join(s.options), s.description
+            s.name,
+            f"{s.vehicle.__name__}\n{s.objective}\n{method}",
+            f"{s.description}\n[dim]options: {opts}[/dim]",
         )
     Console().print(table)
