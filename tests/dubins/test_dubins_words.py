@@ -250,3 +250,20 @@ def test_empty_and_scalar_batches():
     assert dubins_shortest(ORIGIN, empty).length.shape == (0,)
     length, index = dubins_distance(ORIGIN, np.array([0.0, 4.0, PI]), return_index=True)
     assert length.shape == () and WORDS[int(index)] == "LSL"
+
+
+def test_dubins_path_accepts_tuples_and_rejects_garbage():
+    path = dubins_path((0.0, 0.0, 0.0), (0.0, 4.0, PI), 1.0)
+    assert path is not None and path.length == pytest.approx(2 + PI)
+    with pytest.raises(InvalidParameterError, match="goal"):
+        dubins_path(Pose(), (1.0, math.nan, 0.0), 1.0)
+    with pytest.raises(InvalidParameterError, match="start"):
+        dubins_path("origin", Pose(), 1.0)
+
+
+def test_independent_direct_method_value():
+    # REFERENCE_NOTES 4.2: a CasADi/IPOPT minimum-time solve to (4, 3, pi/2) with unit speed and
+    # radius gave T* = 5.17635, the LSL length.
+    length, index = dubins_distance(ORIGIN, np.array([4.0, 3.0, PI / 2]), return_index=True)
+    assert float(length) == pytest.approx(5.17635, abs=5e-6)
+    assert WORDS[int(index)] == "LSL"

@@ -69,8 +69,8 @@ def fig2_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
                 if key == "b" or not ccc
                 else (
                     f"{', '.join(ccc)} is also feasible here (outer circle centres "
-                    f"{_centre_distance(goal):.2f} R0 < 4 R0 apart) but longest; the "
-                    "dissertation's figure omits it"
+                    f"{_centre_distance(goal):.2f} R0 < 4 R0 apart) but longest, with "
+                    "outer arcs over pi, so never optimal; the dissertation omits it"
                 ),
             )
         )

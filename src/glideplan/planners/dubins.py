@@ -104,23 +104,17 @@ def _mod(a: np.ndarray) -> np.ndarray:
 
 
 def _normalise(start: ArrayLike, goal: ArrayLike, radius: ArrayLike) -> tuple[np.ndarray, ...]:
-    """Validated goals in the start frame scaled by 1/radius: x, y, psi in [0, 2 pi)."""
-    s = check_finite_array("start", start, last_dim=3)
-    g = check_finite_array("goal", goal, last_dim=3)
-    r = np.asarray(radius, dtype=float)
-    if not np.all(np.isfinite(r)) or np.any(r <= 0.0):
-        raise InvalidParameterError(
-            "radius", radius if r.ndim == 0 else "array", "must be finite and > 0"
-        )
-    dx = g[..., 0] - s[..., 0]
-    dy = g[..., 1] - s[..., 1]
-    c, sn = np.cos(s[..., 2]), np.sin(s[..., 2])
+    """Validated goals in the start frame scaled by 1/radius: x, y, psi, radius (shape `(...)`)."""
+    s, g, r, shape = _flat_queries(start, goal, radius)
+    dx = g[:, 0] - s[:, 0]
+    dy = g[:, 1] - s[:, 1]
+    c, sn = np.cos(s[:, 2]), np.sin(s[:, 2])
     inv = 1.0 / r
     x = (c * dx + sn * dy) * inv
     y = (c * dy - sn * dx) * inv
-    psi = _mod(g[..., 2] - s[..., 2])
-    x, y, psi, r = np.broadcast_arrays(x, y, psi, r)
-    return x, y, psi, r
+    psi = _mod(g[:, 2] - s[:, 2])
+    r = np.broadcast_to(r, x.shape)
+    return tuple(a.reshape(shape) for a in (x, y, psi, r))
 
 
 def _table(x: np.ndarray, y: np.ndarray, psi: np.ndarray) -> np.ndarray:
@@ -397,8 +391,8 @@ def dubins_shortest(start: ArrayLike, goal: ArrayLike, radius: ArrayLike = 1.0) 
 
 
 def dubins_path(
-    start: Pose,
-    goal: Pose,
+    start: Pose | ArrayLike,
+    goal: Pose | ArrayLike,
     radius: float,
     speed: float = 1.0,
     word: str | None = None,
@@ -412,6 +406,8 @@ def dubins_path(
     """
     radius = check_positive("radius", radius)
     speed = check_positive("speed", speed)
+    start = start if isinstance(start, Pose) else _pose("start", start)
+    goal = goal if isinstance(goal, Pose) else _pose("goal", goal)
     table = dubins_segment_lengths(start.as_array(), goal.as_array(), radius)
     if word is None:
         totals = np.where(np.isnan(table[:, 0]), np.inf, table.sum(axis=-1))
@@ -422,6 +418,13 @@ def dubins_path(
     if np.isnan(table[k, 0]):
         return None
     return _build_path(start, WORDS[k], table[k], radius, speed, label_turn)
+
+
+def _pose(name: str, value: Any) -> Pose:
+    try:
+        return Pose.from_array(value)
+    except (InvalidParameterError, TypeError, ValueError):
+        raise InvalidParameterError(name, value, "must be a Pose or (x, y, heading)") from None
 
 
 def _build_path(
