@@ -93,7 +93,7 @@ def test_control_set_curves():
 
 
 def test_classification_of_synthetic_history():
-    v_lim, n_lim = lf.locus_stall_intersection(G)
+    v_lim, _ = lf.locus_stall_intersection(G)
     s = np.linspace(0.0, 4.0, 401)
     v = np.empty_like(s)
     n = np.empty_like(s)

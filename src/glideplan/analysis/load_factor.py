@@ -42,8 +42,9 @@ __all__ = [
     "doghouse",
     "extremal_locus",
     "hodograph",
-    "locus_stall_intersection",
     "locus_speed_history",
+    "locus_speed_history_numeric",
+    "locus_stall_intersection",
     "stall_load_factor_history",
     "turn_polar",
 ]
@@ -116,7 +117,7 @@ def hodograph(glider: LoadFactorGlider, n_points: int = 120) -> dict[str, Any]:
     mirror for left), as `Curve`s in the (f_psi, f0) plane.
     """
     g = glider
-    vc, nm = corner(g)
+    _, nm = corner(g)
     vv, nn = np.meshgrid(np.linspace(g.v_min, g.v_max, n_points), np.linspace(1.0, nm, n_points))
     ok = g.admissible(vv, nn)
     k, f0 = _rates(g, vv[ok], nn[ok])
@@ -194,9 +195,7 @@ def locus_speed_history(
     return ss, (1.0 - b**2) ** 0.25, s1
 
 
-def locus_speed_history_numeric(
-    glider: LoadFactorGlider, p3: float, s: ArrayLike
-) -> np.ndarray:
+def locus_speed_history_numeric(glider: LoadFactorGlider, p3: float, s: ArrayLike) -> np.ndarray:
     """(6.41) integrated numerically from v_lim (a check of the closed form)."""
     v_lim, _ = locus_stall_intersection(glider)
     ss = np.asarray(s, dtype=float)

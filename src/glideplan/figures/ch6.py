@@ -142,13 +142,14 @@ def fig6_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
         for sgn in (1, -1):
             ax.plot(sgn * c.x, c.y, styles.get(name, "k-"), lw=1.2,
                     label=c.label if sgn == 1 else None)  # fmt: skip
-    # a separating plane tangent at a stall-boundary point: adjoint ratio lam = 0.9
-    lam = 0.9
+    # a separating plane tangent at a stall-boundary point: |eta_psi| / (2 eta0 p1) = 2,
+    # between the stall (0.72) and corner (4.56) thresholds of fig6.5
+    lam = 2.0 * g.p1 * 2.0
     v, n = _hc_minimiser(g, lam, 600)
     k0 = math.sqrt(n**2 - 1) / v**2
     f0 = float(g.sink_per_length(v, n))
     xs = np.linspace(-2, 2, 10)
-    ax.plot(xs, f0 + lam * 2 * g.p1 * (xs - k0) / (2 * g.p1), "r:", label="separating plane")
+    ax.plot(xs, f0 + lam * (xs - k0), "r:", label="separating plane")
     ax.plot([k0], [f0], "ro")
     ax.set_xlim(-2.1, 2.1)
     ax.set_ylim(0, 0.12)
@@ -278,7 +279,8 @@ def fig6_7(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     n15 = curves["n=1.5"]
     i = int(np.argmin(n15.y))
     rows = (
-        Comparison("argmin_v f0 at n = 1.5", f"{n15.x[i]:.3f}", f"sqrt(1.5) = {math.sqrt(1.5):.3f}"),
+        Comparison("argmin_v f0 at n = 1.5", f"{n15.x[i]:.3f}",
+                   f"sqrt(1.5) = {math.sqrt(1.5):.3f}"),
         Comparison("best glide f0 at n = 1", f"{2 * g.p1:.4f}", "1/(L/D)max = 0.0333"),
     )  # fmt: skip
     return FigureReport(files=(_save(fig, out_dir, "fig6_7.png"),), rows=rows)
@@ -303,7 +305,8 @@ def fig6_8(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_ylabel("turn rate per unit length psi'")
     ax.legend(fontsize=7)
     rows = (
-        Comparison("best turn rate, at v_c", f"{1 / g.corner_radius:.4f} at v = {g.corner_speed:.4f}",
+        Comparison("best turn rate, at v_c",
+                   f"{1 / g.corner_radius:.4f} at v = {g.corner_speed:.4f}",
                    "corner speed v_c", "y axis of Fig 6.8 reaches 1.5"),
     )  # fmt: skip
     notes = (

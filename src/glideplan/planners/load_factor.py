@@ -303,4 +303,6 @@ def plan_load_factor(
         },
         "starts": starts,
     }
-    return PlannerOutput(candidates=(best, *others), stats=stats, message=res.message, extras=extras)
+    return PlannerOutput(
+        candidates=(best, *others), stats=stats, message=res.message, extras=extras
+    )
