@@ -58,7 +58,10 @@ def demo(
             f"| {err} | {res.seconds:.3f} |"
         )
     (out / "report.md").write_text("\n".join(lines) + "\n")
-    Console().print(table)
+    console = Console()
+    if not console.is_terminal:  # piped or logged: do not squeeze the table into 80 columns
+        console = Console(width=140)
+    console.print(table)
     typer.echo(f"wrote {out / 'report.md'}")
     if failures:
         raise typer.Exit(1)
