@@ -129,10 +129,14 @@ def _glider(
             raise InvalidParameterError("vehicle", vehicle, f"must be one of {', '.join(VEHICLES)}")
         return dg1001m()
     if vehicle is not None:
-        raise InvalidParameterError("vehicle", vehicle, "give either --vehicle or --polar, not both")
+        raise InvalidParameterError(
+            "vehicle", vehicle, "give either --vehicle or --polar, not both"
+        )
     needed = {"v_stall": v_stall, "v_max": v_max, "u_max": u_max}
     for name, value in needed.items():
         if value is None:
-            raise InvalidParameterError(name, None, f"--{name.replace('_', '-')} is needed with --polar")
+            raise InvalidParameterError(
+                name, None, f"--{name.replace('_', '-')} is needed with --polar"
+            )
     a, b, c = polar
     return QuadraticPolarGlider(a, b, c, v_stall, v_max, u_max)

@@ -174,6 +174,16 @@ class TrochoidArc(_Drifting):
         tt = np.asarray(t, dtype=float)
         return np.full_like(tt, self.speed), np.full_like(tt, self.turn_rate)
 
+    @property
+    def end(self) -> Pose:
+        s, r, d, T = self.start, self.radius, self.direction, self.duration
+        h = s.heading + d * self.angle
+        return Pose(
+            s.x + d * r * (math.sin(h) - math.sin(s.heading)) + self.drift[0] * T,
+            s.y - d * r * (math.cos(h) - math.cos(s.heading)) + self.drift[1] * T,
+            h,
+        )
+
     def transformed(self, frame: Pose, reflect: bool = False) -> TrochoidArc:
         start = Pose.from_array(to_world(self.start.as_array(), frame.as_array(), reflect=reflect))
         return TrochoidArc(
@@ -232,6 +242,15 @@ class DriftingStraight(_Drifting):
     def controls(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         tt = np.asarray(t, dtype=float)
         return np.full_like(tt, self.speed), np.zeros_like(tt)
+
+    @property
+    def end(self) -> Pose:
+        s, T = self.start, self.duration
+        return Pose(
+            s.x + self.length_m * math.cos(s.heading) + self.drift[0] * T,
+            s.y + self.length_m * math.sin(s.heading) + self.drift[1] * T,
+            s.heading,
+        )
 
     def transformed(self, frame: Pose, reflect: bool = False) -> DriftingStraight:
         start = Pose.from_array(to_world(self.start.as_array(), frame.as_array(), reflect=reflect))

@@ -305,9 +305,12 @@ def b_arc_segments(
     return segments
 
 
-def straight_segment(start: Pose, length: float, glider: QuadraticPolarGlider) -> list[Segment]:
-    """The S extremal (v = v_stf, u = 0) as a segment list (empty for zero length)."""
-    return [Straight(start, length, glider.v_stf)] if length > 0.0 else []
+def straight_segment(
+    start: Pose, length: float, glider: QuadraticPolarGlider, *, keep_empty: bool = False
+) -> list[Segment]:
+    """The S extremal (v = v_stf, u = 0) as a segment list (empty for zero length unless
+    `keep_empty`)."""
+    return [Straight(start, length, glider.v_stf)] if length > 0.0 or keep_empty else []
 
 
 def constant_speed_segment(

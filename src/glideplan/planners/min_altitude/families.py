@@ -91,7 +91,8 @@ FAMILIES: tuple[Family, ...] = (
         1,
         multiplier="any lambda >= 0 (theta free)",
         constraints="v <= v_stf along the arc (no switch inside: |phi| <= s when "
-        "lambda > v_stf - v_ms); heading change in (0, 2 pi)",
+        "lambda > v_stf - v_ms); heading change psi1 mod 2 pi, or one more turn with at most "
+        "one heading phi = pi (Lemma 5.7.7)",
         source="Lemma 5.7.12 (+ H = 0 and clipping)",
     ),
     Family(

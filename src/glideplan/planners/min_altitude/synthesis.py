@@ -20,7 +20,8 @@ Solvers (one per `Family.solver`):
   heading. The two position equations are solved by scanning a grid over
   s in (pi/2, pi] x first-arc fraction in [0, 1] for cells that may hold a root and
   polishing each with a vectorised Newton iteration (deterministic multi-start).
-- "single_b": one B arc; without clipping the position is linear in lambda e^{i theta}
+- "single_b": one B arc turning psi1 (mod 2 pi) or one more full turn (a loop to a goal
+  just behind the start); without clipping the position is linear in lambda e^{i theta}
   (solved exactly); with clipping, Newton from that solution.
 - "constant_speed": B_ms and B_stall^n (n = 1..4, middle arcs of pi): the position
   equations are linear in e^{i a1}, solved algebraically (re-derived (C.26)-(C.28), with the
@@ -111,6 +112,8 @@ def synthesize(
             if task.reflect:
                 path = path.reflected()
             info = {"orientation": task.word, **found.info}
+            if task.reflect and "angles" in info:  # solvers report the L-first mirror image
+                info["angles"] = [-a for a in info["angles"]]
             out.append(Candidate(path.word, task.family.name, found.cost, path, "feasible", info))
     return _unique(out)
 
@@ -145,12 +148,23 @@ def _each(
 
 
 def _unique(cands: list[Candidate]) -> tuple[Candidate, ...]:
-    cands.sort(key=lambda c: (c.cost, len(c.family)))
+    """Sort by cost and keep one of each path (same turn word and cost); a path that two
+    families produce (e.g. a B arc with lambda = 0 is a B_ms arc) keeps the constant-speed
+    family, else the one with fewer arcs."""
+
+    def preference(c: Candidate) -> tuple[int, int]:
+        return (0 if c.family.startswith(("Bms", "Bstall")) else 1, len(c.family))
+
+    cands.sort(key=lambda c: c.cost)
     kept: list[Candidate] = []
     for c in cands:
-        if any(k.word == c.word and abs(k.cost - c.cost) <= 1e-9 * max(1.0, c.cost) for k in kept):
-            continue
-        kept.append(c)
+        for i, k in enumerate(kept):
+            if k.word == c.word and abs(k.cost - c.cost) <= 1e-9 * max(1.0, c.cost):
+                if preference(c) < preference(k):
+                    kept[i] = c
+                break
+        else:
+            kept.append(c)
     return tuple(kept)
 
 
@@ -181,7 +195,7 @@ def _solve_bsb(goal: Pose, st: _Setup, fam: Family, word: str) -> list[_Found]:
     )
     big = np.max(np.abs(coeffs))
     if big == 0.0:  # the goal is the start: nothing to fly
-        return []
+        return [_Found(straight_segment(Pose(), 0.0, g, keep_empty=True), 0.0, {"lambda": lam})]
     coeffs = np.where(np.abs(coeffs) < 1e-14 * big, 0.0, coeffs)
     nz = np.flatnonzero(coeffs)
     roots = np.roots(coeffs[nz[0] :]) if nz.size > 1 else np.array([])
@@ -396,11 +410,10 @@ def _chain_found(
     for k, angle in enumerate(angles):
         segs += b_arc_segments(pose, 1 if k % 2 == 0 else -1, angle, lam, theta, g)
         pose = segs[-1].end if segs else pose
-    sign = -1.0 if task.reflect else 1.0
     info = {
         "lambda": lam,
         "switch_angle": s,
-        "angles": [sign * a * (1 if k % 2 == 0 else -1) for k, a in enumerate(angles)],
+        "angles": [a * (1 if k % 2 == 0 else -1) for k, a in enumerate(angles)],
         "saturated_time": float(sum(sg.duration for sg in segs if sg.label != "B")),
     }
     return _Found(segs, cost, info)
@@ -410,10 +423,14 @@ def _chain_found(
 
 
 def _solve_single_b(goal: Pose, st: _Setup, fam: Family, word: str) -> list[_Found]:
+    base = float(_wrap(goal.heading, 0.0))
+    base = 0.0 if base > TWO_PI - _ANGLE_TOL else base
+    # the heading change is psi1 modulo 2 pi, or one more turn (a loop ending nearby)
+    return [f for a1 in (base, base + TWO_PI) if a1 > _ANGLE_TOL for f in _single_b(goal, st, a1)]
+
+
+def _single_b(goal: Pose, st: _Setup, a1: float) -> list[_Found]:
     g, kern, u = st.glider, st.kern, st.glider.u_max
-    a1 = float(_wrap(goal.heading, 0.0))
-    if a1 < _ANGLE_TOL or a1 > TWO_PI - _ANGLE_TOL:
-        return []
     z1 = complex(goal.x, goal.y)
     # unclipped: mu a1/2 + conj(mu) K = -u z1 - i v_ms (e^{i a1} - 1), mu = lam e^{i theta}
     K = (np.exp(2j * a1) - 1.0) / 4j
@@ -441,17 +458,19 @@ def _solve_single_b(goal: Pose, st: _Setup, fam: Family, word: str) -> list[_Fou
         if abs(fun(np.array([m1]), np.array([m2]))[0]) > 1e-10:
             continue
         lam, theta = math.hypot(m1, m2), math.atan2(m2, m1)
+        lo = float(_wrap(-theta, -math.pi))  # the arc covers phi in [lo, lo + a1]
         if lam > st.lam_s:  # H = 0: no switch inside, so v <= v_stf on the whole arc
             s = math.acos(-st.lam_s / lam)
-            lo = float(_wrap(-theta, -math.pi))
             if lo < -s - _ANGLE_TOL or lo + a1 > s + _ANGLE_TOL:
                 continue
+        if lo + a1 > 3 * math.pi + _ANGLE_TOL:  # two headings phi = pi (Lemma 5.7.7)
+            continue
         if any(abs(f.info["lambda"] - lam) < 1e-9 * (1 + lam) for f in out):
             continue
         segs = b_arc_segments(Pose(), 1, a1, lam, theta, g)
         _, W, _ = kern.primitives(np.array([-theta, a1 - theta]), lam)
         stall = sum(sg.duration for sg in segs if sg.label != "B")
-        info = {"lambda": lam, "angles": [a1 if word == "L" else -a1], "saturated_time": stall}
+        info = {"lambda": lam, "angles": [a1], "saturated_time": stall}
         out.append(_Found(segs, float((W[1] - W[0]) / u), info))
     return out
 
@@ -492,10 +511,9 @@ def _solve_constant_speed(goal: Pose, st: _Setup, fam: Family, word: str) -> lis
     if not segs or Path(tuple(segs)).end.distance_to(goal) > 1e-9 * st.scale:
         return []
     cost = sum(angles) / g.u_max * float(g.sink_rate(v, 0.0))
-    sign = 1.0 if word[0] == "L" else -1.0
     info = {
         "speed": v,
-        "angles": [sign * a * (1 if k % 2 == 0 else -1) for k, a in enumerate(angles)],
+        "angles": [a * (1 if k % 2 == 0 else -1) for k, a in enumerate(angles)],
     }
     return [_Found(segs, cost, info)]
 

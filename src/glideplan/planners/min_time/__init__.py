@@ -10,7 +10,10 @@ collocation solve (`method="direct"`).
 ('CBSB', 'LSR', 2.87465)
 """
 
-from glideplan.planners.min_time.direct import plan_time_optimal_direct
+from glideplan.planners.min_time.direct import (
+    plan_time_optimal_direct,
+    solve_time_optimal_direct,
+)
 from glideplan.planners.min_time.synthesis import (
     SynthesisResult,
     extremal_path,
@@ -27,5 +30,6 @@ __all__ = [
     "extremal_path",
     "plan_time_optimal",
     "plan_time_optimal_direct",
+    "solve_time_optimal_direct",
     "synthesize",
 ]

@@ -87,8 +87,11 @@ def solve_time_optimal_direct(
     max_iterations: int = 500,
 ) -> DirectResult:
     """Direct collocation solve from the origin to `goal` (a `DirectResult`)."""
-    gs = guesses if guesses is not None else initial_guesses(vehicle, goal,
-                                                              synthesis_starts=synthesis_starts)
+    gs = (
+        guesses
+        if guesses is not None
+        else initial_guesses(vehicle, goal, synthesis_starts=synthesis_starts)
+    )
     return solve_direct(
         goal,
         control_system(vehicle),
@@ -103,8 +106,13 @@ def solve_time_optimal_direct(
 
 
 def classify_controls(
-    vehicle: VariableSpeedCar, t: np.ndarray, speed: np.ndarray, turn_rate: np.ndarray,
-    *, tol: float = 0.05, min_fraction: float = 0.01,
+    vehicle: VariableSpeedCar,
+    t: np.ndarray,
+    speed: np.ndarray,
+    turn_rate: np.ndarray,
+    *,
+    tol: float = 0.05,
+    min_fraction: float = 0.01,
 ) -> tuple[str, str]:
     """Family (B/C/S labels) and turn word of a sampled control history (Table 4.1).
 
@@ -125,6 +133,7 @@ def classify_controls(
                 runs[-1][1] += w
             else:
                 runs.append([str(val), float(w)])
+
     def squash(runs: list[list]) -> str:
         kept = [r for r in runs if r[1] >= min_fraction * total] or runs
         out: list[str] = []
@@ -132,6 +141,7 @@ def classify_controls(
             if not out or out[-1] != val:
                 out.append(val)
         return "".join(out)
+
     return squash(fam), squash(word)
 
 
@@ -164,7 +174,10 @@ def plan_time_optimal_direct(
         if int(value) != value or value < low:
             raise InvalidParameterError(name, value, f"must be an integer >= {low}")
     goal = problem.goal
-    if math.hypot(goal.x, goal.y) < 1e-12 and abs(math.remainder(goal.heading, 2 * math.pi)) < 1e-12:
+    if (
+        math.hypot(goal.x, goal.y) < 1e-12
+        and abs(math.remainder(goal.heading, 2 * math.pi)) < 1e-12
+    ):
         return PlannerOutput(candidates=(), message="the goal is the start: nothing to fly")
     res = solve_time_optimal_direct(
         vehicle,

@@ -21,6 +21,7 @@ each; the pattern it takes (e.g. CBCB) names the Gamma_umax word it realises.
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -105,7 +106,7 @@ def _labels_on(
             cuts.update((max(a, lo), min(b, hi)))
     pts = sorted(cuts)
     out = []
-    for a, b in zip(pts[:-1], pts[1:], strict=True):
+    for a, b in itertools.pairwise(pts):
         if b - a <= 0.0:
             continue
         mid = 0.5 * (a + b)

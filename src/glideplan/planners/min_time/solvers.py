@@ -39,18 +39,24 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
 
 from glideplan.planners.min_time.geometry import compose, normal, rotate
-from glideplan.planners.min_time.table import CandidateType, conditions, long_form
+from glideplan.planners.min_time.table import (
+    CANDIDATE_TYPES,
+    EXCLUDED_TYPES,
+    CandidateType,
+    conditions,
+    long_form,
+)
 
 __all__ = [
     "Extremal",
     "piece_moves",
-    "solve_flexible",
-    "solve_rigid",
+    "solve_all",
     "solve_type",
     "trig_roots",
 ]
@@ -115,20 +121,6 @@ def _first_geometry(
     return k1, rotate(-h, a_center - k1), h
 
 
-def _last_geometry(
-    kind: str, d: int, a: np.ndarray, rho: float, goal: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """K2 (centre of the goal arc), z1 (Z - K2 in the h2 frame), h2 at u2 = 0."""
-    zero = np.zeros_like(a)
-    moves = piece_moves(kind, "last", d, zero, a)
-    p, he = compose(moves, rho, a.shape)
-    rl = _radius(moves[-1][0], rho)
-    k2_local = p + d * rl * normal(he)
-    z1 = np.array([0.0, float(d)]) - k2_local
-    k2 = goal[:2] + d * rl * normal(np.array(goal[2]))
-    return k2, z1, goal[2] - he
-
-
 def _middle(m: int, d1: int, a: np.ndarray, rho: float) -> tuple[np.ndarray, np.ndarray]:
     """Pose displacement (sigma, eta) of m interior turns after a reversal from direction d1."""
     moves: list[tuple[str, int, Any]] = []
@@ -137,23 +129,6 @@ def _middle(m: int, d1: int, a: np.ndarray, rho: float) -> tuple[np.ndarray, np.
         moves += piece_moves("T", "interior", d, None, a)
         d = -d
     return compose(moves, rho, a.shape)
-
-
-def _in_range(u: float, hi: float, lo_open: bool = False) -> float | None:
-    """u (mod 2 pi) inside [0, hi] (or (0, hi]), clipped; None when outside."""
-    u = u % TWO_PI
-    if u > TWO_PI - _RANGE_TOL:
-        u -= TWO_PI
-    if u < -_RANGE_TOL or u > hi + _RANGE_TOL:
-        return None
-    u = min(max(u, 0.0), hi)
-    if lo_open and u <= 0.0:
-        return None
-    return u
-
-
-def _piece_range(kind: str, a: float) -> float:
-    return PI if kind in ("CB", "BC") else a
 
 
 def _finish(
@@ -170,11 +145,7 @@ def _finish(
     goal: np.ndarray,
     extra: dict[str, Any],
 ) -> Extremal | None:
-    moves = (
-        piece_moves(first, "first", d1, u1, a)
-        + middle
-        + piece_moves(last, "last", d2, u2, a)
-    )
+    moves = piece_moves(first, "first", d1, u1, a) + middle + piece_moves(last, "last", d2, u2, a)
     moves_f: tuple[Move, ...] = tuple((lab, d, float(x)) for lab, d, x in moves)
     p, h = compose(moves_f, rho, ())
     dh = (float(h) - goal[2] + PI) % TWO_PI - PI
@@ -187,38 +158,269 @@ def _finish(
     return Extremal(ctype, moves_f, cost, params, conditions(ctype, turns, rho), err)
 
 
-def solve_flexible(
-    ctype: CandidateType, first: str, last: str, goal: np.ndarray, rho: float
-) -> list[Extremal]:
-    """All Gamma_TST extremals T S T of one type and orientation (closed form in L)."""
-    d1, d2 = ctype.directions
-    a = np.array(PI / 2)
-    k1, a1, h10 = _first_geometry(first, d1, a, rho)
-    k2, z1, h20 = _last_geometry(last, d2, a, rho, goal)
-    w = a1 + (d2 - d1) * _EY - z1
-    dk = k2 - k1
-    dist2 = float(dk @ dk)
-    disc = dist2 - float(w[1]) ** 2
-    if disc < -1e-12:
-        return []
-    root = math.sqrt(max(disc, 0.0))
-    out: list[Extremal] = []
-    for sign in ((1.0,) if root == 0.0 else (1.0, -1.0)):
-        length = -float(w[0]) + sign * root
-        if length < -1e-10:
-            continue
-        length = max(length, 0.0)
-        v = w + np.array([length, 0.0])
-        if dist2 < 1e-24 and float(v @ v) < 1e-24:
-            continue  # degenerate: coincident circles, any h1 works (measure-zero goals)
-        h1 = math.atan2(dk[1], dk[0]) - math.atan2(v[1], v[0])
-        u1 = _in_range(d1 * (h1 - float(h10)), _piece_range(first, PI / 2))
-        u2 = _in_range(d2 * (float(h20) - h1), _piece_range(last, PI / 2))
-        if u1 is None or u2 is None:
-            continue
+def _last_local(kind: str, d: int, a: np.ndarray, rho: float) -> tuple[np.ndarray, np.ndarray]:
+    """z1 (Z - K2 in the frame of the piece's entry heading) and the piece's heading change."""
+    zero = np.zeros_like(a)
+    moves = piece_moves(kind, "last", d, zero, a)
+    p, he = compose(moves, rho, a.shape)
+    k2_local = p + d * _radius(moves[-1][0], rho) * normal(he)
+    return np.array([0.0, float(d)]) - k2_local, he
+
+
+def _v_of_a(
+    ctype: CandidateType, first: str, last: str, a: np.ndarray, rho: float
+) -> tuple[np.ndarray, ...]:
+    """V(a), h1 at u1 = 0, the last piece's heading change and the middle's, at angles a."""
+    d1, d2 = ctype.directions[0], ctype.directions[-1]
+    _, a1, h10 = _first_geometry(first, d1, a, rho)
+    z1, he = _last_local(last, d2, a, rho)
+    if ctype.straight:
+        sigma, eta = np.zeros((*a.shape, 2)), np.zeros(a.shape)
+        v = a1 + (d2 - d1) * _EY - z1  # + L e_x, added by the caller
+    else:
+        sigma, eta = _middle(ctype.interior, d1, a, rho)
+        v = a1 - d1 * _EY + sigma + d2 * normal(eta) - rotate(eta, z1)
+    return v, h10, he, eta
+
+
+_SAMPLES = 16  # samples per period for the Fourier coefficients (degrees < 8 exact)
+
+
+@dataclass(frozen=True, eq=False)
+class _Stack:
+    """Goal-independent geometry of every branch of one group, stacked, for one rho.
+
+    Branch i is (ctype, first piece, last piece). K1 = (0, d1 r_first) is the centre of the
+    first arc; the goal arc's centre is K2 = goal + d2 r_last n(psi1). Headings that depend on
+    a are affine in it: h1(u1 = 0) = h10[:, 0] + h10[:, 1] a, likewise `he` (heading change of
+    the last piece at u2 = 0) and `eta` (of the middle). Gamma_TST: `w` = V at L = 0. Gamma_TTTT:
+    `coef` = Fourier coefficients c_0..c_K of |V(a)|^2, `vcoef` those of V's components.
+    """
+
+    items: tuple[tuple[CandidateType, str, str], ...]
+    d1: np.ndarray
+    d2: np.ndarray
+    r_first: np.ndarray
+    r_last: np.ndarray
+    hi_first: np.ndarray  # upper end of u1's range: pi for "CB", else a (coded as -1)
+    hi_last: np.ndarray
+    h10: np.ndarray
+    he: np.ndarray
+    eta: np.ndarray
+    w: np.ndarray | None = None
+    coef: np.ndarray | None = None
+    vcoef: np.ndarray | None = None
+    degree: np.ndarray | None = None
+
+
+def _affine(values0: np.ndarray, values1: np.ndarray) -> np.ndarray:
+    return np.stack([values0, values1 - values0], axis=-1)
+
+
+@lru_cache(maxsize=16)
+def _stack(group: str, rho: float, excluded: bool = False) -> _Stack:
+    types = EXCLUDED_TYPES if excluded else CANDIDATE_TYPES
+    items = tuple((t, first, last) for t in types if t.group == group for first, last in t.branches)
+    d1 = np.array([t.directions[0] for t, _, _ in items], dtype=float)
+    d2 = np.array([t.directions[-1] for t, _, _ in items], dtype=float)
+    r_first = np.array([rho if f == "CB" else 1.0 for _, f, _ in items])
+    r_last = np.array([rho if la == "BC" else 1.0 for _, _, la in items])
+    hi_first = np.array([PI if f == "CB" else -1.0 for _, f, _ in items])
+    hi_last = np.array([PI if la == "BC" else -1.0 for _, _, la in items])
+    zero, one = np.zeros(1), np.ones(1)
+    h10, he, eta = [], [], []
+    for t, f, la in items:
+        g0 = _v_of_a(t, f, la, zero, rho)
+        g1 = _v_of_a(t, f, la, one, rho)
+        h10.append(_affine(g0[1][0], g1[1][0]))
+        he.append(_affine(g0[2][0], g1[2][0]))
+        eta.append(_affine(g0[3][0], g1[3][0]))
+    common = dict(
+        items=items,
+        d1=d1,
+        d2=d2,
+        r_first=r_first,
+        r_last=r_last,
+        hi_first=hi_first,
+        hi_last=hi_last,
+        h10=np.array(h10),
+        he=np.array(he),
+        eta=np.array(eta),
+    )
+    if group == "TST":
+        half = np.full(1, PI / 2)
+        w = np.array([_v_of_a(t, f, la, half, rho)[0][0] for t, f, la in items])
+        return _Stack(**common, w=w)
+    grid = np.arange(_SAMPLES) * (TWO_PI / _SAMPLES)
+    vs = np.array([_v_of_a(t, f, la, grid, rho)[0] for t, f, la in items])  # (nb, S, 2)
+    coef = np.fft.rfft(np.sum(vs * vs, axis=-1), axis=-1) / _SAMPLES
+    vcoef = np.fft.rfft(vs, axis=1) / _SAMPLES  # (nb, S/2+1, 2)
+    scale = np.max(np.abs(coef), axis=-1, keepdims=True)
+    big = np.abs(coef) > 1e-10 * scale
+    degree = np.array([int(np.nonzero(row)[0].max()) for row in big])
+    if np.any(degree >= _SAMPLES // 2 - 1):  # pragma: no cover - degree is at most 2
+        raise ArithmeticError("trigonometric degree too high for the sample count")
+    return _Stack(**common, coef=coef, vcoef=vcoef, degree=degree)
+
+
+def _goal_offsets(st: _Stack, goal: np.ndarray) -> np.ndarray:
+    """K2 - K1 for every branch, shape (nb, 2)."""
+    n = np.array([-math.sin(goal[2]), math.cos(goal[2])])
+    k2 = goal[:2] + (st.d2 * st.r_last)[:, None] * n
+    k2[:, 1] -= st.d1 * st.r_first
+    return k2
+
+
+def _wrap_range(u: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """u mod 2 pi clipped into [0, hi] (within tolerance) and the mask of those inside."""
+    u = np.mod(u, TWO_PI)
+    u = np.where(u > TWO_PI - _RANGE_TOL, u - TWO_PI, u)
+    ok = (u >= -_RANGE_TOL) & (u <= hi + _RANGE_TOL)
+    return np.clip(u, 0.0, hi), ok
+
+
+def _trig_eval(coef: np.ndarray, a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """f(a) = c_0 + 2 Re sum_{k>=1} c_k e^{ika} and f'(a), row-wise (coef (n, K+1), a (n,))."""
+    k = np.arange(coef.shape[-1])
+    e = np.exp(1j * a[:, None] * k)
+    f = 2.0 * np.real(np.sum(e * coef, axis=-1)) - np.real(coef[:, 0])
+    df = 2.0 * np.real(np.sum(1j * k * e * coef, axis=-1))
+    return f, df
+
+
+def _coef_roots_batch(coef: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Real roots in [0, 2 pi) of rows of trigonometric coefficients of one degree K >= 1.
+
+    z^K f(e^{ia}) is a polynomial of degree 2K whose unit-circle roots are the real roots of f
+    (tangential ones included); one batched companion eigenvalue solve finds them all.
+    Returns (row index, root) arrays.
+    """
+    n, kp1 = coef.shape
+    deg = kp1 - 1
+    poly = np.concatenate([coef[:, ::-1], np.conj(coef[:, 1:])], axis=1)  # highest first
+    lead = poly[:, :1]
+    monic = poly[:, 1:] / lead
+    m = 2 * deg
+    comp = np.zeros((n, m, m), dtype=complex)
+    comp[:, 0, :] = -monic
+    if m > 1:
+        idx = np.arange(m - 1)
+        comp[:, idx + 1, idx] = 1.0
+    z = np.linalg.eigvals(comp)
+    rows = np.repeat(np.arange(n), m)
+    z = z.ravel()
+    keep = np.abs(np.abs(z) - 1.0) < 1e-4
+    rows, a = rows[keep], np.mod(np.angle(z[keep]), TWO_PI)
+    scale = np.max(np.abs(coef), axis=-1)[rows]
+    for _ in range(3):  # Newton polish on f itself
+        f, df = _trig_eval(coef[rows], a)
+        safe = np.abs(df) > 1e-14 * scale
+        a = np.mod(a - np.where(safe, f / np.where(safe, df, 1.0), 0.0), TWO_PI)
+    return rows, a
+
+
+def _solve_tst(goal: np.ndarray, rho: float) -> list[Extremal]:
+    """All Gamma_TST extremals T S T: per branch a quadratic in L (closed form)."""
+    st = _stack("TST", rho)
+    assert st.w is not None
+    dk = _goal_offsets(st, goal)
+    dist2 = np.sum(dk * dk, axis=-1)
+    disc = dist2 - st.w[:, 1] ** 2
+    root = np.sqrt(np.maximum(disc, 0.0))
+    rows = np.concatenate([np.arange(len(st.items))] * 2)
+    length = np.concatenate([-st.w[:, 0] + root, -st.w[:, 0] - root])
+    ok = np.concatenate([disc >= -1e-12] * 2) & (length >= -1e-10)
+    ok[len(st.items) :] &= root > 0.0  # one solution when the discriminant vanishes
+    rows, length = rows[ok], np.maximum(length[ok], 0.0)
+    vx, vy = st.w[rows, 0] + length, st.w[rows, 1]
+    h1 = np.arctan2(dk[rows, 1], dk[rows, 0]) - np.arctan2(vy, vx)
+    u1, ok1 = _wrap_range(
+        st.d1[rows] * (h1 - st.h10[rows, 0] - st.h10[rows, 1] * PI / 2),
+        np.where(st.hi_first[rows] > 0, PI, PI / 2),
+    )
+    he = st.he[rows, 0] + st.he[rows, 1] * PI / 2
+    u2, ok2 = _wrap_range(
+        st.d2[rows] * (goal[2] - he - h1), np.where(st.hi_last[rows] > 0, PI, PI / 2)
+    )
+    good = ok1 & ok2 & ((vx * vx + vy * vy > 1e-24) | (dist2[rows] > 1e-24))
+    out = []
+    for i in np.nonzero(good)[0]:
+        t, first, last = st.items[rows[i]]
         sol = _finish(
-            ctype, first, last, d1, d2, u1, u2, PI / 2, [("S", 0, length)], rho, goal,
-            {"L": length},
+            t,
+            first,
+            last,
+            t.directions[0],
+            t.directions[-1],
+            float(u1[i]),
+            float(u2[i]),
+            PI / 2,
+            [("S", 0, float(length[i]))],
+            rho,
+            goal,
+            {"L": float(length[i])},
+        )
+        if sol is not None:
+            out.append(sol)
+    return out
+
+
+def _solve_tttt(goal: np.ndarray, rho: float, excluded: bool = False) -> list[Extremal]:
+    """All Gamma_TTTT extremals: the roots a in [0, pi/2] of |V(a)|^2 = |K2 - K1|^2."""
+    st = _stack("TTTT", rho, excluded)
+    assert st.coef is not None and st.vcoef is not None and st.degree is not None
+    dk = _goal_offsets(st, goal)
+    coef = st.coef.copy()
+    coef[:, 0] -= np.sum(dk * dk, axis=-1)
+    rows_all, roots_all = [], []
+    for deg in np.unique(st.degree):
+        if deg == 0:
+            continue
+        sel = np.nonzero(st.degree == deg)[0]
+        r, a = _coef_roots_batch(coef[sel, : deg + 1])
+        rows_all.append(sel[r])
+        roots_all.append(a)
+    if not rows_all:
+        return []
+    rows, a = np.concatenate(rows_all), np.concatenate(roots_all)
+    inside = (a >= -1e-12) & (a <= PI / 2 + 1e-12)
+    rows, a = rows[inside], np.clip(a[inside], 0.0, PI / 2)
+    vx, _ = _trig_eval(st.vcoef[rows, :, 0], a)
+    vy, _ = _trig_eval(st.vcoef[rows, :, 1], a)
+    h1 = np.arctan2(dk[rows, 1], dk[rows, 0]) - np.arctan2(vy, vx)
+    h2 = h1 + st.eta[rows, 0] + st.eta[rows, 1] * a
+    h10 = st.h10[rows, 0] + st.h10[rows, 1] * a
+    he = st.he[rows, 0] + st.he[rows, 1] * a
+    u1, ok1 = _wrap_range(st.d1[rows] * (h1 - h10), np.where(st.hi_first[rows] > 0, PI, a))
+    u2, ok2 = _wrap_range(st.d2[rows] * (goal[2] - he - h2), np.where(st.hi_last[rows] > 0, PI, a))
+    good = ok1 & ok2 & (vx * vx + vy * vy > 1e-24)
+    out = []
+    seen: set[tuple[int, float]] = set()
+    for i in np.nonzero(good)[0]:
+        key = (int(rows[i]), round(float(a[i]), 9))
+        if key in seen:
+            continue
+        seen.add(key)
+        t, first, last = st.items[rows[i]]
+        ai = float(a[i])
+        middle: list[tuple[str, int, Any]] = []
+        d = -t.directions[0]
+        for _ in range(t.interior):
+            middle += piece_moves("T", "interior", d, None, ai)
+            d = -d
+        sol = _finish(
+            t,
+            first,
+            last,
+            t.directions[0],
+            t.directions[-1],
+            float(u1[i]),
+            float(u2[i]),
+            ai,
+            middle,
+            rho,
+            goal,
+            {"a": ai},
         )
         if sol is not None:
             out.append(sol)
@@ -228,9 +430,9 @@ def solve_flexible(
 def trig_roots(samples: np.ndarray, tol: float = 1e-12) -> np.ndarray:
     """Real roots in [0, 2 pi) of a trigonometric polynomial given by equispaced samples.
 
-    With N samples on [0, 2 pi) the polynomial's degree K must be < N/2. Writing z = e^{ia},
-    z^K f(a) is an ordinary polynomial of degree 2K; its roots on the unit circle are the real
-    roots of f (tangential ones included), found together by one companion-matrix solve.
+    With N samples on [0, 2 pi) the polynomial's degree K must be < N/2 - 1. Writing
+    z = e^{ia}, z^K f(a) is an ordinary polynomial of degree 2K; its roots on the unit circle
+    are the real roots of f (tangential ones included), found by one companion-matrix solve.
     """
     n = samples.size
     coef = np.fft.rfft(samples) / n
@@ -239,83 +441,30 @@ def trig_roots(samples: np.ndarray, tol: float = 1e-12) -> np.ndarray:
         return np.empty(0)
     big = np.nonzero(np.abs(coef) > tol * scale)[0]
     deg = int(big.max())
-    if deg >= n // 2:
+    if deg >= n // 2 - 1:
         raise ArithmeticError("trigonometric degree too high for the sample count")
     if deg == 0:
         return np.empty(0)
-    c = coef[: deg + 1]
-    # highest power first: z^{2K} ... z^0 with coefficient of z^{K+k} = c_k, z^{K-k} = conj(c_k)
-    poly = np.concatenate([c[::-1], np.conj(c[1:])])
-    z = np.roots(poly)
-    z = z[np.abs(np.abs(z) - 1.0) < 1e-4]
-    a = np.mod(np.angle(z), TWO_PI)
-    # Newton polish on the trigonometric polynomial itself
-    k = np.arange(deg + 1)
-    for _ in range(3):
-        e = np.exp(1j * np.outer(a, k))
-        f = 2.0 * np.real(e @ c) - np.real(c[0])
-        df = 2.0 * np.real((1j * k * e) @ c)
-        step = np.where(np.abs(df) > 1e-14 * scale, f / np.where(df == 0, 1.0, df), 0.0)
-        a = np.mod(a - step, TWO_PI)
+    _, a = _coef_roots_batch(coef[None, : deg + 1])
     return np.unique(np.round(a, 12))
 
 
-_RIGID_SAMPLES = 16
+def solve_all(
+    goal: np.ndarray, rho: float, groups: tuple[str, ...] = ("TST", "TTTT")
+) -> dict[str, list[Extremal]]:
+    """Every extremal of every Gamma_TST / Gamma_TTTT type for a normalised goal, by group.
 
-
-def solve_rigid(
-    ctype: CandidateType, first: str, last: str, goal: np.ndarray, rho: float
-) -> list[Extremal]:
-    """All Gamma_TTTT extremals of one type and orientation (roots of |V(a)|^2 = |K2-K1|^2)."""
-    d1 = ctype.directions[0]
-    d2 = ctype.directions[-1]
-    m = ctype.interior
-
-    def pieces(a: np.ndarray) -> tuple[np.ndarray, ...]:
-        k1, a1, h10 = _first_geometry(first, d1, a, rho)
-        k2, z1, h20 = _last_geometry(last, d2, a, rho, goal)
-        sigma, eta = _middle(m, d1, a, rho)
-        v = a1 - d1 * _EY + sigma + d2 * normal(eta) - rotate(eta, z1)
-        return k1, k2, v, h10, h20, eta
-
-    grid = np.arange(_RIGID_SAMPLES) * (TWO_PI / _RIGID_SAMPLES)
-    k1, k2, v, *_ = pieces(grid)
-    dk = k2 - k1
-    f = np.sum(v * v, axis=-1) - float(dk @ dk)
-    roots = trig_roots(f)
-    roots = roots[(roots >= 0.0) & (roots <= PI / 2)]
-    out: list[Extremal] = []
-    if roots.size == 0:
-        return out
-    k1, k2, v, h10, h20, eta = pieces(roots)
-    dk = k2 - k1
-    for i, a in enumerate(roots):
-        vi = v[i]
-        if float(vi @ vi) < 1e-24:
-            continue
-        h1 = math.atan2(dk[1], dk[0]) - math.atan2(vi[1], vi[0])
-        h2 = h1 + float(eta[i])
-        u1 = _in_range(d1 * (h1 - float(h10[i])), _piece_range(first, float(a)))
-        u2 = _in_range(d2 * (float(h20[i]) - h2), _piece_range(last, float(a)))
-        if u1 is None or u2 is None:
-            continue
-        middle: list[tuple[str, int, Any]] = []
-        d = -d1
-        for _ in range(m):
-            middle += piece_moves("T", "interior", d, None, float(a))
-            d = -d
-        sol = _finish(
-            ctype, first, last, d1, d2, u1, u2, float(a), middle, rho, goal, {"a": float(a)}
-        )
-        if sol is not None:
-            out.append(sol)
-    return out
+    The group "excluded" solves the rigid sequences of `EXCLUDED_TYPES` (not in (4.26)).
+    """
+    goal = np.asarray(goal, dtype=float)
+    solvers = {
+        "TST": _solve_tst,
+        "TTTT": _solve_tttt,
+        "excluded": lambda g, r: _solve_tttt(g, r, excluded=True),
+    }
+    return {g: solvers[g](goal, float(rho)) for g in groups}
 
 
 def solve_type(ctype: CandidateType, goal: np.ndarray, rho: float) -> list[Extremal]:
-    """Every extremal of a Gamma_TST or Gamma_TTTT type (all its branches) for a goal."""
-    solver = solve_flexible if ctype.group == "TST" else solve_rigid
-    out: list[Extremal] = []
-    for first, last in ctype.branches:
-        out.extend(solver(ctype, first, last, goal, rho))
-    return out
+    """Every extremal of one Gamma_TST or Gamma_TTTT type (all its branches) for a goal."""
+    return [e for e in solve_all(goal, rho, (ctype.group,))[ctype.group] if e.ctype is ctype]

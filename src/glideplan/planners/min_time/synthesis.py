@@ -18,7 +18,7 @@ from glideplan.path import Path
 from glideplan.planners.dubins import WORDS as DUBINS_WORDS
 from glideplan.planners.dubins import dubins_segment_lengths
 from glideplan.planners.min_time.fixed_turn_rate import cheapest_fixed_turn_rate
-from glideplan.planners.min_time.solvers import Extremal, solve_type
+from glideplan.planners.min_time.solvers import Extremal, solve_all
 from glideplan.planners.min_time.table import CANDIDATE_TYPES, GROUPS, CandidateType
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import Pose
@@ -101,19 +101,23 @@ def _umax_extremals(types: list[CandidateType], goal: np.ndarray, rho: float) ->
         else:  # fewer or more C arcs: a face of (or loops beyond) the most general word
             word = "BCBBCB"
         ctype = next((t for t in of_d if t.word == word), of_d[0])
-        out.append(
-            Extremal(ctype, tuple(moves), cost, {"pattern": pattern, "loops": loops})
-        )
+        out.append(Extremal(ctype, tuple(moves), cost, {"pattern": pattern, "loops": loops}))
     return out
 
 
 def synthesize(
-    goal: np.ndarray, rho: float, *, types: Iterable[CandidateType] = CANDIDATE_TYPES
+    goal: np.ndarray,
+    rho: float,
+    *,
+    types: Iterable[CandidateType] = CANDIDATE_TYPES,
+    excluded: bool = False,
 ) -> SynthesisResult:
     """Every extremal of every candidate type for a normalised goal (x, y, heading).
 
     Units: R = 1, u_max = 1, rho = v_min/v_max; costs are times in units of 1/u_max. With
-    rho = 1 (equal speeds) only the Dubins candidates BSB and BBB are solved.
+    rho = 1 (equal speeds) only the Dubins candidates BSB and BBB are solved. With
+    `excluded`, the rigid sequences ruled out by (4.24) and B.4 (`EXCLUDED_TYPES`) are solved
+    too (group "excluded"), to check those exclusions numerically.
     """
     goal = np.asarray(goal, dtype=float)
     by_group: dict[str, list[CandidateType]] = {g: [] for g in GROUPS}
@@ -128,13 +132,17 @@ def synthesize(
             continue
         t0 = time.perf_counter()
         if group in ("TST", "TTTT"):
-            for ctype in members:
-                found.extend(solve_type(ctype, goal, rho))
+            wanted = {id(t) for t in members}
+            found.extend(e for e in solve_all(goal, rho, (group,))[group] if id(e.ctype) in wanted)
         elif group == "umax":
             found.extend(_umax_extremals(members, goal, rho))
         else:
             found.extend(_dubins_extremals(members, goal, rho))
         seconds[group] = time.perf_counter() - t0
+    if excluded and rho < 1.0:
+        t0 = time.perf_counter()
+        found.extend(solve_all(goal, rho, ("excluded",))["excluded"])
+        seconds["excluded"] = time.perf_counter() - t0
     return SynthesisResult(tuple(_deduplicate(found)), seconds)
 
 

@@ -42,6 +42,7 @@ from dataclasses import dataclass
 
 __all__ = [
     "CANDIDATE_TYPES",
+    "EXCLUDED_TYPES",
     "GROUPS",
     "CandidateType",
     "alpha_subopt",
@@ -161,6 +162,33 @@ def _build_table() -> tuple[CandidateType, ...]:
 CANDIDATE_TYPES: tuple[CandidateType, ...] = _build_table()
 
 
+def _build_excluded() -> tuple[CandidateType, ...]:
+    """Rigid sequences that (4.24) and B.4 exclude: up to three interior turns, any pieces.
+
+    Not part of (4.26); solved only on request (`synthesize(..., excluded=True)`) to check
+    numerically that the exclusions never remove an optimum.
+    """
+    listed = {(t.first, t.interior, t.last) for t in CANDIDATE_TYPES if t.group == "TTTT"}
+    listed |= {(f, t.interior, la) for t in CANDIDATE_TYPES if t.group == "TTTT"
+               for f, la in t.faces}  # fmt: skip
+    out: list[CandidateType] = []
+    for m in range(4):
+        for first in FIRST_PIECES:
+            for last in LAST_PIECES:
+                if (first, m, last) in listed or (m == 0 and first == last == "B"):
+                    continue
+                word = first + "T" * m + last
+                for d1 in (1, -1):
+                    dirs = tuple(d1 * (-1) ** i for i in range(m + 2))
+                    out.append(
+                        CandidateType("TTTT", word, _letters(dirs), first, m, last, False, (), dirs)
+                    )
+    return tuple(out)
+
+
+EXCLUDED_TYPES: tuple[CandidateType, ...] = _build_excluded()
+
+
 def alpha_subopt(beta: float, rho: float) -> float:
     """(B.12): a symmetric turn B^a C^beta B^a with a >= alpha_subopt is sub-optimal.
 
@@ -194,12 +222,9 @@ def conditions(
     tol = 1e-9
     out = {"4.20": all(sum(t) < 2.0 * math.pi - tol for t in turns)}
     out["4.23"] = turns[0][0] <= turns[0][2] + tol and turns[-1][2] <= turns[-1][0] + tol
-    out["4.22"] = all(
-        min(al, ga) < alpha_subopt(be, rho) - tol for al, be, ga in turns if be > tol
-    )
+    out["4.22"] = all(min(al, ga) < alpha_subopt(be, rho) - tol for al, be, ga in turns if be > tol)
     if ctype.group == "TTTT":
         out["4.24"] = all(
-            min(turns[i][2], turns[i + 2][0]) < turns[i + 1][0] - tol
-            for i in range(len(turns) - 2)
+            min(turns[i][2], turns[i + 2][0]) < turns[i + 1][0] - tol for i in range(len(turns) - 2)
         )
     return out

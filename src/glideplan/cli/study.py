@@ -1,0 +1,152 @@
+"""`glideplan study cross-track`: the resumable Monte Carlo study of Fig 3.4."""
+
+from __future__ import annotations
+
+import math
+import pathlib
+from typing import Annotated
+
+import typer
+
+from glideplan.cli.app import study_app
+from glideplan.errors import InvalidParameterError
+
+
+def _values(name: str, items: list[str] | None) -> tuple[float, ...] | None:
+    """Numbers from repeated options, each a number, a comma list or START:STOP:STEP."""
+    if not items:
+        return None
+    out: list[float] = []
+    for item in items:
+        for part in str(item).split(","):
+            part = part.strip()
+            if not part:
+                continue
+            try:
+                if ":" in part:
+                    a, b, step = (float(x) for x in part.split(":"))
+                    if not step > 0 or not math.isfinite(a + b + step):
+                        raise ValueError
+                    n = int(math.floor((b - a) / step + 1e-9)) + 1
+                    out.extend(round(a + i * step, 10) for i in range(max(0, n)))
+                else:
+                    out.append(float(part))
+            except ValueError:
+                raise InvalidParameterError(
+                    name, item, "must be numbers, comma lists or START:STOP:STEP"
+                ) from None
+    for v in out:
+        if not math.isfinite(v):
+            raise InvalidParameterError(name, v, "must be finite")
+    return tuple(out)
+
+
+@study_app.command("cross-track")
+def cross_track_command(
+    out: Annotated[
+        pathlib.Path,
+        typer.Option(
+            "--out", help="Directory for samples.sqlite and summary.json.", show_default=False
+        ),
+    ],
+    eps: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--eps",
+            help="Disturbance bounds eps = delta_max / v (repeat or a,b,c).",
+            show_default="0.25,0.5,0.75,0.95",
+        ),
+    ] = None,
+    r_plan: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--r-plan",
+            help="Planning radii / R0 (repeat, a,b,c or START:STOP:STEP).",
+            show_default="1:4:0.1",
+        ),
+    ] = None,
+    samples: Annotated[int, typer.Option("--samples", help="Goals per (case, eps, r_plan).")] = 900,
+    case: Annotated[str, typer.Option("--case", help="steady, unsteady or both.")] = "both",
+    seed: Annotated[int, typer.Option("--seed", help="Master random seed.")] = 0,
+    scheduler: Annotated[
+        str | None,
+        typer.Option("--scheduler", help="Dask scheduler ADDRESS (default: local processes)."),
+    ] = None,
+    processes: Annotated[
+        int | None, typer.Option("--processes", help="Local worker processes (default: cores).")
+    ] = None,
+    chunk: Annotated[int, typer.Option("--chunk", help="Samples per work unit.")] = 100,
+    speed: Annotated[float, typer.Option("--speed", help="Airspeed v (m/s).")] = 20.0,
+    umax: Annotated[float, typer.Option("--umax", help="Turn-rate bound u_max (rad/s).")] = 0.3,
+    dt: Annotated[float, typer.Option("--dt", help="Simulation time step (s).")] = 0.05,
+    json_out: Annotated[bool, typer.Option("--json", help="Print the summary as JSON.")] = False,
+    progress: Annotated[bool, typer.Option(help="Show a progress bar.")] = True,
+) -> None:
+    """Mean final cross-track error vs planning radius, steady and Dryden disturbances (3.4).
+
+    Results are written as work units finish; running the same command again resumes an
+    interrupted study (a results file of another configuration is refused).
+    """
+    from glideplan.cli.common import print_json
+    from glideplan.studies.cross_track import (
+        DEFAULT_EPS,
+        DEFAULT_R_PLAN,
+        CrossTrackConfig,
+        run_cross_track_study,
+    )
+
+    cases = {"both": ("steady", "unsteady"), "steady": ("steady",), "unsteady": ("unsteady",)}
+    if case not in cases:
+        raise InvalidParameterError("case", case, "must be steady, unsteady or both")
+    if scheduler is not None and not scheduler.strip():
+        raise InvalidParameterError("scheduler", scheduler, "must be a scheduler address")
+    follower = {} if dt == 0.05 else {"dt": dt}
+    config = CrossTrackConfig(
+        eps=_values("eps", eps) or DEFAULT_EPS,
+        r_plan=_values("r_plan", r_plan) or DEFAULT_R_PLAN,
+        samples=samples,
+        cases=cases[case],
+        seed=seed,
+        speed=speed,
+        max_turn_rate=umax,
+        chunk=chunk,
+        follower=follower,
+    )
+    result = run_cross_track_study(
+        out, config, scheduler=scheduler, processes=processes, progress=progress
+    )
+    if json_out:
+        print_json({"summary": result.summary, "knees": result.knees, "directory": str(out)})
+        return
+    from rich.console import Console
+    from rich.table import Table
+
+    table = Table(title=f"final cross-track error / R0 ({out / 'summary.json'})")
+    for col in ("case", "eps", "R0'/R0", "E(1)", "E(R0')", "E(max)", "knee", "failures"):
+        table.add_column(col, justify="right")
+    for c in config.cases:
+        for e in config.eps:
+            pts = [s for s in result.summary if s["case"] == c and s["eps"] == e]
+            if not pts:
+                continue
+            rf = (1 + e) ** 2
+            near = min(pts, key=lambda s: abs(s["r_plan"] - rf))
+
+            def fmt(v: float | None) -> str:
+                return "n/a" if v is None else f"{v:.3f}"
+
+            table.add_row(
+                c,
+                f"{e:g}",
+                f"{rf:.2f}",
+                fmt(pts[0]["mean_error"]),
+                fmt(near["mean_error"]),
+                fmt(pts[-1]["mean_error"]),
+                f"{result.knees[c][e]:.2f}",
+                str(sum(p["failures"] for p in pts)),
+            )
+    Console().print(table)
+    r = result.report
+    typer.echo(
+        f"{r.ran} work unit(s) run, {r.skipped} resumed from the results file, {r.seconds:.1f} s"
+    )

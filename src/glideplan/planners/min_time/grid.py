@@ -1,0 +1,102 @@
+"""Minimum-time synthesis over a grid of goals (Figs 4.9-4.11), through `run_batch`.
+
+For a fixed final heading, every goal (x, y) of the grid gets the optimal time, the family and
+turn word of the optimal path, and the time of the Dubins path at v_max (radius R), whose
+ratio to the optimum shows what flying at constant maximum speed costs.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from glideplan.batch import run_batch
+from glideplan.planners.dubins import dubins_shortest
+from glideplan.planners.min_time.synthesis import synthesize
+from glideplan.validation import check_finite, check_finite_array
+from glideplan.vehicles.variable_speed_car import VariableSpeedCar
+
+__all__ = ["TimeOptimalGrid", "best_time", "time_optimal_grid"]
+
+
+@dataclass(frozen=True, eq=False)
+class TimeOptimalGrid:
+    """Optimal time (s), family and word per goal (rows follow `ys`, columns `xs`)."""
+
+    vehicle: VariableSpeedCar
+    heading: float
+    xs: np.ndarray
+    ys: np.ndarray
+    time: np.ndarray
+    family: np.ndarray
+    word: np.ndarray
+    dubins_time: np.ndarray
+
+    @property
+    def ratio(self) -> np.ndarray:
+        """Dubins-at-v_max time over optimal time (>= 1; nan where the goal is the start)."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(self.time > 0.0, self.dubins_time / self.time, np.nan)
+
+
+def best_time(vehicle: VariableSpeedCar, x: float, y: float, heading: float) -> tuple:
+    """(time (s), family, word) of the minimum-time path from the origin to (x, y, heading)."""
+    scale = vehicle.bang_radius
+    goal = np.array([x / scale, y / scale, heading])
+    if math.hypot(goal[0], goal[1]) < 1e-12 and abs(math.remainder(heading, 2 * math.pi)) < 1e-12:
+        return 0.0, "", ""
+    best = synthesize(goal, vehicle.speed_ratio).best
+    if best is None:  # pragma: no cover - the Dubins candidates always exist
+        return math.inf, "", ""
+    merged: list[tuple[str, int]] = []
+    for lab, d, amount in best.moves:
+        if amount > 1e-12 and (not merged or merged[-1] != (lab, d)):
+            merged.append((lab, d))
+    family = "".join(lab for lab, _ in merged)
+    word = "".join("S" if lab == "S" else ("L" if d > 0 else "R") for lab, d in merged)
+    word = "".join(c for i, c in enumerate(word) if i == 0 or c != word[i - 1])
+    return best.cost / vehicle.u_max, family, word
+
+
+def _row(args: tuple[VariableSpeedCar, np.ndarray, float, float]) -> list[tuple]:
+    vehicle, xs, y, heading = args
+    return [best_time(vehicle, float(x), y, heading) for x in xs]
+
+
+def time_optimal_grid(
+    vehicle: VariableSpeedCar,
+    xs: ArrayLike,
+    ys: ArrayLike,
+    heading: float,
+    *,
+    processes: int | None = None,
+    scheduler: Any = None,
+    progress: bool = False,
+) -> TimeOptimalGrid:
+    """Synthesis for every goal (x, y, heading) with x in `xs`, y in `ys` (m, rad).
+
+    One batch item per row of the grid, run by `glideplan.batch.run_batch` (a local process
+    pool by default, Dask with `scheduler`).
+    """
+    xs = check_finite_array("xs", xs).ravel()
+    ys = check_finite_array("ys", ys).ravel()
+    heading = check_finite("heading", heading)
+    rows = run_batch(
+        _row,
+        [(vehicle, xs, float(y), heading) for y in ys],
+        scheduler=scheduler,
+        processes=processes,
+        progress=progress,
+        description=f"time-optimal grid, heading {heading:.3f} rad",
+    )
+    time = np.array([[c[0] for c in row] for row in rows])
+    family = np.array([[c[1] for c in row] for row in rows], dtype=object)
+    word = np.array([[c[2] for c in row] for row in rows], dtype=object)
+    gx, gy = np.meshgrid(xs, ys)
+    goals = np.stack([gx, gy, np.full_like(gx, heading)], axis=-1)
+    dub = dubins_shortest(np.zeros(3), goals, vehicle.bang_radius).length / vehicle.v_max
+    return TimeOptimalGrid(vehicle, heading, xs, ys, time, family, word, np.asarray(dub))
