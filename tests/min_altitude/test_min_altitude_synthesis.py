@@ -260,7 +260,7 @@ def test_property_best_path_reaches_the_goal_and_beats_dubins(r, bearing, headin
     cands = synthesize(g, G)
     assert cands
     best = cands[0]
-    assert best.cost <= dubins_reference(Pose(), g, G).cost * (1 + 1e-12)
+    assert best.cost <= dubins_reference(Pose(), g, G).cost * (1 + 1e-9)
     assert best.path.end.distance_to(g) < 1e-6 * R
     assert abs(math.remainder(best.path.end.heading - g.heading, 2 * math.pi)) < 1e-9
     assert best.path.cost("altitude") == pytest.approx(best.cost, rel=1e-9)

@@ -153,11 +153,11 @@ def fig5_1(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.plot(ms_to_kmh(v), g.sink_rate(v, 0.0), "b-", label="w(v) (5.26)")
     vt = np.linspace(0.0, g.v_stf * 1.25, 2)
     ax.plot(ms_to_kmh(vt), vt * g.w_stf / g.v_stf, "k:", lw=1, label="tangent through origin")
-    for speed, name in (
-        (g.v_stall, "v_stall"),
-        (g.v_ms, "v_ms"),
-        (g.v_stf, "v_stf"),
-        (g.v_max, "v_max"),
+    for speed, name, offset in (
+        (g.v_stall, "v_stall", (-22, -30)),
+        (g.v_ms, "v_ms", (0, -30)),
+        (g.v_stf, "v_stf", (22, -30)),
+        (g.v_max, "v_max", (-30, 8)),
     ):
         w = float(g.sink_rate(speed, 0.0))
         ax.plot(ms_to_kmh(speed), w, "ko")
@@ -165,7 +165,7 @@ def fig5_1(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
             f"{name}\n{ms_to_kmh(speed):.1f} km/h",
             (ms_to_kmh(speed), w),
             textcoords="offset points",
-            xytext=(0, 10),
+            xytext=offset,
             ha="center",
             fontsize=8,
         )

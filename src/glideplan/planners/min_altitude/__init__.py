@@ -46,21 +46,23 @@ Which sequences remain (the extended Theorem 5.7.1)
 ---------------------------------------------------
 The clipped speed v(phi) is still even in phi and positive, which is all that Lemmas 5.7.7,
 5.7.8, 5.7.10 and 5.7.11 use: eta_psi(phi) = +-(eta/u_max) (F(phi) - F(phi_0)) with
-F' = v(phi) sin(phi) even, so an arc that starts and ends with eta_psi = 0 is symmetric about
-phi = 0 (here: from -s to s, a heading change 2 s in (pi, 2 pi)), consecutive interior arcs
+F' = v(phi) sin(phi) odd (F even), so an arc that starts and ends with eta_psi = 0 is
+symmetric about phi = 0 (here: from -s to s, a heading change 2 s in (pi, 2 pi)), interior arcs
 are antisymmetric, and three of them admit the shortcut of Lemma 5.7.11. In BSB,
 lambda = v_stf - v_ms < v_ms - v_stall (Assumption 5.2.4), so BSB arcs are never clipped.
 The sufficient set keeps its shape, with B arcs that may now be clipped at v_stall:
 
     Gamma = {BSB, BBBB (and BBB, BB, B), B_ms, B_stall^4 (and B_stall^3, ^2, ^1)},
 
-tabulated with each family's constraints in `families.FAMILIES`. H = 0 also removes a
-parameter from the dissertation's BBBB problem (C.22): the interior arcs turn exactly
+tabulated with each family's constraints in `families.FAMILIES`. (A lone B arc may turn
+psi1 + 2 pi, a loop to a goal just behind the start, as long as it holds at most one heading
+phi = pi, Lemma 5.7.7; with lambda < v_stf - v_ms it never meets v = v_stf.) H = 0 also
+removes a parameter from the dissertation's BBBB problem (C.22): the interior arcs turn exactly
 2 s(lambda) and the last arc follows from the final heading, so a chain is fixed by
 (lambda, first arc) and the boundary conditions have isolated solutions (root finding, not
 optimisation). Two caveats, checked numerically instead of proved: Lemma 5.7.11's shortcut
 needs the interior arcs to advance along theta (integral of v cos(phi) over [-s, s] > 0),
-which fails for interior loops longer than about 330 degrees (s close to pi) with the DG-1001M
+which fails for interior loops longer than about 335 degrees (s > 167.5 deg) with the DG-1001M
 polar; and the first and last arcs of BBB/BBBB are allowed their full range [0, 2 s] rather
 than the dissertation's "no heading theta" restriction. Allowing five and six B arcs changed
 no optimal path in the validation (`benchmarks/min_altitude_vs_direct.py`), and the

@@ -432,6 +432,11 @@ def _solve_single_b(goal: Pose, st: _Setup, fam: Family, word: str) -> list[_Fou
 def _single_b(goal: Pose, st: _Setup, a1: float) -> list[_Found]:
     g, kern, u = st.glider, st.kern, st.glider.u_max
     z1 = complex(goal.x, goal.y)
+    # v in [v_stall, v_stf] along the arc: the end lies within a1 (v_stf - v_stall) / 2u of
+    # the end of the same turn flown at the mean speed
+    mid, half = 0.5 * (g.v_stf + g.v_stall), 0.5 * (g.v_stf - g.v_stall)
+    if abs(z1 + 1j * mid * (np.exp(1j * a1) - 1.0) / u) > half * a1 / u * (1 + 1e-9) + 1e-9:
+        return []
     # unclipped: mu a1/2 + conj(mu) K = -u z1 - i v_ms (e^{i a1} - 1), mu = lam e^{i theta}
     K = (np.exp(2j * a1) - 1.0) / 4j
     rhs = -u * z1 - 1j * g.v_ms * (np.exp(1j * a1) - 1.0)
