@@ -43,7 +43,7 @@ class Problem:
     objective: str
     # The world pose of the planner's origin (the request's start): planners whose vehicle
     # carries world-fixed data, such as a wind vector, rotate it into the planner's frame.
-    frame: Pose = Pose(0.0, 0.0, 0.0)
+    frame: Pose = field(default_factory=Pose)
 
 
 @dataclass(frozen=True, eq=False)

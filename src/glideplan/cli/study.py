@@ -27,7 +27,7 @@ def _values(name: str, items: list[str] | None) -> tuple[float, ...] | None:
                     a, b, step = (float(x) for x in part.split(":"))
                     if not step > 0 or not math.isfinite(a + b + step):
                         raise ValueError
-                    n = int(math.floor((b - a) / step + 1e-9)) + 1
+                    n = math.floor((b - a) / step + 1e-9) + 1
                     out.extend(round(a + i * step, 10) for i in range(max(0, n)))
                 else:
                     out.append(float(part))
@@ -84,8 +84,9 @@ def cross_track_command(
 ) -> None:
     """Mean final cross-track error vs planning radius, steady and Dryden disturbances (3.4).
 
-    Results are written as work units finish; running the same command again resumes an
-    interrupted study (a results file of another configuration is refused).
+    Results are written as work units finish; rerunning the command resumes a stopped study.
+
+    A results file written with another configuration is refused, never mixed.
     """
     from glideplan.cli.common import print_json
     from glideplan.studies.cross_track import (

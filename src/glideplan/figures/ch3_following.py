@@ -69,8 +69,7 @@ def fig3_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
             px, py, _ = sel.point(s)
             (line,) = ax.plot(px / r0, py / r0, style, lw=1.6, label=f"path, {name}")
             tr = res.tracks[:, i, :] / r0  # type: ignore[attr-defined]
-            ax.plot(tr[:, 0], tr[:, 1], "-", color=line.get_color(), lw=1.0,
-                    label=f"flown, {name}")
+            ax.plot(tr[:, 0], tr[:, 1], "-", color=line.get_color(), lw=1.0, label=f"flown, {name}")
             err = float(res.error[i]) / r0  # type: ignore[attr-defined]
             rows.append(
                 Comparison(

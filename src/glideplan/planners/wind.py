@@ -114,7 +114,7 @@ class _Drifting(Segment):
             return 0.0
         half = 0.5 * self.duration
         t = half * (_GL_X + 1.0)
-        v, u = self.controls(t)
+        v, _u = self.controls(t)
         h = self.states(t)[2]
         gx = v * np.cos(h) + self.drift[0]
         gy = v * np.sin(h) + self.drift[1]
@@ -235,8 +235,10 @@ class DriftingStraight(_Drifting):
     def _air_states(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         d = self.speed * t
         s = self.start
-        return s.x + d * math.cos(s.heading), s.y + d * math.sin(s.heading), np.full_like(
-            d, s.heading
+        return (
+            s.x + d * math.cos(s.heading),
+            s.y + d * math.sin(s.heading),
+            np.full_like(d, s.heading),
         )
 
     def controls(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -426,6 +428,10 @@ def _first_roots(
                 taus[k] = sum(tpq)
                 tpqs[k] = tpq
         return taus, tpqs
+    for k in range(6):  # the goal is the start: arrival at T = 0 (all arcs empty)
+        tpq = _word_tpq(k, x1, y1, psi1)
+        if tpq is not None and sum(tpq) <= 1e-12:
+            taus[k], tpqs[k] = 0.0, (0.0, 0.0, 0.0)
     # F_LSL(tau) <= 0 once tau >= (|goal| + 2 + 4 pi) / (1 - w): an upper bound on T*.
     tau_max = (math.hypot(x1, y1) + 2.0 + 2.0 * TWO_PI) / (1.0 - wmag)
     grid = np.linspace(0.0, tau_max, max(3, math.ceil(tau_max / _GRID_STEP) + 1))
@@ -441,6 +447,8 @@ def _first_roots(
         cand = (fa > 0.0) & ((fb - TWO_PI * jumps <= 0.0) | (fb <= 0.0) | np.isnan(fb))
         cand |= np.isnan(fa) & (fb <= 0.0)
     for k in range(6):
+        if taus[k] == 0.0:
+            continue
         for i in np.nonzero(cand[:, k])[0]:
             root = _polish(k, float(grid[i]), float(grid[i + 1]), goal, wind)
             if root is not None:

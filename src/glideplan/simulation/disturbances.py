@@ -121,6 +121,18 @@ class _DrydenStream:
         return saturate(self._g, self._limit)
 
 
+def _generator(rng: object) -> np.random.Generator:
+    if isinstance(rng, np.random.Generator):
+        return rng
+    if isinstance(rng, np.random.SeedSequence) or (
+        isinstance(rng, (int, np.integer)) and not isinstance(rng, bool) and rng >= 0
+    ):
+        return np.random.default_rng(rng)
+    raise InvalidParameterError(
+        "rng", rng, "must be a numpy.random.Generator or a seed (int >= 0, SeedSequence)"
+    )
+
+
 @dataclass(frozen=True)
 class DrydenTurbulence:
     """Horizontal Dryden gusts (see module docstring).
@@ -159,14 +171,17 @@ class DrydenTurbulence:
         tau = np.abs(np.asarray(lag, dtype=float))
         return self.component_sigma**2 * np.exp(-tau / self.correlation_time)
 
-    def stream(self, rows: int, dt: float, rng: np.random.Generator) -> DisturbanceStream:
-        """Start a realisation for `rows` rows with time step dt (s)."""
+    def stream(
+        self, rows: int, dt: float, rng: np.random.Generator | int | np.random.SeedSequence
+    ) -> DisturbanceStream:
+        """Start a realisation for `rows` rows with time step dt (s), drawn from `rng` (a
+        Generator, or a seed: an int >= 0 or a SeedSequence)."""
         check_positive("dt", dt)
-        if not isinstance(rng, np.random.Generator):
-            raise InvalidParameterError("rng", rng, "must be a numpy.random.Generator")
-        return _DrydenStream(self, int(rows), float(dt), rng)
+        return _DrydenStream(self, int(rows), float(dt), _generator(rng))
 
-    def sample(self, steps: int, rows: int, dt: float, rng: np.random.Generator) -> np.ndarray:
+    def sample(
+        self, steps: int, rows: int, dt: float, rng: np.random.Generator | int
+    ) -> np.ndarray:
         """A realisation as an array (steps, rows, 2) in m/s (for analysis and tests)."""
         s = self.stream(rows, dt, rng)
         return np.stack([s.next() for _ in range(int(steps))])

@@ -31,7 +31,7 @@ __all__ = ["GuidanceCommand", "PathArrays", "lookahead_guidance"]
 _DIRS = np.array([word_directions(w) for w in WORDS], dtype=float)  # (6, 3)
 
 
-def _advance(x, y, h, kappa, d):  # noqa: ANN001, ANN202 - array kernel
+def _advance(x, y, h, kappa, d):
     """Pose after arc length d on a constant-curvature piece (kappa = 0: straight)."""
     half = 0.5 * kappa * d
     chord = d * np.sinc(half / math.pi)  # 2 sin(kappa d / 2) / kappa

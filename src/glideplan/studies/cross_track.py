@@ -84,6 +84,17 @@ def _floats(name: str, values: Sequence[float]) -> tuple[float, ...]:
     return out
 
 
+def _setting(name: str, value: Any) -> Any:
+    if name == "feedforward" or isinstance(value, bool):
+        return bool(value)
+    if value is None:
+        return None
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(name, value, "must be a number") from None
+
+
 @dataclass(frozen=True)
 class CrossTrackConfig:
     """Every setting of the study (defaults: the dissertation's, §3.4).
@@ -141,7 +152,7 @@ class CrossTrackConfig:
             "dryden_scale_length",
             check_positive("dryden_scale_length", self.dryden_scale_length),
         )
-        follower = {k: float(v) for k, v in dict(self.follower).items()}
+        follower = {k: _setting(k, v) for k, v in dict(self.follower).items()}
         self.follower_settings_for(follower)  # validates the names and values
         object.__setattr__(self, "follower", follower)
 
@@ -150,7 +161,7 @@ class CrossTrackConfig:
         try:
             return FollowerSettings(speed=self.speed, max_turn_rate=self.max_turn_rate, **extra)
         except TypeError:
-            known = "lookahead, gamma, boundary_layer, dt, timeout_factor"
+            known = "lookahead, gamma, boundary_layer, dt, timeout_factor, feedforward"
             raise InvalidParameterError("follower", extra, f"known settings: {known}") from None
 
     @property
@@ -235,16 +246,14 @@ def simulate_unit(unit: Unit) -> dict[str, np.ndarray]:
         "r_plan": np.repeat(r_plan, n),
         "sample": np.tile(np.arange(unit.first, unit.first + n), nr),
         "goal": np.tile(np.column_stack([xy, psi1]), (nr, 1)),
-        "wind_direction": np.tile(
-            wind_dir if unit.case == "steady" else np.full(n, np.nan), nr
-        ),
+        "wind_direction": np.tile(wind_dir if unit.case == "steady" else np.full(n, np.nan), nr),
         "error": res.error / r0,
         "crossed": res.crossed,
         "time": res.time,
     }
 
 
-def _rows(units: list[Unit]):  # noqa: ANN202 - closure over the unit list
+def _rows(units: list[Unit]):
     def rows_of(i: int, out: dict[str, np.ndarray]) -> list[tuple[Any, ...]]:
         u = units[i]
         err = [None if not math.isfinite(e) else float(e) for e in out["error"]]

@@ -1,4 +1,4 @@
-"""A Dubins car in a known steady uniform wind or current (dissertation eq. A.4, Techy & Woolsey 2009)."""
+"""A Dubins car in a known steady uniform wind or current (eq. A.4; Techy & Woolsey 2009)."""
 
 from __future__ import annotations
 
