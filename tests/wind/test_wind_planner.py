@@ -98,7 +98,7 @@ def test_endpoint_by_integrating_every_candidate():
 
 def test_eps_plans_with_feasible_radius():
     vehicle = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=0.0)
-    sol = plan(Pose(0, 0, 0), Pose(6, 2, 0), vehicle, eps=0.25).raise_for_status()
+    sol = plan(Pose(0, 0, 0), Pose(6, 2, 0), vehicle, disturbance_ratio=0.25).raise_for_status()
     assert sol.extras["radius"] == pytest.approx(1.5625)
     arcs = [s for s in sol.path.segments if isinstance(s, TrochoidArc)]
     assert all(a.radius == pytest.approx(1.5625) for a in arcs)
@@ -150,9 +150,9 @@ def test_bad_vehicle(kwargs, name):
 def test_bad_planning_input():
     vehicle = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.8, wind_direction=0.0)
     with pytest.raises(InvalidParameterError, match="wind"):
-        plan(Pose(0, 0, 0), Pose(3, 3, 0), vehicle, eps=0.25)  # w + delta_max >= v
+        plan(Pose(0, 0, 0), Pose(3, 3, 0), vehicle, disturbance_ratio=0.25)  # w + delta_max >= v
     with pytest.raises(InvalidParameterError, match="eps"):
-        plan(Pose(0, 0, 0), Pose(3, 3, 0), vehicle, eps=1.0)
+        plan(Pose(0, 0, 0), Pose(3, 3, 0), vehicle, disturbance_ratio=1.0)
     with pytest.raises(InvalidParameterError):
         plan(Pose(0, 0, 0), (3.0, math.inf, 0.0), vehicle)
 

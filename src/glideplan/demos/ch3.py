@@ -61,6 +61,6 @@ register_demo_case(
         vehicle=DubinsCarInWind(
             speed=20.0, turn_radius=20.0 / 0.3, wind_speed=5.0, wind_direction=math.pi / 4
         ),
-        options={"eps": 0.25},
+        options={"disturbance_ratio": 0.25},
     )
 )

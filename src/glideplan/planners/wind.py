@@ -522,12 +522,14 @@ def convected_dubins_path(
     objective="time",
     description="Time-optimal paths in a steady uniform wind (convected Dubins; 3.2, A.4)",
 )
-def plan_wind(problem: Problem, *, eps: float = 0.0) -> PlannerOutput:
+def plan_wind(problem: Problem, *, disturbance_ratio: float = 0.0) -> PlannerOutput:
     """Time-optimal convected Dubins path (Techy & Woolsey 2009) to the goal over ground.
 
-    Every word is a candidate (cost: arrival time, s). `eps` = delta_max / v plans with the
-    feasible radius R0 (1 + eps)^2 of Corollary A.2 (needs w + eps v < v).
+    Every word is a candidate (cost: arrival time, s). `disturbance_ratio` = eps =
+    delta_max / v (the same option as the Dubins planner) plans with the feasible radius
+    R0 (1 + eps)^2 of Corollary A.2 (needs w + eps v < v).
     """
+    eps = disturbance_ratio
     vehicle = problem.vehicle
     assert isinstance(vehicle, DubinsCarInWind)
     # the wind is given in the world; the planner works in the start frame
