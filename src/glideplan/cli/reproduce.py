@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import pathlib
 import time
 from typing import Annotated
@@ -12,7 +13,19 @@ from glideplan.cli.app import app
 from glideplan.cli.common import write_json
 
 
-def _index_markdown(results: list[tuple[object, object, float]]) -> str:
+def _relative(files: tuple[str, ...], out: pathlib.Path) -> list[str]:
+    """File names relative to the output directory, so the index survives being moved."""
+    rel = []
+    for f in files:
+        p = pathlib.Path(f)
+        if not p.is_absolute() and (out / p).exists():
+            rel.append(str(p))  # already relative to the output directory
+        else:  # absolute, or relative to the working directory
+            rel.append(os.path.relpath(p.resolve(), out))
+    return rel
+
+
+def _index_markdown(results: list[tuple[object, object, float]], out: pathlib.Path) -> str:
     lines = [
         "# glideplan reproduce",
         "",
@@ -22,10 +35,11 @@ def _index_markdown(results: list[tuple[object, object, float]]) -> str:
     ]
     for spec, report, seconds in results:
         lines += [f"## {spec.id}: {spec.title}", "", f"*Dissertation:* {spec.dissertation}", ""]
-        if report.files:
-            lines.append("Files: " + ", ".join(f"[{f}]({f})" for f in report.files))
+        files = _relative(report.files, out)
+        if files:
+            lines.append("Files: " + ", ".join(f"[{f}]({f})" for f in files))
             lines.append("")
-            for f in report.files:
+            for f in files:
                 if f.endswith(".png"):
                     lines += [f"![{spec.id}]({f})", ""]
         if report.rows:
@@ -71,12 +85,12 @@ def reproduce(
             report = run_figure(spec, out, full=full)
         results.append((spec, report, time.perf_counter() - t0))
         console.print(f"[green]done[/green] {spec.id} ({time.perf_counter() - t0:.1f} s)")
-    (out / "index.md").write_text(_index_markdown(results))
+    (out / "index.md").write_text(_index_markdown(results, out.resolve()))
     write_json(
         {
             spec.id: {
                 "title": spec.title,
-                "files": list(rep.files),
+                "files": _relative(rep.files, out.resolve()),
                 "rows": [r.__dict__ for r in rep.rows],
                 "seconds": sec,
             }
