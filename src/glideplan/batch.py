@@ -21,6 +21,7 @@ from typing import Any, TypeVar
 import numpy as np
 
 from glideplan.errors import InvalidParameterError
+from glideplan.progress import start_progress_bar
 
 __all__ = ["chunk_slices", "default_processes", "map_chunks", "run_batch"]
 
@@ -58,26 +59,7 @@ class _Progress:
         if self.bar is None:
             if time.perf_counter() - self.t0 <= _PROGRESS_DELAY_S or done >= self.total:
                 return
-            from rich.console import Console
-            from rich.progress import (
-                BarColumn,
-                MofNCompleteColumn,
-                Progress,
-                TextColumn,
-                TimeElapsedColumn,
-                TimeRemainingColumn,
-            )
-
-            self.bar = Progress(
-                TextColumn("{task.description}"),
-                BarColumn(),
-                MofNCompleteColumn(),
-                TimeElapsedColumn(),
-                TimeRemainingColumn(),
-                console=Console(stderr=True),
-            )
-            self.bar.start()
-            self.task = self.bar.add_task(self.description, total=self.total)
+            self.bar, self.task = start_progress_bar(self.description, self.total)
         self.bar.update(self.task, completed=done)
 
     def close(self) -> None:

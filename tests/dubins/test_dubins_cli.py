@@ -9,16 +9,6 @@ import pytest
 from glideplan.cli.app import main
 
 
-def _one_line_error(capsys, argv, code=2):
-    assert main(argv) == code
-    captured = capsys.readouterr()
-    lines = captured.err.strip().splitlines()
-    assert len(lines) == 1, captured.err
-    assert lines[0].startswith("glideplan: error:")
-    assert "Traceback" not in captured.err
-    return lines[0]
-
-
 def test_plan_dubins_json_fields(capsys):
     # Goal (0, 8, 180 deg) with R = 2 is the (0, 4, pi) case at twice the scale: LSL 2 (2 + pi).
     assert main(["plan", "dubins", "--goal", "0", "8", "180", "--radius", "2", "--json"]) == 0
@@ -78,8 +68,8 @@ def test_table_output(capsys):
         (["--goal", "a", "2", "0", "--radius", "1"], "goal"),
     ],
 )
-def test_plan_dubins_bad_input(capsys, argv, needle):
-    line = _one_line_error(capsys, ["plan", "dubins", *argv])
+def test_plan_dubins_bad_input(cli_error, argv, needle):
+    line = cli_error("plan", "dubins", *argv)
     assert needle in line
 
 
@@ -118,8 +108,8 @@ def test_map_tradespace_writes_npz(capsys, tmp_path):
         (["tradespace"], "heading"),
     ],
 )
-def test_map_bad_input(capsys, argv, needle):
-    line = _one_line_error(capsys, ["map", *argv])
+def test_map_bad_input(cli_error, argv, needle):
+    line = cli_error("map", *argv)
     assert needle in line
 
 
@@ -135,9 +125,8 @@ def test_map_on_a_dask_cluster(capsys, tmp_path):
     assert len([r for r in csv.read_text().splitlines() if not r.startswith("#")]) == 1 + 21 * 21
 
 
-def test_map_bad_scheduler_is_one_line(capsys):
-    line = _one_line_error(
-        capsys,
-        ["map", "partition", "--heading", "0", "--n", "5", "--scheduler", "nonsense::address"],
+def test_map_bad_scheduler_is_one_line(cli_error):
+    line = cli_error(
+        "map", "partition", "--heading", "0", "--n", "5", "--scheduler", "nonsense::address"
     )
     assert "scheduler" in line

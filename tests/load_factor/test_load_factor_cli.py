@@ -11,16 +11,6 @@ from glideplan.demos import demo_cases, run_demo_case
 from glideplan.figures import get_figure, load_all, run_figure
 
 
-def _one_line_error(capsys, argv, code=2):
-    assert main(argv) == code
-    captured = capsys.readouterr()
-    lines = captured.err.strip().splitlines()
-    assert len(lines) == 1, captured.err
-    assert lines[0].startswith("glideplan: error:")
-    assert "Traceback" not in captured.err
-    return lines[0]
-
-
 def test_json_has_common_fields_controls_and_arcs(capsys, tmp_path):
     plot = tmp_path / "lf.png"
     argv = ["plan", "load-factor", "--goal", "1.1", "2", "0", "--json", "--plot", str(plot)]
@@ -49,20 +39,20 @@ def test_json_has_common_fields_controls_and_arcs(capsys, tmp_path):
         (["--scheme", "euler"], "scheme"),
     ],
 )
-def test_bad_input_is_one_line_exit_2(capsys, extra, needle):
-    line = _one_line_error(capsys, ["plan", "load-factor", "--goal", "1", "2", "0", *extra])
+def test_bad_input_is_one_line_exit_2(cli_error, extra, needle):
+    line = cli_error("plan", "load-factor", "--goal", "1", "2", "0", *extra)
     assert needle in line
 
 
-def test_non_finite_goal(capsys):
-    line = _one_line_error(capsys, ["plan", "load-factor", "--goal", "nan", "2", "0"])
+def test_non_finite_goal(cli_error):
+    line = cli_error("plan", "load-factor", "--goal", "nan", "2", "0")
     assert "goal" in line
 
 
-def test_failed_solve_exits_1(capsys):
+def test_failed_solve_exits_1(cli_error):
     argv = ["plan", "load-factor", "--goal", "1.1", "2", "0", "--max-iterations", "1",
             "--max-starts", "1"]  # fmt: skip
-    line = _one_line_error(capsys, argv, code=1)
+    line = cli_error(*argv, code=1)
     assert "solver_failed" in line
 
 

@@ -10,16 +10,6 @@ from glideplan.vehicles import dg1001m
 G = dg1001m()
 
 
-def _one_line_error(capsys, argv, code=2):
-    assert main(argv) == code
-    captured = capsys.readouterr()
-    lines = captured.err.strip().splitlines()
-    assert len(lines) == 1, captured.err
-    assert lines[0].startswith("glideplan: error:")
-    assert "Traceback" not in captured.err
-    return lines[0]
-
-
 def test_normalized_goal_json(capsys):
     argv = ["plan", "min-altitude", "--goal", "0", "1", "120", "--normalized", "--json"]
     assert main(argv) == 0
@@ -79,8 +69,8 @@ def _polar(a="0.0027", v_stall="21", u_max="0.2"):
         ([*_polar(u_max="0")], "u_max"),
     ],
 )
-def test_bad_vehicle_input_exits_2(capsys, extra, needle):
-    line = _one_line_error(capsys, ["plan", "min-altitude", "--goal", "100", "0", "0", *extra])
+def test_bad_vehicle_input_exits_2(cli_error, extra, needle):
+    line = cli_error("plan", "min-altitude", "--goal", "100", "0", "0", *extra)
     assert needle in line
 
 
@@ -88,8 +78,8 @@ def test_bad_vehicle_input_exits_2(capsys, extra, needle):
     "goal",
     [["nan", "0", "0"], ["0", "0", "0"], ["1", "2"], ["a", "b", "c"], ["1", "2", "inf"]],
 )
-def test_bad_goal_exits_2(capsys, goal):
-    _one_line_error(capsys, ["plan", "min-altitude", "--goal", *goal])
+def test_bad_goal_exits_2(cli_error, goal):
+    cli_error("plan", "min-altitude", "--goal", *goal)
 
 
 def test_help_states_units(capsys):

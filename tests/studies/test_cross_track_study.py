@@ -167,7 +167,7 @@ def test_bad_config(kwargs):
         CrossTrackConfig(**kwargs)
 
 
-def test_cli_small_study_and_bad_input(tmp_path, capsys):
+def test_cli_small_study_and_bad_input(tmp_path, capsys, cli_error):
     out = tmp_path / "cli"
     code = main(
         [
@@ -200,9 +200,7 @@ def test_cli_small_study_and_bad_input(tmp_path, capsys):
         ["--samples", "0"],
         ["--r-plan", "1:2:0"],
     ):
-        assert main(["study", "cross-track", *bad, "--out", str(tmp_path / "x")]) == 2
-        err = capsys.readouterr().err.strip().splitlines()
-        assert len(err) == 1 and err[0].startswith("glideplan: error:")
+        cli_error("study", "cross-track", *bad, "--out", str(tmp_path / "x"))
 
 
 def test_knee_on_synthetic_curves():

@@ -157,7 +157,7 @@ def test_bad_planning_input():
         plan(Pose(0, 0, 0), (3.0, math.inf, 0.0), vehicle)
 
 
-def test_cli_json_and_errors(capsys, tmp_path):
+def test_cli_json_and_errors(capsys, cli_error, tmp_path):
     args = ["plan", "wind", "--goal", "3", "3", "90", "--speed", "1", "--radius", "1"]
     assert main([*args, "--wind", "0.3", "0", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
@@ -170,9 +170,7 @@ def test_cli_json_and_errors(capsys, tmp_path):
         ["--wind", "0.3", "nan"],
         ["--wind", "0.3", "0", "--eps", "1"],
     ):
-        assert main([*args, *bad]) == 2
-        err = capsys.readouterr().err.strip().splitlines()
-        assert len(err) == 1 and err[0].startswith("glideplan: error:")
+        cli_error(*args, *bad)
     assert main([*args, "--wind", "0.3", "45", "--plot", str(tmp_path / "w.png")]) == 0
     assert (tmp_path / "w.png").stat().st_size > 0
 

@@ -20,6 +20,7 @@ psi' = sqrt(n^2 - 1) / v^2 (6.15) and sink per unit length f0 = p1 (v^2 + n^2 / 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -131,6 +132,23 @@ def hodograph(glider: LoadFactorGlider, n_points: int = 120) -> dict[str, Any]:
     return {"points": pts, "curves": curves}
 
 
+def _constant_load_factor_curves(
+    glider: LoadFactorGlider,
+    load_factors: ArrayLike,
+    n_points: int,
+    value: Callable[[np.ndarray, float], np.ndarray],
+) -> dict[str, Curve]:
+    """`value(v, n)` versus speed for each load factor n <= n_limit, from its stall speed
+    sqrt(n / p2) to v_max (the constant-n lines of Figs 6.7 and 6.8)."""
+    out = {}
+    for n in np.asarray(load_factors, dtype=float):
+        if n > glider.n_limit + 1e-12:
+            continue
+        v = np.linspace(math.sqrt(n / glider.p2), glider.v_max, n_points)
+        out[f"n={n:g}"] = Curve(f"n={n:g}", v, value(v, n), f"n = {n:g}")
+    return out
+
+
 def turn_polar(
     glider: LoadFactorGlider, load_factors: ArrayLike = (1.0, 1.25, 1.5, 1.75, 2.0), n_points=200
 ) -> dict[str, Curve]:
@@ -140,12 +158,7 @@ def turn_polar(
     minimum f0 for a given n (where f0 = 2 p1 n).
     """
     g = glider
-    out = {}
-    for n in np.asarray(load_factors, dtype=float):
-        if n > g.n_limit + 1e-12:
-            continue
-        v = np.linspace(math.sqrt(n / g.p2), g.v_max, n_points)
-        out[f"n={n:g}"] = Curve(f"n={n:g}", v, g.sink_per_length(v, n), f"n = {n:g}")
+    out = _constant_load_factor_curves(g, load_factors, n_points, g.sink_per_length)
     v = np.linspace(1.0, math.sqrt(g.n_limit), n_points)
     out["best_glide"] = Curve("best_glide", v, g.sink_per_length(v, v**2), "n = v^2")
     return out
@@ -160,12 +173,9 @@ def doghouse(
     the corner (the best turn rate at the corner speed v_c).
     """
     g = glider
-    out = {}
-    for n in np.asarray(load_factors, dtype=float):
-        if n > g.n_limit + 1e-12:
-            continue
-        v = np.linspace(math.sqrt(n / g.p2), g.v_max, n_points)
-        out[f"n={n:g}"] = Curve(f"n={n:g}", v, math.sqrt(n**2 - 1.0) / v**2, f"n = {n:g}")
+    out = _constant_load_factor_curves(
+        g, load_factors, n_points, lambda v, n: math.sqrt(n**2 - 1.0) / v**2
+    )
     v = np.linspace(g.v_min, g.corner_speed, n_points)
     n = g.p2 * v**2
     out["stall"] = Curve("stall", v, np.sqrt(np.maximum(n**2 - 1, 0.0)) / v**2, "stall boundary")

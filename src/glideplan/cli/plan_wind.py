@@ -70,5 +70,7 @@ def plan_wind_command(
             "wind", w, f"wind speed + eps * speed must be < speed ({w:g} + {eps:g} * {speed:g})"
         )
     vehicle = DubinsCarInWind(speed, radius, w, direction)
-    solution = plan(parse_pose(start, "start"), parse_pose(goal, "goal"), vehicle, disturbance_ratio=eps)
+    solution = plan(
+        parse_pose(start, "start"), parse_pose(goal, "goal"), vehicle, disturbance_ratio=eps
+    )
     emit_solution(solution, json_out, plot, plot_candidates=False)

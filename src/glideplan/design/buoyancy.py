@@ -244,11 +244,7 @@ def bladder_moles(
     environment: Environment = FRESH_WATER,
 ) -> np.ndarray | float:
     """Air n(z, V) that holds the bladder at volume V and depth z, from the equilibrium (7.5)."""
-    v = bladder._volume(volume_m3)
-    p = np.asarray(environment.ambient_pressure_pa(depth_m)) + np.asarray(
-        bladder.elastic_pressure_pa(v)
-    )
-    return scalar_or_array(p * v / (R_GAS_J_PER_MOL_K * environment.temperature_k))
+    return moles_per_cycle(bladder._volume(volume_m3), depth_m, environment, bladder)
 
 
 def equilibrium_volume_m3(

@@ -7,6 +7,7 @@ import pathlib
 
 import numpy as np
 
+from glideplan.figures._common import pyplot, save_png
 from glideplan.figures.registry import Comparison, FigureReport, reproducible
 
 # Fig 2.2: endpoints normalised by R0; (a) far away, (b) close enough for a CCC path.
@@ -31,15 +32,10 @@ FIG_2_2_TEXT = {
 )
 def fig2_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     """Draw every feasible candidate for both endpoints and list their lengths."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from glideplan import DubinsCar, Pose, plan
     from glideplan.plotting import plot_path
 
-    fig, axes = plt.subplots(1, 2, figsize=(11, 5))
+    fig, axes = pyplot().subplots(1, 2, figsize=(11, 5))
     rows = []
     for ax, (key, (goal, name)) in zip(axes, FIG_2_2_CASES.items(), strict=True):
         sol = plan(Pose(), Pose(*goal), DubinsCar()).raise_for_status()
@@ -82,10 +78,7 @@ def fig2_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
                 f"endpoint error {sol.endpoint_error.max:.1e}",
             )
         )
-    path = out_dir / "fig2_2_dubins_candidates.png"
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    path = save_png(fig, out_dir / "fig2_2_dubins_candidates.png")
     return FigureReport(files=(path.name,), rows=tuple(rows))
 
 

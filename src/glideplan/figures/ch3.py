@@ -7,6 +7,7 @@ import pathlib
 
 import numpy as np
 
+from glideplan.figures._common import pyplot, save_png
 from glideplan.figures.registry import Comparison, FigureReport, reproducible
 
 HEADINGS = {"a": (0.0, "0"), "b": (2 * math.pi / 3, "2pi/3"), "c": (math.pi, "pi")}
@@ -43,16 +44,11 @@ def _canonical(labels: list[str]) -> list[str]:
 )
 def fig3_1(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     """The three partitions; regions found compared with the labels printed in Fig 3.1."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from glideplan.studies.map_plots import plot_partition
     from glideplan.studies.maps import partition_map, partition_regions
 
     n = 601 if full else 241
-    fig, axes = plt.subplots(1, 3, figsize=(16, 5.4))
+    fig, axes = pyplot().subplots(1, 3, figsize=(16, 5.4))
     rows = []
     for ax, (key, (psi1, name)) in zip(axes, HEADINGS.items(), strict=True):
         pmap = partition_map(psi1, extent=6.0, n=n, progress=False)
@@ -67,10 +63,7 @@ def fig3_1(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
                 "same regions" if ours == theirs else "DIFFERENT",
             )
         )
-    path = out_dir / "fig3_1_partitions.png"
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    path = save_png(fig, out_dir / "fig3_1_partitions.png", dpi=110)
     return FigureReport(
         files=(path.name,),
         rows=tuple(rows),
@@ -92,16 +85,11 @@ def fig3_1(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
 )
 def fig3_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     """The three tradespace maps plus spot values and the near/far behaviour the text states."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from glideplan.studies.map_plots import plot_tradespace
     from glideplan.studies.maps import tradespace_map, tradespace_ratio
 
     n = 601 if full else 241
-    fig, axes = plt.subplots(1, 3, figsize=(17, 5))
+    fig, axes = pyplot().subplots(1, 3, figsize=(17, 5))
     rows = []
     for ax, (key, (psi1, name)) in zip(axes, HEADINGS.items(), strict=True):
         tmap = tradespace_map(psi1, 0.25, extent=6.0, n=n, progress=False)
@@ -130,8 +118,5 @@ def fig3_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
                 note,
             )
         )
-    path = out_dir / "fig3_2_tradespace.png"
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    path = save_png(fig, out_dir / "fig3_2_tradespace.png", dpi=110)
     return FigureReport(files=(path.name,), rows=tuple(rows), notes=f"{n} x {n} grid.")

@@ -7,6 +7,7 @@ import pathlib
 
 import numpy as np
 
+from glideplan.figures._common import pyplot, save_png
 from glideplan.figures.registry import Comparison, FigureReport, reproducible
 
 EXAMPLES = {"a": (3.0, 3.0, 2.0 * math.pi / 3.0), "b": (1.0, 2.0, 0.0)}
@@ -51,13 +52,8 @@ def _follow_examples(eps: float = 0.25) -> dict[str, dict[str, object]]:
 )
 def fig3_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     """Both examples: planned paths, simulated tracks, final cross-track errors."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     runs = _follow_examples()
-    fig, axes = plt.subplots(1, 2, figsize=(12, 5.8))
+    fig, axes = pyplot().subplots(1, 2, figsize=(12, 5.8))
     rows = []
     for ax, (key, data) in zip(axes, runs.items(), strict=True):
         paths = data["paths"]
@@ -89,10 +85,7 @@ def fig3_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
         ax.set_ylabel("y / R0")
         ax.set_aspect("equal", adjustable="datalim")
         ax.legend(fontsize=8)
-    fig.tight_layout()
-    file = out_dir / "fig3_3.png"
-    fig.savefig(file, dpi=120)
-    plt.close(fig)
+    file = save_png(fig, out_dir / "fig3_3.png")
     better = all(
         float(d["result"].error[1]) < float(d["result"].error[0])  # type: ignore[attr-defined]
         for d in runs.values()
@@ -123,17 +116,12 @@ def fig3_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
 
     Default: 45 goals per point (a few minutes' worth of runs cut to seconds); `full`: 900.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from glideplan.studies.cross_track import CrossTrackConfig, run_cross_track_study
 
     samples = 900 if full else REDUCED_SAMPLES
     cfg = CrossTrackConfig(samples=samples, chunk=100 if full else 15)
     res = run_cross_track_study(out_dir / f"fig3_4_study_{samples}", cfg, progress=False)
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    fig, axes = pyplot().subplots(1, 2, figsize=(12, 4.8))
     rows = []
     for ax, case in zip(axes, cfg.cases, strict=True):
         for eps in cfg.eps:
@@ -160,10 +148,7 @@ def fig3_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
         ax.set_ylabel("mean final cross-track error / R0")
         ax.set_ylim(bottom=0.0)
         ax.legend(fontsize=8)
-    fig.tight_layout()
-    file = out_dir / "fig3_4.png"
-    fig.savefig(file, dpi=120)
-    plt.close(fig)
+    file = save_png(fig, out_dir / "fig3_4.png")
     return FigureReport(
         files=(str(file), str(res.directory / "summary.json")),
         rows=tuple(rows),

@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from glideplan.figures._common import pyplot, save_png
 from glideplan.figures.registry import Comparison, FigureReport, reproducible
 from glideplan.pose import Pose
 from glideplan.solution import Solution
@@ -40,15 +41,6 @@ EXAMPLES: dict[str, dict[str, Any]] = {
 }  # fmt: skip
 
 
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
 def example_goal(figure_id: str, glider: QuadraticPolarGlider = GLIDER) -> Pose:
     """The example's goal in metres (the dissertation gives it in units of R_stf)."""
     x, y, h = EXAMPLES[figure_id]["goal"]
@@ -72,7 +64,7 @@ def draw_solution(
     control history (turn rate and speed vs time, limits dashed), as in Figs. 5.5-5.7."""
     from glideplan.planners.min_altitude import dubins_reference
 
-    plt = _plt()
+    plt = pyplot()
     glider = solution.vehicle
     assert isinstance(glider, QuadraticPolarGlider)
     unit = glider.radius_stf
@@ -131,9 +123,7 @@ def draw_solution(
             ax_v.text(smp.t[-1], ms_to_kmh(v), f" {name}", va="center", fontsize=7)
         ax_v.set_xlabel("time (s)")
         ax_v.set_ylabel("speed (km/h)")
-    fig.tight_layout()
-    fig.savefig(filename, dpi=120)
-    plt.close(fig)
+    save_png(fig, filename)
 
 
 # ----- Fig 5.1 and Table 5.2 -----------------------------------------------------------------
@@ -146,7 +136,7 @@ def draw_solution(
     "(tangent through the origin) and v_max marked",
 )
 def fig5_1(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    plt = _plt()
+    plt = pyplot()
     g = GLIDER
     v = np.linspace(g.v_stall, g.v_max, 300)
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
@@ -176,9 +166,7 @@ def fig5_1(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_ylabel("sink rate w (m/s)")
     ax.set_title("DG-1001M quadratic glide polar")
     ax.legend(fontsize=8, loc="lower left")
-    fig.tight_layout()
-    fig.savefig(out_dir / "fig5_1.png", dpi=120)
-    plt.close(fig)
+    save_png(fig, out_dir / "fig5_1.png")
     slope = float(2 * g.a * g.v_stf + g.b)
     rows = (
         Comparison(

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from glideplan.analysis import load_factor as lf
+from glideplan.figures._common import pyplot, save_png
 from glideplan.figures.registry import Comparison, FigureReport, reproducible
 from glideplan.pose import Pose
 from glideplan.vehicles.load_factor_glider import LoadFactorGlider
@@ -39,21 +40,6 @@ _CLASS_STYLE = {
     "wings_level": ("tab:green", "wings level"),
     "other": ("0.5", "other"),
 }
-
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-def _save(fig, out_dir: pathlib.Path, name: str) -> str:
-    fig.savefig(out_dir / name, dpi=120, bbox_inches="tight")
-    _plt().close(fig)
-    return name
 
 
 def _draw_control_set(ax, glider: LoadFactorGlider) -> None:
@@ -86,7 +72,7 @@ def _draw_control_set(ax, glider: LoadFactorGlider) -> None:
     "locus v^4 + n^2 = 2 (6.35) meets the stall boundary at v_lim = (2/(1+p2^2))^(1/4)",
 )
 def fig6_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    plt = _plt()
+    plt = pyplot()
     g = GLIDER
     fig, ax = plt.subplots(figsize=(6, 4.5))
     _draw_control_set(ax, g)
@@ -104,7 +90,7 @@ def fig6_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
         Comparison("smallest turn radius (corner)", f"{g.corner_radius:.4f}", "",
                    "v_c^2 / sqrt(n_max^2 - 1)"),
     )  # fmt: skip
-    return FigureReport(files=(_save(fig, out_dir, "fig6_3.png"),), rows=rows)
+    return FigureReport(files=(save_png(fig, out_dir / "fig6_3.png", crop=True).name,), rows=rows)
 
 
 def _hc_minimiser(g: LoadFactorGlider, lam: float, grid: int) -> tuple[float, float]:
@@ -130,7 +116,7 @@ def _hc_minimiser(g: LoadFactorGlider, lam: float, grid: int) -> tuple[float, fl
     "at the stall boundary",
 )
 def fig6_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    plt = _plt()
+    plt = pyplot()
     g = GLIDER
     hod = lf.hodograph(g, 200 if full else 120)
     fig, ax = plt.subplots(figsize=(6, 4.2))
@@ -170,7 +156,7 @@ def fig6_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
         Comparison("grid minimum of f0 minus locus image", f"{gap:.2e}", ">= 0",
                    "the locus is the southern boundary"),
     )  # fmt: skip
-    return FigureReport(files=(_save(fig, out_dir, "fig6_4.png"),), rows=rows)
+    return FigureReport(files=(save_png(fig, out_dir / "fig6_4.png", crop=True).name,), rows=rows)
 
 
 @reproducible(
@@ -180,7 +166,7 @@ def fig6_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     "the extremal locus and the stall boundary to the corner, where it stays",
 )
 def fig6_5(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    plt = _plt()
+    plt = pyplot()
     g = GLIDER
     grid = 900 if full else 500
     # adjoint ratio lam' = |eta_psi| / (2 eta0 p1); Hc / eta0 = f0 - lam f_psi, lam = 2 p1 lam'
@@ -228,7 +214,7 @@ def fig6_5(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
         Comparison("corner reached by |eta_psi|/(2 eta0 p1)", f"<= {corner_from:.2f}",
                    f"{lam_corner:.4f}", "(6.47) at n = n_max; the minimiser then stays there"),
     )  # fmt: skip
-    return FigureReport(files=(_save(fig, out_dir, "fig6_5.png"),), rows=rows)
+    return FigureReport(files=(save_png(fig, out_dir / "fig6_5.png", crop=True).name,), rows=rows)
 
 
 @reproducible(
@@ -240,7 +226,7 @@ def fig6_5(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
 def fig6_6(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     from scipy.spatial import ConvexHull
 
-    plt = _plt()
+    plt = pyplot()
     g = GLIDER
     pts = lf.hodograph(g, 160 if full else 100)["points"]
     hull = ConvexHull(pts)
@@ -255,7 +241,7 @@ def fig6_6(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     rows = (
         Comparison("hull area", f"{area_ratio:.4f}", "", "nonconvex: hull adds area in the north"),
     )
-    return FigureReport(files=(_save(fig, out_dir, "fig6_6.png"),), rows=rows)
+    return FigureReport(files=(save_png(fig, out_dir / "fig6_6.png", crop=True).name,), rows=rows)
 
 
 @reproducible(
@@ -265,7 +251,7 @@ def fig6_6(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     "on the locus n = v^2",
 )
 def fig6_7(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    plt = _plt()
+    plt = pyplot()
     g = GLIDER
     fig, ax = plt.subplots(figsize=(6, 4))
     curves = lf.turn_polar(g)
@@ -283,7 +269,7 @@ def fig6_7(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
                    f"sqrt(1.5) = {math.sqrt(1.5):.3f}"),
         Comparison("best glide f0 at n = 1", f"{2 * g.p1:.4f}", "1/(L/D)max = 0.0333"),
     )  # fmt: skip
-    return FigureReport(files=(_save(fig, out_dir, "fig6_7.png"),), rows=rows)
+    return FigureReport(files=(save_png(fig, out_dir / "fig6_7.png", crop=True).name,), rows=rows)
 
 
 @reproducible(
@@ -293,7 +279,7 @@ def fig6_7(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     "0 <= psi' <= 1.5; best turn rate at the corner speed v_c",
 )
 def fig6_8(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    plt = _plt()
+    plt = pyplot()
     g = GLIDER
     fig, ax = plt.subplots(figsize=(6, 4))
     for name, c in lf.doghouse(g).items():
@@ -314,7 +300,9 @@ def fig6_8(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
         "and the discussion of the best turn rate at the corner speed fit the turn rate per "
         "unit length, which is what is drawn."
     )
-    return FigureReport(files=(_save(fig, out_dir, "fig6_8.png"),), rows=rows, notes=notes)
+    return FigureReport(
+        files=(save_png(fig, out_dir / "fig6_8.png", crop=True).name,), rows=rows, notes=notes
+    )
 
 
 @reproducible(
@@ -324,7 +312,7 @@ def fig6_8(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     "arc length s1 (6.44) grows without bound as p3 -> 1",
 )
 def fig6_9(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    plt = _plt()
+    plt = pyplot()
     g = GLIDER
     fig, ax = plt.subplots(figsize=(6, 4))
     rows = []
@@ -340,7 +328,9 @@ def fig6_9(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_xlabel("arc length s")
     ax.set_ylabel("speed v")
     ax.legend(fontsize=7)
-    return FigureReport(files=(_save(fig, out_dir, "fig6_9.png"),), rows=tuple(rows))
+    return FigureReport(
+        files=(save_png(fig, out_dir / "fig6_9.png", crop=True).name,), rows=tuple(rows)
+    )
 
 
 @reproducible(
@@ -350,7 +340,7 @@ def fig6_9(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     "for small p3, n returns to n_lim",
 )
 def fig6_10(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    plt = _plt()
+    plt = pyplot()
     g = GLIDER
     fig, ax = plt.subplots(figsize=(6, 4))
     rows = []
@@ -366,7 +356,9 @@ def fig6_10(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_xlabel("arc length s")
     ax.set_ylabel("load factor n")
     ax.legend(fontsize=7)
-    return FigureReport(files=(_save(fig, out_dir, "fig6_10.png"),), rows=tuple(rows))
+    return FigureReport(
+        files=(save_png(fig, out_dir / "fig6_10.png", crop=True).name,), rows=tuple(rows)
+    )
 
 
 # ----- 6.11 to 6.13: the three examples ----------------------------------------------------
@@ -380,7 +372,7 @@ def solve_example(goal: tuple[float, float, float], scheme: str = "hermite-simps
 
 def draw_solution(solution, filename: str | pathlib.Path, title: str = "") -> None:
     """Fig 6.11-style panels: (a) v and n vs s, (b) path, (c) (v, n) over Omega by arc class."""
-    plt = _plt()
+    plt = pyplot()
     glider = solution.vehicle
     ctr = solution.extras["controls"]
     s, v, n = (np.asarray(ctr[k]) for k in ("s", "v", "n"))
@@ -412,8 +404,7 @@ def draw_solution(solution, filename: str | pathlib.Path, title: str = "") -> No
     a3.set_title("(c) controls over Omega")
     if title:
         fig.suptitle(title)
-    fig.savefig(filename, dpi=120, bbox_inches="tight")
-    plt.close(fig)
+    save_png(fig, filename, crop=True)
 
 
 def _example(fig_id: str, out_dir: pathlib.Path) -> FigureReport:

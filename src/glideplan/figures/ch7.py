@@ -12,22 +12,8 @@ import pathlib
 import numpy as np
 
 from glideplan.design._units import LB_KG, n_to_lbf
+from glideplan.figures._common import pyplot, save_png
 from glideplan.figures.registry import Comparison, FigureReport, reproducible
-
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-def _save(fig, out_dir: pathlib.Path, name: str) -> str:
-    fig.savefig(out_dir / name, dpi=120, bbox_inches="tight")
-    _plt().close(fig)
-    return name
 
 
 @reproducible(
@@ -48,7 +34,7 @@ def fig7_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     )
     from glideplan.units import inch_to_m, pa_to_psi
 
-    plt = _plt()
+    plt = pyplot()
     env = FRESH_WATER
     v = np.linspace(2.5e-3, 5e-3, 101 if full else 51)
     z = np.linspace(30.0, 100.0, 141 if full else 71)
@@ -69,7 +55,7 @@ def fig7_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_ylabel("Depth, m")
     ax.invert_yaxis()
     ax.set_title("Fig 7.3: ideal number of dives, FX23DV, fresh water")
-    files = (_save(fig, out_dir, "fig7.3.png"),)
+    files = (save_png(fig, out_dir / "fig7.3.png", crop=True).name,)
 
     t_room = env.temperature_k
     n_room = float(FX23DV.moles(t_room))
@@ -145,7 +131,7 @@ def fig7_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     """Net weight B - W (lb) vs tank air weight (lb) for 0, 2.5 and 5 L (section 7.2)."""
     from glideplan.design import FRESH_WATER, net_weight_n
 
-    plt = _plt()
+    plt = pyplot()
     env = FRESH_WATER
     m_full = 31.1 * 0.02897  # the dissertation's 31.1 mol, about 2 lb
     m = np.linspace(0.0, m_full, 50)
@@ -163,7 +149,7 @@ def fig7_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.grid(True, alpha=0.3)
     ax.legend()
     ax.set_title("Fig 7.4: net weight vs remaining tank air")
-    files = (_save(fig, out_dir, "fig7.4.png"),)
+    files = (save_png(fig, out_dir / "fig7.4.png", crop=True).name,)
     rows = (
         Comparison(
             "tank air weight (full, 31.1 mol)", f"{m_full / LB_KG:.2f} lb", "about 2 lb", "ok"
@@ -206,7 +192,7 @@ def fig7_6(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     from glideplan.design import FRESH_WATER, VTUG_BLADDER, Bladder, bladder_moles
     from glideplan.units import pa_to_psi
 
-    plt = _plt()
+    plt = pyplot()
     env, b = FRESH_WATER, VTUG_BLADDER
     v = np.linspace(0.0, 5e-3, 101 if full else 51)
     z = np.linspace(0.0, 100.0, 101 if full else 51)
@@ -223,7 +209,7 @@ def fig7_6(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax2.set_xlabel("Volume, L")
     ax2.set_ylabel("p_blad (psi)")
     ax2.set_title("illustrative elastic curve (Fig 7.5b fit unpublished)")
-    files = (_save(fig, out_dir, "fig7.6.png"),)
+    files = (save_png(fig, out_dir / "fig7.6.png", crop=True).name,)
     n_max = float(bladder_moles(b, 5e-3, 100.0, env))
     v_thr = _threshold_volume_m3(b, env)
 
@@ -259,7 +245,7 @@ def fig7_7(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     """ndot (7.6) vs zdot (7.7) for bladder volumes 0-5 L and three drag coefficients."""
     from glideplan.design import FRESH_WATER, VTUG_BLADDER, VTUG_HULL, exchange_rate_sweep
 
-    plt = _plt()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(6, 4.5))
     extremes = {}
     for cd in (0.25, 0.1, 1.0):
@@ -274,7 +260,7 @@ def fig7_7(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.grid(True, alpha=0.3)
     ax.legend()
     ax.set_title("Fig 7.7: inflator and deflator requirements (9 in hull, +-2.5 L)")
-    files = (_save(fig, out_dir, "fig7.7.png"),)
+    files = (save_png(fig, out_dir / "fig7.7.png", crop=True).name,)
     zmax, nmin, nmax = extremes[0.1]
     rows = (
         Comparison("fastest depth rate, C_D = 0.1", f"{zmax:.2f} m/s", "axis to +-4 m/s", "ok"),
@@ -300,7 +286,7 @@ def fig7_8(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     from glideplan.design import FRESH_WATER, VTUG_BLADDER, VTUG_HULL, deflator_cv, inflator_cv
     from glideplan.units import psi_to_pa
 
-    plt = _plt()
+    plt = pyplot()
     env, b, h = FRESH_WATER, VTUG_BLADDER, VTUG_HULL
     k = 61 if full else 31
     z = np.linspace(0.0, 100.0, k)
@@ -323,7 +309,7 @@ def fig7_8(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax2.set_xlabel("Tank pressure, psia")
     ax2.set_ylabel("Bladder displacement, L")
     ax2.set_title("(b) inflator")
-    files = (_save(fig, out_dir, "fig7.8.png"),)
+    files = (save_png(fig, out_dir / "fig7.8.png", crop=True).name,)
     j = int(np.argmax(cv_pr[:, 0]))
     rows = (
         Comparison(
@@ -367,7 +353,7 @@ def fig7_17(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     """Forward speed vs depth rate from (7.17)-(7.20) for 0.5-2.5 L net buoyancy."""
     from glideplan.design import SEA_WATER, SEAGLIDER_LIKE, max_forward_speed, spider_plot
 
-    plt = _plt()
+    plt = pyplot()
     polar, env = SEAGLIDER_LIKE, SEA_WATER
     vols = np.array([0.5, 1.0, 1.5, 2.0, 2.5]) * 1e-3
     gammas = np.radians([20.0, 30.0, 40.0, 60.0, 80.0])
@@ -394,7 +380,7 @@ def fig7_17(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_ylabel("Depth rate (m/s)")
     ax.set_title("Fig 7.17: spider plot (Seaglider-like stand-in polar)")
     ax.grid(True, alpha=0.3)
-    files = (_save(fig, out_dir, "fig7.17.png"),)
+    files = (save_png(fig, out_dir / "fig7.17.png", crop=True).name,)
     u_max, g_max = max_forward_speed(polar, env.specific_weight_n_m3 * 2.5e-3, env)
     rows = (
         Comparison(
@@ -434,7 +420,7 @@ def fig7_27(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
 
     from glideplan.design import LBLConfig, lawnmower_track, simulate_survey
 
-    plt = _plt()
+    plt = pyplot()
     # Scenario (assumed, not from the dissertation): 3 m range noise, 75 % replies, sound speed
     # assumed 1480 m/s (fresh water ~20 degC) but 1447 m/s in a 10 degC November lake.
     cfg = LBLConfig(
@@ -472,7 +458,7 @@ def fig7_27(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax2.set_ylabel("fixes")
     ax2.legend()
     ax2.set_title("error histogram")
-    files = (_save(fig, out_dir, "fig7.27.png"),)
+    files = (save_png(fig, out_dir / "fig7.27.png", crop=True).name,)
     rows = (
         Comparison(
             "pings answered",

@@ -28,6 +28,7 @@ distance flown (v times the duration); `ground_length` is the length of the grou
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -41,8 +42,8 @@ from glideplan.errors import InvalidParameterError
 from glideplan.path import Path
 from glideplan.planners.dubins import WORDS, dubins_word_lengths, feasible_radius, word_directions
 from glideplan.planning import PlannerOutput, Problem, register_planner
-from glideplan.pose import Pose, to_world
-from glideplan.segments import Segment
+from glideplan.pose import Pose
+from glideplan.segments import Arc, Segment, Straight, _check_direction
 from glideplan.solution import Candidate
 from glideplan.validation import check_finite, check_in_range, check_nonnegative, check_positive
 from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
@@ -98,14 +99,19 @@ class _Drifting(Segment):
     def time_at_length(self, s: ArrayLike) -> np.ndarray:
         return np.asarray(s, dtype=float) / self.speed
 
-    def _air_states(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    @functools.cached_property
+    def _air_segment(self) -> Arc | Straight:
+        """The same manoeuvre in the air-relative frame F_A (no drift); built once."""
         raise NotImplementedError
 
     def states(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Ground position (air-frame position plus drift w t) and heading at local times t."""
         tt = np.asarray(t, dtype=float)
-        x, y, h = self._air_states(tt)
+        x, y, h = self._air_segment.states(tt)
         return x + self.drift[0] * tt, y + self.drift[1] * tt, h
+
+    def controls(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+        return self._air_segment.controls(t)
 
     @property
     def ground_length(self) -> float:
@@ -148,9 +154,7 @@ class TrochoidArc(_Drifting):
     def __post_init__(self) -> None:
         object.__setattr__(self, "angle", check_nonnegative("angle", self.angle))
         object.__setattr__(self, "radius", check_positive("radius", self.radius))
-        if self.direction not in (1, -1):
-            raise InvalidParameterError("direction", self.direction, "must be +1 or -1")
-        object.__setattr__(self, "direction", int(self.direction))
+        object.__setattr__(self, "direction", _check_direction(self.direction))
         object.__setattr__(self, "speed", check_positive("speed", self.speed))
         object.__setattr__(self, "drift", _check_drift(self.drift))
 
@@ -163,16 +167,9 @@ class TrochoidArc(_Drifting):
         """Signed turn rate (rad/s)."""
         return self.direction * self.speed / self.radius
 
-    def _air_states(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        s, r, d = self.start, self.radius, self.direction
-        h = s.heading + self.turn_rate * t
-        x = s.x + d * r * (np.sin(h) - math.sin(s.heading))
-        y = s.y - d * r * (np.cos(h) - math.cos(s.heading))
-        return x, y, h
-
-    def controls(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-        tt = np.asarray(t, dtype=float)
-        return np.full_like(tt, self.speed), np.full_like(tt, self.turn_rate)
+    @functools.cached_property
+    def _air_segment(self) -> Arc:
+        return Arc(self.start, self.angle, self.radius, self.direction, self.speed, self.label)
 
     @property
     def end(self) -> Pose:
@@ -185,9 +182,8 @@ class TrochoidArc(_Drifting):
         )
 
     def transformed(self, frame: Pose, reflect: bool = False) -> TrochoidArc:
-        start = Pose.from_array(to_world(self.start.as_array(), frame.as_array(), reflect=reflect))
         return TrochoidArc(
-            start,
+            self.start.from_frame(frame, reflect),
             self.angle,
             self.radius,
             -self.direction if reflect else self.direction,
@@ -232,18 +228,9 @@ class DriftingStraight(_Drifting):
     def duration(self) -> float:
         return self.length_m / self.speed
 
-    def _air_states(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        d = self.speed * t
-        s = self.start
-        return (
-            s.x + d * math.cos(s.heading),
-            s.y + d * math.sin(s.heading),
-            np.full_like(d, s.heading),
-        )
-
-    def controls(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-        tt = np.asarray(t, dtype=float)
-        return np.full_like(tt, self.speed), np.zeros_like(tt)
+    @functools.cached_property
+    def _air_segment(self) -> Straight:
+        return Straight(self.start, self.length_m, self.speed, self.label)
 
     @property
     def end(self) -> Pose:
@@ -255,9 +242,12 @@ class DriftingStraight(_Drifting):
         )
 
     def transformed(self, frame: Pose, reflect: bool = False) -> DriftingStraight:
-        start = Pose.from_array(to_world(self.start.as_array(), frame.as_array(), reflect=reflect))
         return DriftingStraight(
-            start, self.length_m, self.speed, _map_drift(self.drift, frame, reflect), self.label
+            self.start.from_frame(frame, reflect),
+            self.length_m,
+            self.speed,
+            _map_drift(self.drift, frame, reflect),
+            self.label,
         )
 
 

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from glideplan.batch import default_processes, run_batch
+from glideplan.progress import start_progress_bar
 from glideplan.studies.store import ResultsStore
 
 __all__ = ["RunReport", "run_units"]
@@ -37,32 +38,9 @@ class _Bar:
         self.bar: Any = None
         if not enabled or total <= 0:
             return
-        from rich.console import Console
-        from rich.progress import (
-            BarColumn,
-            MofNCompleteColumn,
-            Progress,
-            TaskProgressColumn,
-            TextColumn,
-            TimeElapsedColumn,
-            TimeRemainingColumn,
-        )
-
-        self.bar = Progress(
-            TextColumn("{task.description}"),
-            BarColumn(),
-            MofNCompleteColumn(),
-            TaskProgressColumn(),
-            TextColumn("{task.fields[rate]}"),
-            TimeElapsedColumn(),
-            TextColumn("ETA"),
-            TimeRemainingColumn(),
-            console=Console(stderr=True),
-        )
         self.unit = unit
         self.t0 = time.perf_counter()
-        self.bar.start()
-        self.task = self.bar.add_task(label, total=total, rate="")
+        self.bar, self.task = start_progress_bar(label, total, with_rate=True)
 
     def advance(self, amount: float, done: float) -> None:
         if self.bar is None:
