@@ -11,6 +11,7 @@ from glideplan.planners.min_time.direct import classify_controls
 # 12 goals: the example, two special ones, and random goals in [-3, 3]^2 for r/R = 0.3, 0.5
 _RNG = np.random.default_rng(2024)
 GOALS = [(0.0, 2.0, 2 * math.pi / 3, 0.3), (-2.0, 0.0, math.pi, 0.3), (0.6, 0.9, math.pi, 0.5)]
+GOALS += [(0.148, 0.7861, 2.3468, 0.5)]  # optimum C B T B C, a type (4.26) leaves out
 GOALS += [
     (float(x), float(y), float(h), rho)
     for rho in (0.3, 0.5)

@@ -80,6 +80,21 @@ def test_dubins_ratio_about_two(table_4_3):
     assert dub / table_4_3.cost == pytest.approx(2.08, abs=0.01)
 
 
+def test_rigid_sequence_left_out_by_b4_is_sometimes_optimal():
+    # B.4 / (4.24) drop C B T B C; for this goal it is optimal (the direct method agrees,
+    # tests/min_time/test_min_time_direct.py), 10.6 % faster than the best type of (4.26)
+    car = VariableSpeedCar(0.5, 1.0, 1.0)
+    goal = np.array([0.148, 0.7861, 2.3468])
+    only = synthesize(goal, 0.5, supplementary=False).best
+    assert only.ctype.name == "CCC RLR" and only.cost == pytest.approx(6.10798, abs=1e-5)
+    sol = plan(Pose(), Pose(*goal), car)
+    best = sol.candidates[0]
+    assert best.info["type"] == "CBTBC RLR" and best.info["in_dissertation"] is False
+    assert "4.24" in best.info["violates"]
+    assert sol.cost == pytest.approx(5.462384, abs=1e-6)
+    assert sol.endpoint_error.max < 1e-9
+
+
 def test_goal_next_to_start():
     sol = plan(Pose(), Pose(0.09, 0.16, 0.22), CAR)
     assert sol.ok and sol.endpoint_error.max < 1e-9
@@ -216,8 +231,8 @@ def test_deterministic_and_all_groups_reported(table_4_3):
     again = plan(Pose(), GOAL_4_3, CAR)
     assert [c.cost for c in again.candidates] == [c.cost for c in table_4_3.candidates]
     stats = table_4_3.stats
-    assert stats["candidate_types"] == 72
-    assert set(stats["seconds_by_group"]) == {"TTTT", "TST", "umax", "Dubins"}
+    assert stats["candidate_types"] == 72 and stats["supplementary_types"] == 42
+    assert set(stats["seconds_by_group"]) == {"TTTT", "TST", "umax", "Dubins", "supplementary"}
 
 
 @settings(max_examples=40, deadline=None)

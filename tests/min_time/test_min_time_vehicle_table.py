@@ -7,7 +7,12 @@ import pytest
 
 from glideplan import InvalidParameterError, VariableSpeedCar
 from glideplan.planners.min_time import CANDIDATE_TYPES, alpha_subopt
-from glideplan.planners.min_time.table import conditions, long_form
+from glideplan.planners.min_time.table import (
+    SUPPLEMENTARY_TYPES,
+    conditions,
+    long_form,
+    rigid_types,
+)
 
 
 def test_vehicle_radii_and_defaults():
@@ -95,3 +100,14 @@ def test_conditions_are_checked_on_the_long_form():
     # an interior B arc beyond alpha_subopt(pi) breaks (4.22)
     big = alpha_subopt(math.pi, 0.3) + 0.1
     assert conditions(btb, long_form(btb, "B", "B", 0.1, 0.1, big), 0.3)["4.22"] is False
+
+
+def test_supplementary_rigid_types():
+    assert len(SUPPLEMENTARY_TYPES) == 42
+    assert all(not t.in_dissertation and t.group == "TTTT" for t in SUPPLEMENTARY_TYPES)
+    assert all(t.in_dissertation for t in CANDIDATE_TYPES)
+    words = {t.word for t in SUPPLEMENTARY_TYPES}
+    assert {"CBTBC", "CBTBCB", "BCBTBC", "BCBTBCB"} <= words  # B.4's excluded B T_RS B
+    table = {(t.first, t.interior, t.last) for t in CANDIDATE_TYPES if t.group == "TTTT"}
+    assert not table & {(t.first, t.interior, t.last) for t in SUPPLEMENTARY_TYPES}
+    assert len(rigid_types(5)) == 18  # every (first, last) pair, two orientations

@@ -72,7 +72,7 @@ def plan_time_optimal_command(
         typer.Option("--plot", help="Draw the path with its switching points to FILE (PNG)."),
     ] = None,
 ) -> None:
-    """Minimum-time path with speed in [v_min, v_max] and |turn rate| <= u_max (chapter 4).
+    """Minimum-time path with speed between v_min and v_max, |turn rate| <= u_max (chapter 4).
 
     Bang turns fly at v_max on radius R = v_max/u_max, cornering turns at v_min on
     r = v_min/u_max; the dissertation's example is --v-min 0.3 --v-max 1 --u-max 1.

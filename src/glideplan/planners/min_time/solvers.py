@@ -29,8 +29,10 @@ is a rigid displacement in the frame of h1, which gives
 
 with (sigma, eta) the middle's pose displacement. Taking norms removes h1:
 - Gamma_TST: V = W + L e_x, so |V| = |K2 - K1| is a quadratic in L (closed form);
-- Gamma_TTTT: |V(a)|^2 - |K2 - K1|^2 is a trigonometric polynomial of degree <= 2 in a
-  (checked numerically to degree 4); all its roots come from one polynomial eigenvalue solve.
+- Gamma_TTTT: |V(a)|^2 - |K2 - K1|^2 is a trigonometric polynomial of degree <= 2 in a (its
+  Fourier coefficients come from 16 samples, exact to degree 7, and the degree is checked);
+  all its roots in [0, pi/2] come from one batched companion-matrix eigenvalue solve.
+The goal enters only through K2 - K1, so V(a) is precomputed once per speed ratio.
 h1 then follows from the angle between V and K2 - K1, and u1, u2 from h1 (each within a range
 shorter than 2 pi, hence unique). The result is every extremal of the type, deterministically.
 """
@@ -47,10 +49,11 @@ import numpy as np
 from glideplan.planners.min_time.geometry import compose, normal, rotate
 from glideplan.planners.min_time.table import (
     CANDIDATE_TYPES,
-    EXCLUDED_TYPES,
+    SUPPLEMENTARY_TYPES,
     CandidateType,
     conditions,
     long_form,
+    rigid_types,
 )
 
 __all__ = [
@@ -217,10 +220,22 @@ def _affine(values0: np.ndarray, values1: np.ndarray) -> np.ndarray:
     return np.stack([values0, values1 - values0], axis=-1)
 
 
-@lru_cache(maxsize=16)
-def _stack(group: str, rho: float, excluded: bool = False) -> _Stack:
-    types = EXCLUDED_TYPES if excluded else CANDIDATE_TYPES
-    items = tuple((t, first, last) for t in types if t.group == group for first, last in t.branches)
+def _types_for(key: str) -> tuple[CandidateType, ...]:
+    """The candidate types behind a solver key: "TST", "TTTT" (those of (4.26)),
+    "supplementary" (`SUPPLEMENTARY_TYPES`) or "interiorM" (rigid, M interior turns)."""
+    if key in ("TST", "TTTT"):
+        return tuple(t for t in CANDIDATE_TYPES if t.group == key)
+    if key == "supplementary":
+        return SUPPLEMENTARY_TYPES
+    if key.startswith("interior"):
+        return rigid_types(int(key[len("interior") :]))
+    raise KeyError(key)
+
+
+@lru_cache(maxsize=64)
+def _stack(key: str, rho: float) -> _Stack:
+    group = "TST" if key == "TST" else "TTTT"
+    items = tuple((t, first, last) for t in _types_for(key) for first, last in t.branches)
     d1 = np.array([t.directions[0] for t, _, _ in items], dtype=float)
     d2 = np.array([t.directions[-1] for t, _, _ in items], dtype=float)
     r_first = np.array([rho if f == "CB" else 1.0 for _, f, _ in items])
@@ -319,7 +334,7 @@ def _coef_roots_batch(coef: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return rows, a
 
 
-def _solve_tst(goal: np.ndarray, rho: float) -> list[Extremal]:
+def _solve_tst(goal: np.ndarray, rho: float, key: str = "TST") -> list[Extremal]:
     """All Gamma_TST extremals T S T: per branch a quadratic in L (closed form)."""
     st = _stack("TST", rho)
     assert st.w is not None
@@ -365,9 +380,10 @@ def _solve_tst(goal: np.ndarray, rho: float) -> list[Extremal]:
     return out
 
 
-def _solve_tttt(goal: np.ndarray, rho: float, excluded: bool = False) -> list[Extremal]:
-    """All Gamma_TTTT extremals: the roots a in [0, pi/2] of |V(a)|^2 = |K2 - K1|^2."""
-    st = _stack("TTTT", rho, excluded)
+def _solve_tttt(goal: np.ndarray, rho: float, key: str = "TTTT") -> list[Extremal]:
+    """All rigid extremals of the types behind `key`: roots a in [0, pi/2] of
+    |V(a)|^2 = |K2 - K1|^2."""
+    st = _stack(key, rho)
     assert st.coef is not None and st.vcoef is not None and st.degree is not None
     dk = _goal_offsets(st, goal)
     coef = st.coef.copy()
@@ -452,17 +468,13 @@ def trig_roots(samples: np.ndarray, tol: float = 1e-12) -> np.ndarray:
 def solve_all(
     goal: np.ndarray, rho: float, groups: tuple[str, ...] = ("TST", "TTTT")
 ) -> dict[str, list[Extremal]]:
-    """Every extremal of every Gamma_TST / Gamma_TTTT type for a normalised goal, by group.
+    """Every extremal of the Gamma_TST / Gamma_TTTT types for a normalised goal, by key.
 
-    The group "excluded" solves the rigid sequences of `EXCLUDED_TYPES` (not in (4.26)).
+    Keys: "TST", "TTTT" (the types of (4.26)), "supplementary" (`SUPPLEMENTARY_TYPES`),
+    "interiorM" (every rigid sequence with M interior turns).
     """
     goal = np.asarray(goal, dtype=float)
-    solvers = {
-        "TST": _solve_tst,
-        "TTTT": _solve_tttt,
-        "excluded": lambda g, r: _solve_tttt(g, r, excluded=True),
-    }
-    return {g: solvers[g](goal, float(rho)) for g in groups}
+    return {k: (_solve_tst if k == "TST" else _solve_tttt)(goal, float(rho), k) for k in groups}
 
 
 def solve_type(ctype: CandidateType, goal: np.ndarray, rho: float) -> list[Extremal]:

@@ -19,7 +19,13 @@ from glideplan.planners.dubins import WORDS as DUBINS_WORDS
 from glideplan.planners.dubins import dubins_segment_lengths
 from glideplan.planners.min_time.fixed_turn_rate import cheapest_fixed_turn_rate
 from glideplan.planners.min_time.solvers import Extremal, solve_all
-from glideplan.planners.min_time.table import CANDIDATE_TYPES, GROUPS, CandidateType
+from glideplan.planners.min_time.table import (
+    CANDIDATE_TYPES,
+    GROUPS,
+    SUPPLEMENTARY_MAX_INTERIOR,
+    SUPPLEMENTARY_TYPES,
+    CandidateType,
+)
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import Pose
 from glideplan.segments import Arc, Segment, Straight
@@ -105,19 +111,26 @@ def _umax_extremals(types: list[CandidateType], goal: np.ndarray, rho: float) ->
     return out
 
 
+MAX_INTERIOR_TURNS = 12
+
+
 def synthesize(
     goal: np.ndarray,
     rho: float,
     *,
     types: Iterable[CandidateType] = CANDIDATE_TYPES,
-    excluded: bool = False,
+    supplementary: bool = True,
 ) -> SynthesisResult:
     """Every extremal of every candidate type for a normalised goal (x, y, heading).
 
     Units: R = 1, u_max = 1, rho = v_min/v_max; costs are times in units of 1/u_max. With
-    rho = 1 (equal speeds) only the Dubins candidates BSB and BBB are solved. With
-    `excluded`, the rigid sequences ruled out by (4.24) and B.4 (`EXCLUDED_TYPES`) are solved
-    too (group "excluded"), to check those exclusions numerically.
+    rho = 1 (equal speeds) only the Dubins candidates BSB and BBB are solved.
+
+    With `supplementary` (the default) the rigid sequences that (4.24) and B.4 leave out are
+    solved as well (`SUPPLEMENTARY_TYPES`, group key "supplementary"): B.4's sub-optimality
+    argument fails for some goals, whose optimum is then C B T B C. Rigid sequences with
+    m > 3 interior turns cost more than m pi, so they are added while m pi is below the best
+    cost found (up to `MAX_INTERIOR_TURNS`).
     """
     goal = np.asarray(goal, dtype=float)
     by_group: dict[str, list[CandidateType]] = {g: [] for g in GROUPS}
@@ -139,10 +152,17 @@ def synthesize(
         else:
             found.extend(_dubins_extremals(members, goal, rho))
         seconds[group] = time.perf_counter() - t0
-    if excluded and rho < 1.0:
+    if supplementary and rho < 1.0:
         t0 = time.perf_counter()
-        found.extend(solve_all(goal, rho, ("excluded",))["excluded"])
-        seconds["excluded"] = time.perf_counter() - t0
+        found.extend(solve_all(goal, rho, ("supplementary",))["supplementary"])
+        best = min((e.cost for e in found), default=math.inf)
+        m = SUPPLEMENTARY_MAX_INTERIOR + 1
+        while m <= MAX_INTERIOR_TURNS and m * PI < best:
+            key = f"interior{m}"
+            found.extend(solve_all(goal, rho, (key,))[key])
+            best = min((e.cost for e in found), default=math.inf)
+            m += 1
+        seconds["supplementary"] = time.perf_counter() - t0
     return SynthesisResult(tuple(_deduplicate(found)), seconds)
 
 
@@ -198,6 +218,7 @@ def _candidate(ext: Extremal, vehicle: VariableSpeedCar) -> Candidate:
     info: dict[str, Any] = {
         "group": ext.ctype.group,
         "type": ext.ctype.name,
+        "in_dissertation": ext.ctype.in_dissertation,
         "parameters": {
             k: (float(v) if isinstance(v, (float, np.floating)) else v)
             for k, v in ext.params.items()
@@ -205,6 +226,8 @@ def _candidate(ext: Extremal, vehicle: VariableSpeedCar) -> Candidate:
     }
     if violated:
         info["violates"] = violated  # strict sub-optimality bounds (4.22), (4.24)
+    if ext.ctype.group == "umax":
+        info["speed_profile"] = "not unique: every profile of this heading change takes this time"
     return Candidate(path.word, path.family, ext.cost / vehicle.u_max, path, "feasible", info)
 
 
@@ -216,10 +239,14 @@ def _candidate(ext: Extremal, vehicle: VariableSpeedCar) -> Candidate:
     description="Minimum-time paths with variable speed: synthesis over the 72 types (4.26)",
 )
 def plan_time_optimal(problem: Problem) -> PlannerOutput:
-    """Every locally optimal extremal of each candidate type of (4.26); the lowest wins.
+    """Every extremal of each candidate type of (4.26) (and the supplementary rigid types);
+    the lowest wins.
 
-    Costs are times (s). Candidates that break a strict sub-optimality bound of the
-    dissertation ((4.22), (4.24)) are kept and flagged in `info["violates"]`.
+    Costs are times (s). Each candidate's `info` holds its group, type (e.g. "CBSB LSR"),
+    parameters, whether the type is in (4.26) (`in_dissertation`) and the strict
+    sub-optimality bounds of the dissertation it breaks ((4.22), (4.24), `violates`); such
+    candidates are kept: they are real paths to the goal, and B.4 behind (4.24) does not
+    always hold.
     """
     vehicle = problem.vehicle
     assert isinstance(vehicle, VariableSpeedCar)
@@ -234,6 +261,7 @@ def plan_time_optimal(problem: Problem) -> PlannerOutput:
         counts[e.ctype.group] = counts.get(e.ctype.group, 0) + 1
     stats = {
         "candidate_types": len(CANDIDATE_TYPES),
+        "supplementary_types": len(SUPPLEMENTARY_TYPES),
         "extremals_found": len(result.extremals),
         "extremals_by_group": counts,
         "seconds_by_group": dict(result.seconds),

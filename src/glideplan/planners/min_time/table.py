@@ -33,6 +33,11 @@ last "B" = (u2, 0, 0), "BC" = (a, u2, 0), "BCB" = (a, pi, u2); with a = pi/2 in 
 The dissertation's conditions (4.20)-(4.24) and Table 4.2 are then checked on the solution
 (`conditions`); the strict sub-optimality bounds (4.22) (alpha_subopt, B.12) and (4.24) (B.4)
 are reported per candidate, not used to discard it.
+
+Erratum. B.4 (hence (4.24) and the list Gamma_TTTT) drops rigid sequences in which an
+interior turn has full B arcs on both sides. For some goals such a sequence, C B T B C, is the
+optimum (confirmed by the direct method started from Dubins paths only), so the synthesis also
+solves `SUPPLEMENTARY_TYPES` (`in_dissertation=False`); see `rigid_types`.
 """
 
 from __future__ import annotations
@@ -42,12 +47,13 @@ from dataclasses import dataclass
 
 __all__ = [
     "CANDIDATE_TYPES",
-    "EXCLUDED_TYPES",
     "GROUPS",
+    "SUPPLEMENTARY_TYPES",
     "CandidateType",
     "alpha_subopt",
     "conditions",
     "long_form",
+    "rigid_types",
 ]
 
 GROUPS = ("TTTT", "TST", "umax", "Dubins")
@@ -76,6 +82,7 @@ class CandidateType:
     straight: bool = False
     faces: tuple[tuple[str, str], ...] = ()
     directions: tuple[int, ...] = ()
+    in_dissertation: bool = True
 
     @property
     def name(self) -> str:
@@ -162,31 +169,44 @@ def _build_table() -> tuple[CandidateType, ...]:
 CANDIDATE_TYPES: tuple[CandidateType, ...] = _build_table()
 
 
-def _build_excluded() -> tuple[CandidateType, ...]:
-    """Rigid sequences that (4.24) and B.4 exclude: up to three interior turns, any pieces.
+def rigid_types(interior: int, *, skip_listed: bool = True) -> tuple[CandidateType, ...]:
+    """Every rigid sequence (first piece, `interior` symmetric turns, last piece) not in (4.26).
 
-    Not part of (4.26); solved only on request (`synthesize(..., excluded=True)`) to check
-    numerically that the exclusions never remove an optimum.
+    (4.24) and B.4 drop the sequences in which an interior turn has full B arcs on both sides
+    (B T_RS B with equal arcs, said to be beaten by a single arc). That argument does not hold
+    in general: for some goals the optimum is C B T B C (e.g. r/R = 0.5, goal (0.148, 0.786,
+    2.347): CBTBC 5.4624 against 6.1080 for the best type of (4.26); the direct method
+    started from Dubins paths only reaches 5.4626). These types are therefore solved too
+    (`in_dissertation=False`).
     """
     listed = {(t.first, t.interior, t.last) for t in CANDIDATE_TYPES if t.group == "TTTT"}
     listed |= {(f, t.interior, la) for t in CANDIDATE_TYPES if t.group == "TTTT"
                for f, la in t.faces}  # fmt: skip
     out: list[CandidateType] = []
-    for m in range(4):
-        for first in FIRST_PIECES:
-            for last in LAST_PIECES:
-                if (first, m, last) in listed or (m == 0 and first == last == "B"):
-                    continue
-                word = first + "T" * m + last
-                for d1 in (1, -1):
-                    dirs = tuple(d1 * (-1) ** i for i in range(m + 2))
-                    out.append(
-                        CandidateType("TTTT", word, _letters(dirs), first, m, last, False, (), dirs)
+    for first in FIRST_PIECES:
+        for last in LAST_PIECES:
+            if skip_listed and (first, interior, last) in listed:
+                continue
+            if interior == 0 and first == last == "B":
+                continue  # two B arcs: 2 parameters for 3 conditions, a Dubins path at most
+            word = first + "T" * interior + last
+            for d1 in (1, -1):
+                dirs = tuple(d1 * (-1) ** i for i in range(interior + 2))
+                out.append(
+                    CandidateType(
+                        "TTTT", word, _letters(dirs), first, interior, last, False, (), dirs, False
                     )
+                )
     return tuple(out)
 
 
-EXCLUDED_TYPES: tuple[CandidateType, ...] = _build_excluded()
+SUPPLEMENTARY_MAX_INTERIOR = 3
+SUPPLEMENTARY_TYPES: tuple[CandidateType, ...] = tuple(
+    t for m in range(SUPPLEMENTARY_MAX_INTERIOR + 1) for t in rigid_types(m)
+)
+"""Rigid sequences with at most three interior turns that (4.26) leaves out (see
+`rigid_types`); the synthesis also adds longer ones when a path with m interior turns (cost
+above m pi) could still beat the best found."""
 
 
 def alpha_subopt(beta: float, rho: float) -> float:
