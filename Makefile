@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: install demo test lint bench clean
+.PHONY: install demo test lint bench validate clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -25,6 +25,9 @@ test: $(STAMP) lint
 
 bench: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/python benchmarks/run_all.py
+
+validate: $(STAMP)
+	MPLBACKEND=Agg $(BIN)/python benchmarks/run_all.py --validate
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .ruff_cache .hypothesis

@@ -1,4 +1,9 @@
-"""Run every benchmark script in this folder, one after the other, in separate processes."""
+"""Run the benchmark scripts in this folder one after the other, in separate processes.
+
+`python benchmarks/run_all.py` runs the speed benchmarks (a few minutes);
+`python benchmarks/run_all.py --validate` runs the `*_vs_direct.py` validation scripts
+(synthesis against the direct method on hundreds of random goals; tens of minutes).
+"""
 
 import pathlib
 import subprocess
@@ -7,7 +12,12 @@ import sys
 HERE = pathlib.Path(__file__).parent
 
 if __name__ == "__main__":
-    scripts = [p for p in sorted(HERE.glob("*.py")) if p.name != "run_all.py"]
+    validate = "--validate" in sys.argv[1:]
+    scripts = [
+        p
+        for p in sorted(HERE.glob("*.py"))
+        if p.name != "run_all.py" and p.name.endswith("_vs_direct.py") == validate
+    ]
     failed = []
     for script in scripts:
         print(f"\n=== {script.name} ===", flush=True)

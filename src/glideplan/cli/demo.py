@@ -32,12 +32,12 @@ def demo(
 
     out.mkdir(parents=True, exist_ok=True)
     table = Table(title="glideplan demo: the dissertation's examples")
-    for col in ("example", "planner", "word", "cost", "dissertation", "endpoint err", "time [s]"):
+    for col in ("example", "planner", "word", "cost", "reference", "endpoint err", "time [s]"):
         table.add_column(col, justify="right" if col not in ("example", "planner") else "left")
     lines = [
         "# glideplan demo report",
         "",
-        "| example | source | planner | word | cost | dissertation | endpoint error | seconds |",
+        "| example | source | planner | word | cost | reference | endpoint error | seconds |",
         "|---|---|---|---|---|---|---|---|",
     ]
     failures = 0
