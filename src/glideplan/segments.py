@@ -53,6 +53,9 @@ class Segment(ABC):
     """A piece of path flown under one control law (see module docstring)."""
 
     kind: ClassVar[str] = "segment"
+    # True when speed and turn rate do not change along the segment (verification uses it to
+    # evaluate them once; it checks the claim at the start, middle and end)
+    constant_controls: ClassVar[bool] = False
 
     start: Pose
     label: str
@@ -149,6 +152,7 @@ class Straight(Segment):
     label: str = "S"
 
     kind: ClassVar[str] = "straight"
+    constant_controls: ClassVar[bool] = True
 
     @property
     def direction(self) -> int:  # type: ignore[override]
@@ -206,6 +210,7 @@ class Arc(Segment):
     label: str = "B"
 
     kind: ClassVar[str] = "arc"
+    constant_controls: ClassVar[bool] = True
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "angle", check_nonnegative("angle", self.angle))

@@ -14,6 +14,7 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -21,6 +22,7 @@ from scipy.integrate import solve_ivp
 from glideplan.objectives import get_objective
 from glideplan.path import Path
 from glideplan.pose import Pose, wrap_to_pi
+from glideplan.segments import Segment
 
 __all__ = ["EndpointError", "IntegratedPath", "endpoint_error", "integrate_path"]
 
@@ -49,6 +51,17 @@ class IntegratedPath:
     cost: float | None
 
 
+def _constant_controls(seg: Segment, rate: Any) -> tuple[float, float, float] | None:
+    """(speed, turn rate, cost rate) when the segment's controls are constant, else None."""
+    if not getattr(seg, "constant_controls", False):
+        return None
+    v, u = seg.controls(np.array([0.0, 0.5 * seg.duration, seg.duration]))
+    if np.ptp(v) > 1e-12 * abs(v[0]) or np.ptp(u) > 1e-12 * max(1.0, abs(u[0])):
+        return None  # the segment's claim does not hold: integrate its controls as given
+    r = float(rate(v[:1], u[:1])[0]) if rate is not None else 0.0
+    return float(v[0]), float(u[0]), r
+
+
 def integrate_path(
     path: Path, objective: str | None = None, *, rtol: float = 1e-11, atol: float = 1e-12
 ) -> IntegratedPath:
@@ -59,11 +72,19 @@ def integrate_path(
         if seg.duration <= 0.0:
             continue
         wx, wy = (float(c) for c in getattr(seg, "drift", (0.0, 0.0)))
+        fixed = _constant_controls(seg, rate)
+        if fixed is not None:
+            v0, u0, r0 = fixed
 
-        def rhs(t: float, z: np.ndarray, seg=seg, wx=wx, wy=wy) -> np.ndarray:
-            v, u = seg.controls(np.array([t]))
-            r = rate(v, u)[0] if rate is not None else 0.0
-            return np.array([v[0] * math.cos(z[2]) + wx, v[0] * math.sin(z[2]) + wy, u[0], r])
+            def rhs(t: float, z: np.ndarray, v0=v0, u0=u0, r0=r0, wx=wx, wy=wy) -> list[float]:
+                return [v0 * math.cos(z[2]) + wx, v0 * math.sin(z[2]) + wy, u0, r0]
+
+        else:
+
+            def rhs(t: float, z: np.ndarray, seg=seg, wx=wx, wy=wy) -> list[float]:
+                v, u = seg.controls(np.array([t]))
+                r = float(rate(v, u)[0]) if rate is not None else 0.0
+                return [v[0] * math.cos(z[2]) + wx, v[0] * math.sin(z[2]) + wy, u[0], r]
 
         bps = seg.breakpoints()
         pieces = bps if bps.size <= 8 else np.array([0.0, seg.duration])

@@ -89,6 +89,7 @@ def _check_drift(drift: Any) -> tuple[float, float]:
 class _Drifting(Segment):
     """Shared parts of the segments flown in a steady uniform wind."""
 
+    constant_controls: ClassVar[bool] = True
     drift: tuple[float, float]
     speed: float
 
