@@ -112,3 +112,12 @@ def test_heading_speed_arc_in_a_path_verifies():
     p = Path((h, s))
     end = integrate_path(p).end
     assert end.distance_to(p.end) < 1e-7
+
+
+def test_verification_does_not_trust_a_false_constant_controls_claim():
+    class Liar(HeadingSpeedArc):
+        constant_controls = True  # wrong: the speed varies with heading
+
+    seg = Liar(Pose(0, 0, 0), 3.0, 1, 0.2, 30.0, 5.0, 0.3)
+    end = integrate_path(Path((seg,))).end
+    assert end.distance_to(seg.end) < 1e-7  # integrated with the real, varying speed
