@@ -99,14 +99,7 @@ def partition_command(
         table.add_row(label, f"{100 * frac:.2f} %")
     Console().print(table)
     meta = {"map": "partition", "heading_rad": psi1, "eps": eps, "extent": extent, "n": n}
-    if data is not None:
-        _write_data(data, pmap.columns(), meta)
-        typer.echo(f"wrote {data}")
-    if out is not None:
-        from glideplan.studies.map_plots import plot_partition
-
-        _save_plot(plot_partition(pmap), out)
-        typer.echo(f"wrote {out}")
+    _write_outputs(pmap, meta, data, out, "plot_partition")
 
 
 @map_app.command("tradespace")
@@ -140,13 +133,24 @@ def tradespace_command(
     table.add_row("share with T > 5 (truncated)", f"{100 * np.mean(ratio > 5):.2f} %")
     Console().print(table)
     meta = {"map": "tradespace", "heading_rad": psi1, "eps": eps, "extent": extent, "n": n}
+    _write_outputs(tmap, meta, data, out, "plot_tradespace")
+
+
+def _write_outputs(
+    grid_map: Any,
+    meta: dict[str, Any],
+    data: pathlib.Path | None,
+    out: pathlib.Path | None,
+    plotter: str,
+) -> None:
+    """Write the grid (CSV/NPZ) and the figure drawn by `map_plots.<plotter>` when asked."""
     if data is not None:
-        _write_data(data, tmap.columns(), meta)
+        _write_data(data, grid_map.columns(), meta)
         typer.echo(f"wrote {data}")
     if out is not None:
-        from glideplan.studies.map_plots import plot_tradespace
+        from glideplan.studies import map_plots
 
-        _save_plot(plot_tradespace(tmap), out)
+        _save_plot(getattr(map_plots, plotter)(grid_map), out)
         typer.echo(f"wrote {out}")
 
 
