@@ -1,26 +1,60 @@
 # glideplan: `make demo` and `make test` work on a fresh machine with only python3 and pip.
+# `make install` builds .venv from requirements.lock (the versions CI tested); `make lock`
+# regenerates the lock from pyproject.toml's ranges in a throw-away venv.
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+LOCK := requirements.lock
+EXTRAS := all,test,bench
 
-.PHONY: install demo test lint bench validate clean
+.PHONY: install demo test test-setup lint typecheck bench validate lock clean
 
-$(STAMP): pyproject.toml
+$(STAMP): pyproject.toml $(LOCK)
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e ".[dask,test,bench]"
+	$(BIN)/python -m pip install --quiet -c $(LOCK) -e ".[$(EXTRAS)]"
 	touch $(STAMP)
 
 install: $(STAMP)
 
+lock:
+	rm -rf .lock-venv
+	$(PYTHON) -m venv .lock-venv
+	.lock-venv/bin/python -m pip install --quiet --upgrade pip
+	.lock-venv/bin/python -m pip install --quiet -e ".[$(EXTRAS)]"
+	.lock-venv/bin/python -m pip freeze --exclude-editable --all \
+	  | grep -v -E '^(pip|setuptools|wheel)==' > $(LOCK)
+	rm -rf .lock-venv
+	@echo "wrote $(LOCK) ($$(wc -l < $(LOCK)) pins)"
+
 demo: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/glideplan demo --out out
+
+# System programs the tests read files back with or drive (Debian packages): installed with
+# apt-get when missing and possible (CI runs as root); the tests that need them skip with the
+# reason otherwise.
+test-setup:
+	@missing=""; \
+	command -v gpsbabel >/dev/null 2>&1 || missing="$$missing gpsbabel"; \
+	command -v chromium >/dev/null 2>&1 || missing="$$missing chromium"; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "installing$$missing with apt-get"; \
+	    (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing \
+	      >/dev/null) || echo "warning: apt-get could not install$$missing"; \
+	  else \
+	    echo "note:$$missing missing and not installable here (not root or no apt-get)"; \
+	  fi; \
+	fi
 
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks examples
 
-test: $(STAMP) lint
+typecheck: $(STAMP)
+	$(BIN)/mypy src
+
+test: $(STAMP) test-setup lint typecheck
 	MPLBACKEND=Agg $(BIN)/python -m pytest -n 2 -q
 
 bench: $(STAMP)
@@ -30,4 +64,4 @@ validate: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/python benchmarks/run_all.py --validate
 
 clean:
-	rm -rf $(VENV) out .pytest_cache .ruff_cache .hypothesis
+	rm -rf $(VENV) out .pytest_cache .ruff_cache .hypothesis .mypy_cache

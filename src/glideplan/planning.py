@@ -55,6 +55,10 @@ class PlannerOutput:
     message: str = ""
     extras: Mapping[str, Any] = field(default_factory=dict)
     solver_failed: bool = False
+    # Things the user must know even when a path is returned (a skipped root bracket, a
+    # failed re-timing, ...): one sentence each; `plan()` adds its own and the Solution
+    # carries them all (and `--json` prints them).
+    warnings: tuple[str, ...] = ()
 
 
 PlannerFunction = Callable[..., PlannerOutput]
@@ -236,10 +240,16 @@ def plan(
             message,
             stats,
             dict(out.extras),
+            tuple(out.warnings),
         )
     assert best.path is not None
+    warnings = tuple(out.warnings)
     if rejected:
         stats["rejected_by_verification"] = rejected
+        warnings += (
+            f"{rejected} cheaper candidate(s) failed verification by integration; "
+            f"returned the cheapest verified one ({best.word}, cost {best.cost:.6g})",
+        )
     return Solution(
         Status.SOLVED,
         spec.name,
@@ -256,4 +266,5 @@ def plan(
         out.message,
         stats,
         dict(out.extras),
+        warnings,
     )

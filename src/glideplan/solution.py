@@ -75,6 +75,7 @@ class Solution:
     message: str = ""
     stats: Mapping[str, Any] = field(default_factory=dict)
     extras: Mapping[str, Any] = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
 
     @property
     def ok(self) -> bool:
@@ -94,6 +95,7 @@ class Solution:
             "objective": self.objective,
             "status": self.status.value,
             "message": self.message,
+            "warnings": list(self.warnings),
             "cost": self.cost if math.isfinite(self.cost) else None,
             "word": self.word,
             "family": self.family,

@@ -34,7 +34,17 @@ study_app = typer.Typer(help="Monte Carlo and batch studies (resumable).", no_ar
 design_app = typer.Typer(
     help="Underwater glider design analysis (chapter 7).", no_args_is_help=True
 )
+mission_app = typer.Typer(
+    help="Multi-leg missions on the Earth: plan waypoint routes, export vehicle files.",
+    no_args_is_help=True,
+)
+glide_app = typer.Typer(
+    help="Sailplane polars and final glide (MacCready, wind, arrival heading).",
+    no_args_is_help=True,
+)
 app.add_typer(plan_app, name="plan")
+app.add_typer(mission_app, name="mission")
+app.add_typer(glide_app, name="glide")
 app.add_typer(map_app, name="map")
 app.add_typer(study_app, name="study")
 app.add_typer(design_app, name="design")
