@@ -1,0 +1,179 @@
+"""Geography at the edges: WGS84 lat/lon, compass bearings, and a local metric projection.
+
+Inside glideplan positions are metres in a local plane (x east, y north) and headings are
+radians counter-clockwise from +x (east). Outside, positions are WGS84 latitude/longitude in
+decimal degrees and headings are compass bearings (degrees clockwise from true north); a wind
+is given by the compass direction it blows FROM. This module is the one place that converts.
+
+The local plane is an azimuthal equidistant projection about an origin (pyproj/PROJ `aeqd`
+on the WGS84 ellipsoid): distances and bearings from the origin are exact, and the scale
+error elsewhere grows as about (d / R_earth)^2 / 6 with the distance d from the origin
+(1e-3 at about 490 km).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from glideplan.errors import InvalidParameterError
+
+__all__ = [
+    "MAX_SCALE_DISTORTION",
+    "LocalProjection",
+    "check_latlon",
+    "compass_to_heading",
+    "geodesic_distance_bearing",
+    "heading_to_compass",
+    "wind_from_to_vector",
+]
+
+#: Largest relative scale error of the local projection accepted over a mission's extent.
+MAX_SCALE_DISTORTION = 1e-3
+
+
+def compass_to_heading(bearing_deg: ArrayLike) -> NDArray[np.float64] | float:
+    """Heading (rad, CCW from east, in (-pi, pi]) of a compass bearing (deg, CW from north).
+
+    heading = pi/2 - radians(bearing)
+    """
+    h = np.pi / 2 - np.radians(np.asarray(bearing_deg, dtype=float))
+    out = np.pi - np.mod(np.pi - h, 2 * np.pi)
+    return float(out) if out.ndim == 0 else out
+
+
+def heading_to_compass(heading_rad: ArrayLike) -> NDArray[np.float64] | float:
+    """Compass bearing (deg, CW from north, in [0, 360)) of a heading (rad, CCW from east).
+
+    bearing = degrees(pi/2 - heading) mod 360
+    """
+    b = np.mod(np.degrees(np.pi / 2 - np.asarray(heading_rad, dtype=float)), 360.0)
+    b = np.where(b >= 360.0, 0.0, b)  # -0 and round-off at 360
+    return float(b) if b.ndim == 0 else b
+
+
+def wind_from_to_vector(speed: float, from_deg: float) -> tuple[float, float]:
+    """(east, north) velocity (m/s) of a wind of `speed` (m/s) blowing FROM compass `from_deg`.
+
+    A wind from the north (0 deg) blows toward the south: (u, v) = -speed (sin b, cos b).
+    """
+    if not math.isfinite(speed) or speed < 0:
+        raise InvalidParameterError("wind speed", speed, "must be finite and >= 0 (m/s)")
+    if not math.isfinite(from_deg):
+        raise InvalidParameterError("wind direction", from_deg, "must be finite (degrees)")
+    b = math.radians(from_deg)
+    return -speed * math.sin(b), -speed * math.cos(b)
+
+
+def check_latlon(lat: ArrayLike, lon: ArrayLike, name: str = "position") -> tuple[
+    NDArray[np.float64], NDArray[np.float64]
+]:
+    """Return (lat, lon) as float arrays; latitudes in [-90, 90], longitudes in [-180, 360]."""
+    try:
+        la = np.asarray(lat, dtype=float)
+        lo = np.asarray(lon, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(
+            name, (lat, lon), "latitude/longitude must be numbers"
+        ) from None
+    if not (np.all(np.isfinite(la)) and np.all(np.isfinite(lo))):
+        raise InvalidParameterError(name, (lat, lon), "latitude/longitude must be finite")
+    if np.any(np.abs(la) > 90.0):
+        bad = float(la.flat[int(np.argmax(np.abs(la)))])
+        raise InvalidParameterError(f"{name} latitude", bad, "must be in [-90, 90] degrees")
+    if np.any(lo < -180.0) or np.any(lo > 360.0):
+        bad = float(lo.flat[int(np.argmax(np.abs(lo)))])
+        raise InvalidParameterError(f"{name} longitude", bad, "must be in [-180, 360] degrees")
+    return la, lo
+
+
+def _geod() -> Any:
+    from pyproj import Geod
+
+    return Geod(ellps="WGS84")
+
+
+def geodesic_distance_bearing(
+    lat1: ArrayLike, lon1: ArrayLike, lat2: ArrayLike, lon2: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Geodesic distance (m) and initial compass bearing (deg, [0, 360)) on WGS84, vectorised."""
+    la1, lo1 = check_latlon(lat1, lon1, "from")
+    la2, lo2 = check_latlon(lat2, lon2, "to")
+    az, _, dist = _geod().inv(lo1, la1, lo2, la2)
+    return np.asarray(dist, dtype=float), np.mod(np.asarray(az, dtype=float), 360.0)
+
+
+@dataclass(frozen=True)
+class LocalProjection:
+    """Azimuthal equidistant plane about (lat0, lon0): x east, y north, in metres (WGS84)."""
+
+    lat0: float
+    lon0: float
+
+    def __post_init__(self) -> None:
+        check_latlon(self.lat0, self.lon0, "projection origin")
+        if abs(self.lat0) > 89.9:
+            raise InvalidParameterError(
+                "projection origin latitude",
+                self.lat0,
+                "must be within 89.9 degrees of the equator",
+            )
+
+    @cached_property
+    def _proj(self) -> Any:
+        from pyproj import Proj
+
+        return Proj(
+            proj="aeqd", lat_0=self.lat0, lon_0=self.lon0, datum="WGS84", units="m"
+        )
+
+    def to_local(self, lat: ArrayLike, lon: ArrayLike) -> tuple[NDArray[np.float64], ...]:
+        """(x, y) in metres of WGS84 (lat, lon) in degrees; vectorised."""
+        la, lo = check_latlon(lat, lon)
+        lo = (lo + 180.0) % 360.0 - 180.0
+        x, y = self._proj(lo, la)
+        return np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+
+    def to_geographic(self, x: ArrayLike, y: ArrayLike) -> tuple[NDArray[np.float64], ...]:
+        """(lat, lon) in degrees (lon in [-180, 180)) of local (x, y) in metres; vectorised."""
+        xa = np.asarray(x, dtype=float)
+        ya = np.asarray(y, dtype=float)
+        if not (np.all(np.isfinite(xa)) and np.all(np.isfinite(ya))):
+            raise InvalidParameterError("local position", (x, y), "must be finite")
+        lo, la = self._proj(xa, ya, inverse=True)
+        lo = (np.asarray(lo, dtype=float) + 180.0) % 360.0 - 180.0
+        return np.asarray(la, dtype=float), lo
+
+    def scale_distortion(self, lat: ArrayLike, lon: ArrayLike) -> float:
+        """Largest relative scale error |k - 1| (meridian or parallel) at the given points."""
+        la, lo = check_latlon(lat, lon)
+        lo = (lo + 180.0) % 360.0 - 180.0
+        f = self._proj.get_factors(lo.ravel(), la.ravel())
+        h = np.asarray(f.meridional_scale, dtype=float)
+        k = np.asarray(f.parallel_scale, dtype=float)
+        worst = np.nanmax(np.abs(np.concatenate([h - 1.0, k - 1.0])))
+        return float(worst) if np.isfinite(worst) else 0.0
+
+    def check_extent(
+        self, lat: ArrayLike, lon: ArrayLike, max_distortion: float = MAX_SCALE_DISTORTION
+    ) -> float:
+        """Return the scale distortion over the points; raise if it exceeds `max_distortion`."""
+        d = self.scale_distortion(lat, lon)
+        if d > max_distortion:
+            raise InvalidParameterError(
+                "extent",
+                f"scale error {d:.2e}",
+                f"too large for one local projection (limit {max_distortion:g}, about "
+                f"{_extent_km(max_distortion):.0f} km from the first point): split the mission",
+            )
+        return d
+
+
+def _extent_km(max_distortion: float) -> float:
+    # aeqd on a sphere: k = c / sin c ~ 1 + c^2 / 6, so c = sqrt(6 * distortion).
+    return math.sqrt(6.0 * max_distortion) * 6371.0
