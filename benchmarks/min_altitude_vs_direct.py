@@ -41,6 +41,22 @@ LONG_CHAINS = (
 )
 
 
+# goals (units of R_stf) that tests/min_altitude/test_min_altitude_direct.py checked before
+# the suite was trimmed: always run before the random ones
+FIXED_GOALS = [
+    (1.0, 1.0, 0.0),
+    (-1.0, 0.5, math.pi),
+    (0.5, -0.2, -2.5),
+    (2.5, -3.0, 1.0),
+    (-0.3, 0.1, 0.4),
+    (0.0, -1.2, 3.0),
+    (-2.0, -2.0, -1.0),
+    (0.8, 0.6, 2.4),
+    (-1.5, 2.5, -0.6),
+    (0.2, 1.6, 1.2),
+]
+
+
 def random_goals(n: int, seed: int, radius: float) -> list[tuple[float, float, float]]:
     rng = np.random.default_rng(seed)
     r = radius * np.sqrt(rng.uniform(size=n))
@@ -85,7 +101,9 @@ def main() -> None:
     parser.add_argument("--radius", type=float, default=4.0, help="goal disc radius (R_stf)")
     args = parser.parse_args()
     glider = dg1001m()
-    goals = random_goals(args.n, args.seed, args.radius * glider.radius_stf)
+    r = glider.radius_stf
+    goals = [(x * r, y * r, h) for x, y, h in FIXED_GOALS]
+    goals += random_goals(args.n, args.seed, args.radius * r)
     rows = run_batch(check_goal, goals, processes=args.processes, description="goals")
     syn = np.array([r["synthesis"] for r in rows])
     excess = {}

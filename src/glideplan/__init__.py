@@ -60,12 +60,3 @@ __all__ = [
     "run_batch",
     "wrap_to_pi",
 ]
-
-
-def _load_planners() -> None:
-    from glideplan.planners import load_all
-
-    load_all()
-
-
-_load_planners()

@@ -12,7 +12,6 @@ note and a `batch_index` attribute naming the item.
 
 from __future__ import annotations
 
-import concurrent.futures as cf
 import os
 import time
 from collections.abc import Callable, Iterable, Sequence
@@ -91,6 +90,8 @@ def _run_local(fn: Callable[[T], R], items: list[T], bar: _Progress) -> list[R]:
 
 
 def _run_pool(fn: Callable[[T], R], items: list[T], processes: int, bar: _Progress) -> list[R]:
+    import concurrent.futures as cf  # imported where used (start-up time)
+
     results: list[Any] = [None] * len(items)
     with cf.ProcessPoolExecutor(max_workers=processes) as pool:
         index = {pool.submit(fn, item): i for i, item in enumerate(items)}

@@ -17,12 +17,13 @@ from typing import Any
 
 from glideplan.errors import InvalidParameterError
 from glideplan.objectives import get_objective
-from glideplan.pose import Pose
+from glideplan.pose import Pose, wrap_to_pi
 from glideplan.solution import Candidate, Solution, Status
 from glideplan.vehicles.base import Vehicle
 from glideplan.verify import EndpointError, endpoint_error
 
 __all__ = [
+    "POSITION_LIMIT_M",
     "PlannerOutput",
     "PlannerSpec",
     "Problem",
@@ -80,6 +81,12 @@ class PlannerSpec:
 
 _REGISTRY: list[PlannerSpec] = []
 
+# Start and goal coordinates must lie within this distance of the origin (m): beyond it the
+# planners' squared distances overflow or lose all precision (and the Earth is not flat).
+POSITION_LIMIT_M = 1e9
+# Two poses closer than this (times the vehicle's length scale, and in rad) are the same pose.
+_SAME_POSE_TOL = 1e-12
+
 
 def register_planner(
     name: str,
@@ -111,8 +118,30 @@ def register_planner(
 
 
 def registered_planners() -> tuple[PlannerSpec, ...]:
-    """All registered planners (importing `glideplan` registers the built-in ones)."""
+    """All registered planners (the built-in planner modules are imported on first use)."""
+    from glideplan.planners import load_all
+
+    load_all()
     return tuple(_REGISTRY)
+
+
+def _matching(vehicle: Vehicle, objective: str, method: str | None) -> list[PlannerSpec]:
+    """Registered planners for this vehicle and objective, importing planner modules as needed.
+
+    First the modules listed for the vehicle model (`glideplan.planners.PLANNER_MODULES`),
+    then, when they serve no planner for the request (or not its method), every module.
+    """
+    from glideplan.planners import load_all, load_for
+
+    def found() -> list[PlannerSpec]:
+        return [s for s in _REGISTRY if isinstance(vehicle, s.vehicle) and s.objective == objective]
+
+    load_for(type(vehicle))
+    matches = found()
+    if not matches or (method is not None and all(s.method != method for s in matches)):
+        load_all()
+        matches = found()
+    return matches
 
 
 def find_planner(vehicle: Vehicle, objective: str, method: str | None = None) -> PlannerSpec:
@@ -120,7 +149,7 @@ def find_planner(vehicle: Vehicle, objective: str, method: str | None = None) ->
     if not isinstance(vehicle, Vehicle):
         raise InvalidParameterError("vehicle", vehicle, "must be a glideplan vehicle model")
     get_objective(objective)
-    matches = [s for s in _REGISTRY if isinstance(vehicle, s.vehicle) and s.objective == objective]
+    matches = _matching(vehicle, objective, method)
     if not matches:
         raise InvalidParameterError(
             "objective", objective, f"no planner for vehicle model {vehicle.model!r}"
@@ -137,11 +166,60 @@ def find_planner(vehicle: Vehicle, objective: str, method: str | None = None) ->
 
 def _as_pose(name: str, value: Pose | tuple[float, float, float] | Any) -> Pose:
     if isinstance(value, Pose):
-        return value
-    try:
-        return Pose.from_array(value)
-    except InvalidParameterError as err:
-        raise InvalidParameterError(name, value, err.rule) from None
+        pose = value
+    else:
+        try:
+            pose = Pose.from_array(value)
+        except (InvalidParameterError, TypeError, ValueError) as err:
+            rule = getattr(err, "rule", "must be a Pose or three numbers (x, y, heading)")
+            raise InvalidParameterError(name, value, rule) from None
+    for coord in (pose.x, pose.y):
+        if abs(coord) > POSITION_LIMIT_M:
+            raise InvalidParameterError(
+                name, value, f"coordinates must lie within +-{POSITION_LIMIT_M:g} m"
+            )
+    return pose
+
+
+def _verification_scale(vehicle: Vehicle) -> float:
+    """The length (m) that scales the position tolerance: max(1, length scale), capped.
+
+    The cap is the largest supported turn radius, so that no parameter, however absurd,
+    can loosen the check beyond tolerance * 1e7 m.
+    """
+    from glideplan.vehicles.base import LENGTH_LIMITS_M
+
+    return min(max(1.0, vehicle.length_scale), LENGTH_LIMITS_M[1])
+
+
+def _same_pose_solution(
+    spec: PlannerSpec, objective: str, start: Pose, goal: Pose, vehicle: Vehicle
+) -> Solution:
+    """The solved zero-length path (cost 0) returned when the goal is the start."""
+    from glideplan.path import Path
+    from glideplan.segments import Straight
+
+    speed = float(getattr(vehicle, "speed", getattr(vehicle, "v_max", 1.0)))
+    path = Path((Straight(start, 0.0, speed=speed),), vehicle)
+    cand = Candidate("", "", 0.0, path, "feasible", {"zero_length": True})
+    return Solution(
+        Status.SOLVED,
+        spec.name,
+        objective,
+        start,
+        goal,
+        vehicle,
+        path,
+        0.0,
+        "",
+        "",
+        (cand,),
+        endpoint_error(path, goal),
+        "the goal is the start: the optimal path has zero length (cost 0)",
+        {"planner_seconds": 0.0},
+        {},
+        (),
+    )
 
 
 def plan(
@@ -160,8 +238,27 @@ def plan(
     The vehicle model and objective select the planner (see `planners()`); `method` chooses
     among several (e.g. "synthesis" or "direct"). `options` go to the planner; an unknown
     option is an error. The best candidate is verified by integrating its controls; its
-    endpoint error must be below `tolerance * max(1, vehicle.length_scale)` (m and rad).
+    endpoint error must be below `tolerance * min(max(1, vehicle.length_scale), 1e7 m)` in
+    position and `tolerance` in heading (rad). Start and goal coordinates must lie within
+    `POSITION_LIMIT_M` (1e9 m); vehicles refuse parameters outside their supported ranges.
+
+    Start equal to goal (positions within 1e-12 times that scale, headings within 1e-12 rad
+    modulo 2 pi): every planner gives the same answer without being called, a solved
+    zero-length path (one straight of length 0) with cost 0, empty word and family, and the
+    message "the goal is the start". (A full loop is never preferred: it costs more.)
+
+    Raises:
+        InvalidParameterError: `vehicle` is not a glideplan vehicle, a pose is not three
+            finite numbers, no planner matches, or an option is unknown.
     """
+    if not isinstance(vehicle, Vehicle):
+        raise InvalidParameterError(
+            "vehicle", vehicle, "must be a glideplan vehicle model (e.g. DubinsCar(1.0, 1.0))"
+        )
+    if not isinstance(tolerance, (int, float)) or isinstance(tolerance, bool):
+        raise InvalidParameterError("tolerance", tolerance, "must be a real number")
+    if not 0.0 < tolerance < 1.0:
+        raise InvalidParameterError("tolerance", tolerance, "must lie in (0, 1)")
     start_p, goal_p = _as_pose("start", start), _as_pose("goal", goal)
     objective = objective or vehicle.default_objective
     spec = find_planner(vehicle, objective, method)
@@ -174,6 +271,12 @@ def plan(
             f"is not an option of planner {spec.name!r} (known: {known})",
         )
     local_goal = goal_p.relative_to(start_p)
+    scale = _verification_scale(vehicle)
+    if (
+        math.hypot(local_goal.x, local_goal.y) <= _SAME_POSE_TOL * scale
+        and abs(float(wrap_to_pi(local_goal.heading))) <= _SAME_POSE_TOL
+    ):
+        return _same_pose_solution(spec, objective, start_p, goal_p, vehicle)
     problem = Problem(Pose(0.0, 0.0, 0.0), local_goal, vehicle, objective, start_p)
     t0 = time.perf_counter()
     out = spec.function(problem, **options)
@@ -194,7 +297,7 @@ def plan(
     )
     stats = {"planner_seconds": elapsed, **out.stats}
     feasible = [c for c in candidates if c.feasible]
-    tol = tolerance * max(1.0, vehicle.length_scale)
+    tol = tolerance * scale
     best: Candidate | None = None
     err: EndpointError | None = None
     rejected = 0

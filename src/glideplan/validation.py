@@ -20,6 +20,9 @@ __all__ = [
 
 
 def _as_float(name: str, value: Any) -> float:
+    # A bool or a string is not a number, although float() accepts both (True -> 1.0).
+    if isinstance(value, (bool, np.bool_, str, bytes)):
+        raise InvalidParameterError(name, value, "must be a real number (not a bool or text)")
     try:
         out = float(value)
     except (TypeError, ValueError):

@@ -11,6 +11,11 @@ chapter 4/5 vehicle classes.
   The dissertation gives no numeric v_max; the extremal controls stay in [v_stall, v_stf]
   (section 5.9), so any v_max >= v_stf gives the same optimum: we use 160 km/h (the right
   end of the digitised polar, Fig 5.4) and check that v_max = v_stf agrees.
+
+Tolerances: a collocation cost is accurate to about the change of cost between the last two
+meshes of the refinement (`mesh_error`, the engine's own error estimate: measured errors are
+0.1-0.5 of it here), plus the rounding of the printed reference (half a unit of its last
+digit).
 """
 
 from __future__ import annotations
@@ -23,6 +28,14 @@ from glideplan import Pose
 from glideplan.planners.direct import ControlSystem, solve_direct
 from glideplan.planners.direct.guesses import dubins_guesses
 from glideplan.verify import endpoint_error
+
+
+def mesh_error(res) -> float:
+    """The engine's error estimate: |cost on the last mesh - cost on the one before|."""
+    costs = res.stats["mesh_costs"]
+    assert len(costs) >= 2, costs
+    return abs(costs[-1] - costs[-2])
+
 
 # ----- chapter 4 ---------------------------------------------------------------------------
 V_MIN, U_MAX = 0.3, 1.0
@@ -42,8 +55,9 @@ def test_table_4_3_example():
     guesses = dubins_guesses(goal, [1.0, V_MIN], arc_speed=lambda r: r * U_MAX)
     res = solve_direct(goal, CH4, guesses=guesses)
     assert res.ok
-    assert res.cost == pytest.approx(2.875, abs=0.005)
-    assert res.cost == pytest.approx(2.874650, abs=1e-4)  # tighter: the true optimum
+    assert res.cost == pytest.approx(2.875, abs=0.005)  # Table 4.3 (+- its direct solve)
+    # tighter: the true optimum (closed form, tests/min_time) within the engine's accuracy
+    assert abs(res.cost - 2.8746504152) <= mesh_error(res)
     assert endpoint_error(res.path, goal).max < 1e-6
     # the fastest Dubins path at top speed takes longer (about twice, section 4.9)
     dubins = min(g.duration for g in dubins_guesses(goal, [1.0]))
@@ -105,11 +119,11 @@ def _solve_ch5(goal_units, system=CH5, mesh_tol=1e-5):
 def test_chapter_5_examples(goal_units, reference):
     goal, res = _solve_ch5(goal_units)
     assert res.ok
-    assert res.cost == pytest.approx(reference, abs=1e-3)
+    assert abs(res.cost - reference) <= mesh_error(res) + 5e-5  # reference: 4 decimals
     assert endpoint_error(res.path, goal).max < 1e-6 * R_STF
     assert res.controls["v"].max() <= V_STF + 1e-3  # extremals stay in [v_stall, v_stf]
 
 
 def test_chapter_5_v_max_does_not_matter():
     _, res = _solve_ch5(CASES[1][0], ch5_system(V_STF * 1.0001), mesh_tol=1e-4)
-    assert res.cost == pytest.approx(CASES[1][1], abs=1e-3)
+    assert abs(res.cost - CASES[1][1]) <= mesh_error(res) + 5e-5

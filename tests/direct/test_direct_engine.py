@@ -1,4 +1,9 @@
-"""The direct-method engine on cases with known answers (engine trust for chapters 4-6)."""
+"""The direct-method engine on cases with known answers (engine trust for chapters 4-6).
+
+Tolerances: a collocation cost is accurate to about the change of cost between the last two
+meshes of the refinement (`mesh_error`, the engine's own error estimate; measured errors are
+0.03-0.1 of it here); the answers are exact closed forms (the LSL length).
+"""
 
 from __future__ import annotations
 
@@ -43,6 +48,13 @@ def lsl_length(goal: Pose) -> float:
     return t + math.sqrt(p2) + q
 
 
+def mesh_error(res) -> float:
+    """The engine's error estimate: |cost on the last mesh - cost on the one before|."""
+    costs = res.stats["mesh_costs"]
+    assert len(costs) >= 2, costs
+    return abs(costs[-1] - costs[-2])
+
+
 SYSTEM = dubins_time_system()
 GUESS = Path((Straight(Pose(), 4.0), Arc(Pose(4.0, 0.0, 0.0), math.pi / 2, 3.0, 1)))
 
@@ -65,7 +77,9 @@ def test_lsl_reference_value():
 def test_minimum_time_dubins_car_matches_lsl(fixture, request):
     res = request.getfixturevalue(fixture)
     assert res.status == "solved" and res.ok
-    assert res.cost == pytest.approx(lsl_length(GOAL), abs=2e-5)
+    assert abs(res.cost - lsl_length(GOAL)) <= mesh_error(res)
+    # the re-timed path flies the same controls slightly stretched (retime_stretch < 1 %):
+    # its time is the collocation cost plus the stretch of the pieces, measured 6e-7
     assert res.path.duration == pytest.approx(lsl_length(GOAL), abs=5e-5)
     # L (turn at u = +1), S (u ~ 0), L: judged away from the switches (which smear)
     t, u = res.controls["t"], res.controls["u"]
@@ -107,9 +121,10 @@ def test_multistart_keeps_the_best_and_reports_every_start():
     assert len(res.starts) == 2
     costs = [c for c, _ in res.starts]
     assert res.stats["starts_tried"] == 2 and res.stats["starts_succeeded"] == 2
+    # the starts' costs are on the first mesh (40 intervals, before refinement)
     assert min(costs) == pytest.approx(lsl_length(GOAL), abs=1e-3)
     assert res.stats["best_start"] == 1
-    assert res.cost == pytest.approx(lsl_length(GOAL), abs=2e-5)
+    assert abs(res.cost - lsl_length(GOAL)) <= mesh_error(res)
 
 
 @pytest.mark.parametrize("scheme", ["hermite-simpson", "radau"])
@@ -128,7 +143,7 @@ def test_nonlinear_path_constraint_is_respected(scheme):
     slow = Path((Straight(Pose(), 4.0, 0.7), Arc(Pose(4.0, 0.0, 0.0), math.pi / 2, 3.0, 1, 0.7)))
     res = solve_direct(GOAL, sys2, guesses=[slow], scheme=scheme)
     assert res.ok
-    assert res.cost == pytest.approx(lsl_length(GOAL), abs=5e-5)
+    assert abs(res.cost - lsl_length(GOAL)) <= mesh_error(res)
     curvature = res.controls["u"] / res.controls["v"]
     assert np.max(np.abs(curvature)) < 1.0 + 1e-7  # at every output node
     assert endpoint_error(res.path, GOAL).max < 1e-7

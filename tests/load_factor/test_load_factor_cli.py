@@ -32,10 +32,10 @@ def test_json_has_common_fields_controls_and_arcs(capsys, tmp_path):
 @pytest.mark.parametrize(
     ("extra", "needle"),
     [
-        (["--n-max", "1"], "n_max"),
-        (["--v-min", "2.5"], "v_min"),
-        (["--v-max", "0.5"], "v_min"),
-        (["--l-over-d", "-3"], "l_over_d_max"),
+        (["--n-max", "1"], "--n-max"),
+        (["--v-min", "2.5"], "--v-min"),
+        (["--v-max", "0.5"], "--v-min"),
+        (["--l-over-d", "-3"], "--l-over-d"),
         (["--scheme", "euler"], "scheme"),
     ],
 )

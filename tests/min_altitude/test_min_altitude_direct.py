@@ -13,6 +13,7 @@ from glideplan.planners.min_altitude import (
     synthesize,
 )
 from glideplan.vehicles import dg1001m
+from glideplan.verify import integrate_path
 
 G = dg1001m()
 R = G.radius_stf
@@ -22,38 +23,40 @@ def test_direct_finds_the_stall_saturated_optimum_of_fig_5_5():
     goal = Pose(0.0, R, 2 * math.pi / 3)
     sol = plan(Pose(), goal, G, method="direct")
     assert sol.ok and sol.planner == "min_altitude_direct" and sol.family == "direct"
-    assert sol.cost == pytest.approx(19.4289, abs=1e-3)
+    # a flown path: no cheaper than the optimum to where it ends (synthesis, 1e-9: round-off
+    # and integration), above it by the collocation error (mesh_tol 1e-5; measured <= 2.3e-5
+    # relative over ten goals, benchmarks/min_altitude_vs_direct.py): 1e-4 relative allowed
+    optimum = synthesize(integrate_path(sol.path).end, G)[0].cost
+    assert optimum * (1 - 1e-9) <= sol.cost <= optimum * (1 + 1e-4)
+    assert optimum == pytest.approx(19.4289, abs=1e-4)  # the independent value, 4 decimals
     assert sol.word == "RLR"
-    assert sol.extras["dubins_cost"] == pytest.approx(21.8987, abs=1e-3)
+    assert sol.extras["dubins_cost"] == pytest.approx(21.8987, abs=5e-5)  # closed form
     smp = sol.path.sample(n=2000)
     at_stall = np.mean(smp.speed < G.v_stall + 0.01)
     assert 0.2 < at_stall < 0.35  # about a quarter of the flight at the stall speed
     assert smp.speed.max() <= G.v_stf + 0.05  # v_max = 44.4 m/s never binds
 
 
-# ten goals within 4 R_stf; the direct method starts only from Dubins paths at v_stf
-GOALS = [
-    (1.0, 1.0, 0.0),
-    (-1.0, 0.5, math.pi),
-    (0.5, -0.2, -2.5),
-    (2.5, -3.0, 1.0),
-    (-0.3, 0.1, 0.4),
-    (0.0, -1.2, 3.0),
-    (-2.0, -2.0, -1.0),
-    (0.8, 0.6, 2.4),
-    (-1.5, 2.5, -0.6),
-    (0.2, 1.6, 1.2),
-]
+# goals within 4 R_stf (BSB, BBB, B best); the direct method starts only from Dubins paths at
+# v_stf. Seven more goals moved to benchmarks/min_altitude_vs_direct.py (`make validate`),
+# which runs them with 120 random goals.
+GOALS = [(1.0, 1.0, 0.0), (0.5, -0.2, -2.5), (-0.3, 0.1, 0.4)]
 
 
 @pytest.mark.parametrize("goal", GOALS)
 def test_synthesis_is_never_worse_than_the_direct_method(goal):
+    """The direct answer is a real path: flown exactly it ends at `reached` (within its
+    endpoint error of the goal) losing `direct` metres. The synthesis to `reached` is the
+    optimum there, so it loses no more: the tolerance is the accuracy of the two numbers
+    (integration rtol 1e-11 on the end pose, the path's cost by quadrature), 1e-9 relative."""
     g = Pose(goal[0] * R, goal[1] * R, goal[2])
-    best = synthesize(g, G)[0]
     res = solve_min_altitude_direct(g, G, seeds="dubins", max_starts=4)
     assert res.ok
     direct = res.path.with_vehicle(G).cost("altitude")
-    assert best.cost <= direct * (1 + 1e-4), (best.family, best.word, best.cost, direct)
+    reached = integrate_path(res.path).end
+    assert reached.distance_to(g) < 1e-6 * R
+    best = synthesize(reached, G)[0]
+    assert best.cost <= direct * (1 + 1e-9), (best.family, best.word, best.cost, direct)
 
 
 def test_control_system_and_guesses():

@@ -25,12 +25,18 @@ R = G.radius_stf
 LAM_S = G.v_stf - G.v_ms
 
 # goal (units of R_stf), best family and word (dissertation), independent direct solve (m),
-# Dubins path at v_stf (m) -- issue 5
+# Dubins path at v_stf (m) -- issue 5. Both printed to 4 decimals (+-5e-5); the direct solves
+# converged to 1e-5 relative in cost (mesh_tol), so they hold the optimum within
+# 5e-5 + 1e-5 * cost (`direct_accuracy`); the Dubins costs are closed forms (+-5e-5 printing).
 EXAMPLES = [
     ((0.0, 1.0, 2 * math.pi / 3), "BBB", "RLR", 19.4289, 21.8987),
     ((-3.0, 4.0, 0.0), "BSB", "LSR", 25.8483, 27.5951),
     ((0.0, 2.0, 7 * math.pi / 4), "BSB", "LSL", 20.1252, 21.8353),
 ]
+
+
+def direct_accuracy(cost):
+    return 5e-5 + 1e-5 * cost
 
 
 def _goal(x, y, h):
@@ -42,10 +48,11 @@ def test_dissertation_examples(goal, family, word, direct, dubins):
     sol = plan(Pose(), _goal(*goal), G)
     assert sol.ok and sol.planner == "min_altitude" and sol.objective == "altitude"
     assert (sol.family, sol.word) == (family, word)
-    assert sol.cost == pytest.approx(direct, abs=1e-3)
-    assert sol.extras["dubins_cost"] == pytest.approx(dubins, abs=1e-3)
+    assert sol.cost == pytest.approx(direct, abs=direct_accuracy(direct))
+    assert sol.extras["dubins_cost"] == pytest.approx(dubins, abs=5e-5)
     assert sol.endpoint_error.max < 1e-6 * R
-    assert integrate_path(sol.path, "altitude").cost == pytest.approx(sol.cost, abs=1e-8)
+    # the core's DOP853 (rtol 1e-11) over <= ~50 steps: cost accurate to 50 * 2e-11 = 1e-9
+    assert integrate_path(sol.path, "altitude").cost == pytest.approx(sol.cost, rel=1e-9)
 
 
 def test_first_example_flies_at_the_stall_speed_for_a_quarter_of_the_flight():
@@ -63,7 +70,7 @@ def test_examples_in_a_rotated_and_translated_frame():
     start = Pose(-250.0, 80.0, 1.1)
     goal = _goal(-3.0, 4.0, 0.0).from_frame(start)
     sol = plan(start, goal, G)
-    assert sol.cost == pytest.approx(25.8483, abs=1e-3) and sol.word == "LSR"
+    assert sol.cost == pytest.approx(25.8483, abs=direct_accuracy(25.8483)) and sol.word == "LSR"
     assert sol.path.start.distance_to(start) < 1e-9 and sol.endpoint_error.max < 1e-6 * R
 
 

@@ -56,12 +56,12 @@ def test_direct_method(capsys):
 @pytest.mark.parametrize(
     ("flag", "value", "text"),
     [
-        ("--v-min", "0", "v_min"),
-        ("--v-min", "-1", "v_min"),
-        ("--v-min", "2", "v_min"),
-        ("--v-min", "nan", "v_min"),
-        ("--v-max", "inf", "v_max"),
-        ("--u-max", "0", "u_max"),
+        ("--v-min", "0", "--v-min"),
+        ("--v-min", "-1", "--v-min"),
+        ("--v-min", "2", "--v-min"),
+        ("--v-min", "nan", "--v-min"),
+        ("--v-max", "inf", "--v-max"),
+        ("--u-max", "0", "--u-max"),
         ("--method", "shooting", "method"),
     ],
 )

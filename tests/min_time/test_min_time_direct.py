@@ -1,4 +1,13 @@
-"""The synthesis against the independent direct method (method="direct")."""
+"""The synthesis against the independent direct method (method="direct").
+
+The direct answer is a real path: its controls, flown exactly (`integrate_path`), end at a
+pose within its endpoint error of the goal, in `direct.cost` seconds (the path's duration).
+The synthesis to that actual end pose is the optimum there, so it can be no slower: the only
+tolerance is the accuracy of the two numbers compared (integration rtol 1e-11 on the end
+pose, round-off on the durations), 1e-9 relative. Random goals (hundreds, with both start
+sets) are checked by `benchmarks/min_time_vs_direct.py` (`make validate`), which also runs
+the goals that were parametrised here before.
+"""
 
 import math
 
@@ -7,17 +16,20 @@ import pytest
 
 from glideplan import InvalidParameterError, Pose, VariableSpeedCar, plan
 from glideplan.planners.min_time.direct import classify_controls
+from glideplan.verify import integrate_path
 
-# 12 goals: the example, two special ones, and random goals in [-3, 3]^2 for r/R = 0.3, 0.5
-_RNG = np.random.default_rng(2024)
-GOALS = [(0.0, 2.0, 2 * math.pi / 3, 0.3), (-2.0, 0.0, math.pi, 0.3), (0.6, 0.9, math.pi, 0.5)]
-GOALS += [(0.148, 0.7861, 2.3468, 0.5)]  # optimum C B T B C, a type (4.26) leaves out
-GOALS += [
-    (float(x), float(y), float(h), rho)
-    for rho in (0.3, 0.5)
-    for x, y, h in zip(_RNG.uniform(-3, 3, 5), _RNG.uniform(-3, 3, 5),
-                       _RNG.uniform(-math.pi, math.pi, 5), strict=True)
-]  # fmt: skip
+# the example of Table 4.3, a goal behind the start, and the optimum C B T B C that the
+# types of (4.26) leave out; plus one random goal in [-3, 3]^2
+GOALS = [
+    (0.0, 2.0, 2 * math.pi / 3, 0.3),
+    (-2.0, 0.0, math.pi, 0.3),
+    (0.148, 0.7861, 2.3468, 0.5),
+    (2.97, -1.98, -3.11, 0.3),
+]
+# the flown path's time is the optimum plus the collocation error of a bang-bang control
+# (switches resolved to one mesh interval of >= 60, refinement to mesh_tol = 1e-5 in cost):
+# allowed 1e-3 relative, measured <= 4.2e-6 on these goals and 1e-4 in `make validate`
+DIRECT_ACCURACY = 1e-3
 
 
 @pytest.mark.parametrize("goal", GOALS, ids=lambda g: f"{g[0]:.2f},{g[1]:.2f},{g[2]:.2f},r{g[3]}")
@@ -29,16 +41,17 @@ def test_synthesis_never_above_direct(goal):
     direct = plan(Pose(), Pose(x, y, h), car, method="direct", synthesis_starts=0)
     assert syn.ok and direct.ok
     assert direct.endpoint_error.max < 1e-6
-    assert syn.cost <= direct.cost * (1 + 1e-4)
-    # collocation smears the switches, so it lands slightly above the exact optimum
-    assert direct.cost <= syn.cost * (1 + 1e-3) or direct.family != syn.family
+    reached = integrate_path(direct.path).end
+    assert plan(Pose(), reached, car).cost <= direct.cost * (1 + 1e-9)
+    assert direct.cost <= syn.cost * (1 + DIRECT_ACCURACY) or direct.family != syn.family
 
 
 def test_direct_from_synthesis_starts_matches_table_4_3():
     car = VariableSpeedCar(0.3, 1.0, 1.0)
     d = plan(Pose(), Pose(0.0, 2.0, 2 * math.pi / 3), car, method="direct")
     assert d.ok and d.planner == "time-optimal-direct"
-    assert d.cost == pytest.approx(2.874650, rel=1e-4)
+    # the optimum 2.8746504152 s (the closed form and SLSQP agree) within the direct accuracy
+    assert d.cost == pytest.approx(2.8746504152, rel=DIRECT_ACCURACY)
     assert (d.family, d.word) == ("CBSB", "LSR")
     assert d.stats["starts_tried"] >= 3
 

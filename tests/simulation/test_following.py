@@ -145,20 +145,24 @@ def test_fast_kernel_matches_reference_loop():
 
 def test_time_step_converged():
     """dt = 0.05 s (the study's default) against dt = 0.0125 s: mean final error within 3%
-    (steady wind; the same goals and wind directions) — the justification of the default."""
+    (steady wind; the same goals and wind directions) — the justification of the default,
+    as `simulation/closed_loop.py` states it. The case here is the one that converges
+    slowest (eps = 0.95, R_plan = 3.8 R0: 0.9% apart); benchmarks/validate_time_step.py
+    (`make validate`) checks four more cases and dt = 0.00625 s (all within 1.1%)."""
     goals = _goals(40, 5)
     dirs = np.random.default_rng(6).uniform(0, 2 * math.pi, 40)
-    for eps, r_plan in ((0.25, 1.0), (0.25, 1.5625), (0.95, 3.8)):
-        means = []
-        for dt in (0.05, 0.0125):
-            res = follow_paths(
-                PathArrays.dubins(goals, r_plan * R0),
-                SteadyDisturbance(eps * 20.0, dirs).stream(40, dt),
-                settings=FollowerSettings(dt=dt),
-                disturbance_bound=eps * 20.0,
-            )
-            means.append(np.nanmean(res.error))
-        assert means[0] == pytest.approx(means[1], rel=0.03), (eps, r_plan, means)
+    eps, r_plan = 0.95, 3.8
+    means = []
+    for dt in (0.05, 0.0125):
+        res = follow_paths(
+            PathArrays.dubins(goals, r_plan * R0),
+            SteadyDisturbance(eps * 20.0, dirs).stream(40, dt),
+            settings=FollowerSettings(dt=dt),
+            disturbance_bound=eps * 20.0,
+        )
+        assert res.failures == 0
+        means.append(np.nanmean(res.error))
+    assert means[0] == pytest.approx(means[1], rel=0.03), means
 
 
 def test_bad_input():

@@ -26,7 +26,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.integrate import solve_ivp
 
 from glideplan.errors import InvalidParameterError
 from glideplan.validation import check_positive
@@ -207,6 +206,8 @@ def locus_speed_history(
 
 def locus_speed_history_numeric(glider: LoadFactorGlider, p3: float, s: ArrayLike) -> np.ndarray:
     """(6.41) integrated numerically from v_lim (a check of the closed form)."""
+    from scipy.integrate import solve_ivp  # imported where used (start-up time)
+
     v_lim, _ = locus_stall_intersection(glider)
     ss = np.asarray(s, dtype=float)
 
@@ -229,6 +230,8 @@ def stall_load_factor_history(
     (1 + p2^2) (monotone for n >= 1). Stops at the corner (n = n_max), when n returns to n_lim
     or at s_max. Returns s, n, psi, theta and whether the corner was reached.
     """
+    from scipy.integrate import solve_ivp  # imported where used (start-up time)
+
     g = glider
     p3 = check_positive("p3", p3)
     p2 = g.p2

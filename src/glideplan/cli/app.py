@@ -1,14 +1,20 @@
 """The Typer application: command groups, one-line errors and exit codes.
 
-Exit codes: 0 success, 1 planning failure (no verified path), 2 bad input, 130 interrupted.
-Command modules in this package register on the sub-apps; `load_commands()` imports them.
+Exit codes: 0 success; 1 planning failure (no verified path: `PlanningError`); 2 bad input
+(`InvalidParameterError`, `ResultsFileError`, a usage error, a missing or unreadable file);
+3 internal error (any other exception is a bug: one line, and `glideplan --debug ...` prints
+the traceback); 130 interrupted. Command modules in this package register on the sub-apps;
+`load_commands()` imports them.
 """
 
 from __future__ import annotations
 
 import importlib
+import os
 import pkgutil
 import sys
+import traceback
+from typing import Any
 
 import typer
 
@@ -17,7 +23,7 @@ try:  # Typer >= 0.20 vendors Click as typer._click
 except ImportError:  # pragma: no cover - older Typer with external Click
     from click import exceptions as click_exc  # type: ignore[no-redef]
 
-from glideplan.errors import PlanningError, ResultsFileError
+from glideplan.errors import InvalidParameterError, PlanningError, ResultsFileError
 
 app = typer.Typer(
     name="glideplan",
@@ -42,6 +48,19 @@ glide_app = typer.Typer(
     help="Sailplane polars and final glide (MacCready, wind, arrival heading).",
     no_args_is_help=True,
 )
+
+
+@app.callback()
+def _global_options(
+    debug: bool = typer.Option(
+        False,
+        "--debug",
+        help="On an internal error print the full traceback (also GLIDEPLAN_DEBUG=1).",
+    ),
+) -> None:
+    """Optimal paths for gliding vehicles (Wolek 2015): plan, map, study, design, reproduce."""
+
+
 app.add_typer(plan_app, name="plan")
 app.add_typer(mission_app, name="mission")
 app.add_typer(glide_app, name="glide")
@@ -66,12 +85,83 @@ def _error(message: str, code: int) -> int:
     return code
 
 
+def _debug_requested(argv: list[str]) -> bool:
+    """`--debug` given before the command name (a global option), or GLIDEPLAN_DEBUG=1."""
+    if os.environ.get("GLIDEPLAN_DEBUG", "") not in ("", "0"):
+        return True
+    for arg in argv:
+        if arg == "--debug":
+            return True
+        if not arg.startswith("-"):
+            return False
+    return False
+
+
+def _usage_message(exc: click_exc.ClickException, root: Any, argv: list[str]) -> str:
+    """Click's message, reworded for options taking several values (`--goal X Y HEADING_DEG`)."""
+    param = getattr(exc, "param", None)
+    if param is None and isinstance(exc, click_exc.BadOptionUsage):
+        param = _find_option(root, argv, exc.option_name)
+    nargs = getattr(param, "nargs", 1)
+    if param is None or not isinstance(nargs, int) or nargs <= 1:
+        return exc.format_message()
+    flag = max(getattr(param, "opts", None) or [param.name or "value"], key=len)
+    metavar = getattr(param, "metavar", None) or " ".join(["VALUE"] * nargs)
+    head = f"{flag} needs {nargs} values ({metavar.lower()})"
+    detail = exc.format_message()
+    if isinstance(exc, click_exc.BadOptionUsage):
+        return head
+    return f"{head}: {detail.split(': ', 1)[-1]}"
+
+
+def _reflow(text: str | None) -> str | None:
+    """Join the lines of each help paragraph (Rich would keep docstring line breaks)."""
+    if not text:
+        return text
+    paragraphs = text.split("\n\n")
+    return "\n\n".join(
+        p if p.lstrip().startswith("\b") else " ".join(p.split()) for p in paragraphs
+    )
+
+
+def _polish(command: Any) -> Any:
+    """Help as users read it: whole paragraphs, flags without a `<bool>` value placeholder."""
+    command.help = _reflow(command.help)
+    for param in command.params:
+        if getattr(param, "is_flag", False) and param.metavar is None:
+            param.metavar = ""  # a flag takes no value: show none
+    make_help = command.get_help_option
+
+    def get_help_option(ctx: Any) -> Any:
+        option = make_help(ctx)
+        if option is not None and option.metavar is None:
+            option.metavar = ""
+        return option
+
+    command.get_help_option = get_help_option
+    for sub in getattr(command, "commands", {}).values():
+        _polish(sub)
+    return command
+
+
+def _find_option(root: Any, argv: list[str], flag: str) -> Any:
+    """The option `flag` of the (sub)command that `argv` names, or None."""
+    command = root
+    for arg in argv:
+        sub = getattr(command, "commands", {}).get(arg)
+        if sub is not None:
+            command = sub
+    return next((p for p in command.params if flag in getattr(p, "opts", ())), None)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the CLI with `argv` (default: sys.argv[1:]) and return the exit code."""
+    args = list(sys.argv[1:] if argv is None else argv)
+    debug = _debug_requested(args)
     load_commands()
-    command = typer.main.get_command(app)
+    command = _polish(typer.main.get_command(app))
     try:
-        result = command.main(args=argv, prog_name="glideplan", standalone_mode=False)
+        result = command.main(args=args, prog_name="glideplan", standalone_mode=False)
     except typer.Exit as exc:
         return int(exc.exit_code)
     except typer.Abort:
@@ -80,15 +170,28 @@ def main(argv: list[str] | None = None) -> int:
         typer.echo(exc.ctx.get_help() if exc.ctx else "")
         return 0
     except click_exc.ClickException as exc:
-        return _error(exc.format_message(), 2)
+        return _error(_usage_message(exc, command, args), 2)
     except KeyboardInterrupt:
         return _error("interrupted", 130)
     except PlanningError as exc:
         return _error(str(exc), 1)
-    except (ValueError, ResultsFileError, FileNotFoundError, IsADirectoryError) as exc:
+    except (InvalidParameterError, ResultsFileError) as exc:
+        if debug:
+            traceback.print_exc(file=sys.stderr)
         return _error(str(exc), 2)
-    except OSError as exc:
-        return _error(f"{exc.strerror or exc}: {exc.filename or ''}", 2)
+    except OSError as exc:  # a file or address the user gave cannot be used
+        if debug:
+            traceback.print_exc(file=sys.stderr)
+        where = f": {exc.filename}" if exc.filename else ""
+        return _error(f"{exc.strerror or exc}{where}", 2)
+    except Exception as exc:  # a bug, not bad input
+        if debug:
+            traceback.print_exc(file=sys.stderr)
+        detail = " ".join(str(exc).split()) or "(no message)"
+        return _error(
+            f"internal error: {type(exc).__name__}: {detail}; rerun with --debug for the traceback",
+            3,
+        )
     return int(result) if isinstance(result, int) else 0
 
 

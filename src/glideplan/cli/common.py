@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import pathlib
-from typing import Any
+import sys
+from collections.abc import Callable, Iterator
+from typing import Any, TypeVar
 
 import numpy as np
 import typer
@@ -15,7 +18,112 @@ from glideplan.pose import Pose
 from glideplan.solution import Solution
 from glideplan.validation import check_finite
 
-__all__ = ["emit_solution", "json_default", "parse_pose", "print_json", "write_json"]
+__all__ = [
+    "FIGURE_SUFFIXES",
+    "announce",
+    "check_figure_file",
+    "emit_solution",
+    "flag_names",
+    "json_default",
+    "parse_pose",
+    "print_json",
+    "print_warnings",
+    "solving",
+    "time_limit_option",
+    "write_json",
+]
+
+T = TypeVar("T")
+
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+@contextlib.contextmanager
+def flag_names(**names: str) -> Iterator[None]:
+    """Report a bad value under its command-line flag (`turn_radius` -> `--radius`)."""
+    try:
+        yield
+    except InvalidParameterError as exc:
+        if exc.name in names:
+            raise InvalidParameterError(names[exc.name], exc.value, exc.rule) from None
+        raise
+
+
+def check_figure_file(path: pathlib.Path | None, flag: str = "--plot") -> pathlib.Path | None:
+    """A figure file to write: not a directory, in an existing directory, a known format."""
+    if path is None:
+        return None
+    if path.is_dir():
+        raise InvalidParameterError(flag, str(path), "is a directory; give a file such as path.png")
+    if path.suffix.lower() not in FIGURE_SUFFIXES:
+        raise InvalidParameterError(
+            flag, str(path), f"must end in {', '.join(FIGURE_SUFFIXES)} (the figure format)"
+        )
+    parent = path.parent if str(path.parent) else pathlib.Path(".")
+    if not parent.is_dir():
+        raise InvalidParameterError(flag, str(path), f"directory {str(parent)!r} does not exist")
+    return path
+
+
+def solving(description: str, function: Callable[[], T]) -> T:
+    """Run `function()` with a spinner and the elapsed seconds on stderr (terminals only).
+
+    Nothing is drawn when stderr is not a terminal, so piped output and `--json` stay clean.
+    """
+    from rich.console import Console
+
+    console = Console(stderr=True)
+    if not console.is_terminal:
+        return function()
+    from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
+    with Progress(
+        SpinnerColumn(),
+        TextColumn("{task.description}"),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+    ) as progress:
+        progress.add_task(description, total=None)
+        return function()
+
+
+def time_limit_option(
+    vehicle: Any, objective: str, method: str | None, time_limit: float | None
+) -> dict[str, Any]:
+    """`{"time_limit": seconds}` for the planner that will run, or {} when not given.
+
+    Refused (naming `--time-limit`) when the value is not positive or the planner cannot
+    honour it (the synthesis methods finish in milliseconds and take no limit).
+    """
+    if time_limit is None:
+        return {}
+    from glideplan.planning import find_planner
+    from glideplan.validation import check_positive
+
+    seconds = check_positive("--time-limit", time_limit)
+    spec = find_planner(vehicle, objective, method)
+    if "time_limit" not in spec.options:
+        raise InvalidParameterError(
+            "--time-limit",
+            time_limit,
+            f"planner {spec.name!r} ({spec.method}) takes no time limit; use --method direct",
+        )
+    return {"time_limit": seconds}
+
+
+def print_warnings(warnings: tuple[str, ...] | list[str]) -> None:
+    """One line on stderr per warning: `glideplan: warning: ...`."""
+    for w in warnings:
+        print(f"glideplan: warning: {' '.join(str(w).split())}", file=sys.stderr)
+
+
+def announce(message: str, json_out: bool) -> None:
+    """A note such as `wrote FILE`: stdout, or stderr when stdout carries JSON."""
+    if json_out:
+        print(message, file=sys.stderr)
+    else:
+        typer.echo(message)
 
 
 def parse_pose(values: list[float] | tuple[float, ...] | None, name: str) -> Pose:
@@ -23,7 +131,7 @@ def parse_pose(values: list[float] | tuple[float, ...] | None, name: str) -> Pos
     if values is None:
         return Pose(0.0, 0.0, 0.0)
     if len(values) != 3:
-        raise InvalidParameterError(name, values, "needs three numbers: X Y HEADING_DEG")
+        raise InvalidParameterError(name, values, "needs 3 values (x y heading_deg)")
     x, y, h = (check_finite(f"{name} {c}", v) for c, v in zip("xyh", values, strict=True))
     return Pose(x, y, math.radians(h))
 
@@ -97,9 +205,11 @@ def emit_solution(
             table.add_row("endpoint error", f"{err.max:.2e}" if err else "n/a")
             table.add_row("candidates", str(len(solution.candidates)))
         Console().print(table)
+    print_warnings(solution.warnings)
     if plot_file is not None and solution.path is not None:
         from glideplan.plotting import plot_solution, save_figure
 
         save_figure(plot_solution(solution, candidates=plot_candidates), str(plot_file))
+        announce(f"wrote {plot_file}", json_out)
     if not solution.ok:
         raise PlanningError(f"{solution.planner}: {solution.status.value}: {solution.message}")

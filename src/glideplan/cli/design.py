@@ -6,42 +6,71 @@ parameter set comes from `--params FILE.toml` (`glideplan design init FILE.toml`
 
 from __future__ import annotations
 
-import contextlib
 import math
 import pathlib
-from collections.abc import Iterator
 from typing import Annotated, Any
 
 import numpy as np
 import typer
 
 from glideplan.cli.app import design_app
-from glideplan.cli.common import print_json
+from glideplan.cli.common import flag_names, print_json, print_warnings
 from glideplan.errors import InvalidParameterError
-from glideplan.validation import check_nonnegative, check_positive
+from glideplan.validation import check_finite, check_positive
 
 ParamsOpt = Annotated[
     pathlib.Path | None,
-    typer.Option("--params", help="TOML parameter set (see `glideplan design init`)."),
+    typer.Option(
+        "--params",
+        metavar="FILE",
+        help="TOML parameter set (see `glideplan design init`); fields it omits keep the "
+        "defaults, listed in a warning.",
+    ),
 ]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")]
 
 
-def _params(path: pathlib.Path | None):
-    from glideplan.design import DesignParameters, load_parameters
+def _params(path: pathlib.Path | None) -> Any:
+    """The parameter set of `--params FILE` (or the defaults); warn which fields defaulted."""
+    import tomllib
 
-    return DesignParameters() if path is None else load_parameters(path)
+    from glideplan.design import DesignParameters
+    from glideplan.design.params import defaulted_fields, loads_parameters, read_parameter_text
+
+    if path is None:
+        return DesignParameters()
+    text = read_parameter_text(path)
+    params = loads_parameters(text, source=str(path))
+    missing = defaulted_fields(tomllib.loads(text))
+    total = len(defaulted_fields({}))
+    if len(missing) == total:
+        print_warnings(
+            [f"{path} sets no parameters: all {total} are the defaults (see design init)"]
+        )
+    elif missing:
+        sections: dict[str, list[str]] = {}
+        for name in missing:
+            section, field = name.split(".", 1)
+            sections.setdefault(section, []).append(field)
+        full = set(sections) - {
+            n.split(".", 1)[0] for n in defaulted_fields({}) if n not in missing
+        }
+        parts = [
+            f"[{s}] all" if s in full else f"{s}.{{{', '.join(f)}}}" for s, f in sections.items()
+        ]
+        print_warnings([f"{path}: defaults used for {len(missing)} of {total}: {'; '.join(parts)}"])
+    return params
 
 
-@contextlib.contextmanager
-def _flags(**names: str) -> Iterator[None]:
-    """Report a bad value under its command-line flag (`volume_m3` -> `--volume-l`)."""
-    try:
-        yield
-    except InvalidParameterError as exc:
-        if exc.name in names:
-            raise InvalidParameterError(names[exc.name], exc.value, exc.rule) from None
-        raise
+def _bladder_volume_l(flag: str, litres: float, bladder: Any) -> float:
+    """A bladder volume (L) inside [0, bladder.max_volume_m3] of the parameter set."""
+    vmax_l = 1e3 * bladder.max_volume_m3
+    value = check_finite(flag, litres)
+    if not 0.0 <= value <= vmax_l:
+        raise InvalidParameterError(
+            flag, litres, f"must lie in [0, {vmax_l:g}] L (bladder.max_volume_m3 of the parameters)"
+        )
+    return value
 
 
 def _emit(title: str, columns: list[str], rows: list[list[Any]], data: Any, json_out: bool) -> None:
@@ -61,12 +90,14 @@ def _emit(title: str, columns: list[str], rows: list[list[Any]], data: Any, json
 
 @design_app.command("init")
 def init(
-    file: Annotated[pathlib.Path, typer.Argument(help="TOML file to write.")],
+    file: Annotated[pathlib.Path, typer.Argument(metavar="FILE", help="TOML file to write.")],
     force: Annotated[bool, typer.Option("--force", help="Overwrite an existing file.")] = False,
 ) -> None:
     """Write a template parameter set (the VTUG / FX23DV / Seaglider-like defaults)."""
     from glideplan.design import DesignParameters, save_parameters
 
+    if file.is_dir():
+        raise InvalidParameterError("FILE", str(file), "is a directory; give a file name")
     if file.exists() and not force:
         raise InvalidParameterError("FILE", str(file), "exists; pass --force to overwrite")
     save_parameters(DesignParameters(), file)
@@ -134,7 +165,8 @@ def dives(
     rows, data = [], []
     for v in vols:
         check_positive("--volume-l", v)
-    with _flags(depth_m="--depth-m"):
+        _bladder_volume_l("--volume-l", v, p.bladder)
+    with flag_names(depth_m="--depth-m"):
         for v in vols:
             v_m3 = litre_to_m3(v)
             for z in depths:
@@ -173,15 +205,15 @@ def valve(
         molar_flow_to_scfm,
         terminal_depth_rate_m_s,
     )
+    from glideplan.design.valves import ASSUMED_BLADDER_CURVE_NOTE
     from glideplan.units import litre_to_m3, psi_to_pa
 
     p = _params(params)
-    v = litre_to_m3(volume_l)
     b, h, env = p.bladder, p.hull, p.environment
+    v = litre_to_m3(_bladder_volume_l("--volume-l", volume_l, b))
     cd = h.drag_coefficient if drag_coefficient is None else drag_coefficient
-    check_nonnegative("--volume-l", volume_l)
     check_positive("--tank-psi", tank_psi)
-    with _flags(depth_m="--depth-m", drag_coefficient="--cd"):
+    with flag_names(depth_m="--depth-m", drag_coefficient="--cd"):
         zdot = float(terminal_depth_rate_m_s(b.net_weight_n(v, env), h.cross_section_m2, cd, env))
         ndot = float(air_exchange_rate_mol_s(v, zdot, env))
         data: dict[str, Any] = {
@@ -198,19 +230,23 @@ def valve(
                 "cv": float(deflator_cv(b, h, v, depth_m, env, drag_coefficient=cd)),
             }
         elif v < b.neutral_volume_m3:
-            kw = {"drag_coefficient": cd}
             data |= {
                 "valve": "inflator",
                 "tank_psia": tank_psi,
-                "cv": float(inflator_cv(b, h, v, psi_to_pa(tank_psi), env, **kw)),
+                "cv": float(inflator_cv(b, h, v, psi_to_pa(tank_psi), env, drag_coefficient=cd)),
                 "cv_as_printed_7_8": float(
-                    inflator_cv(b, h, v, psi_to_pa(tank_psi), env, choked="never", **kw)
+                    inflator_cv(
+                        b, h, v, psi_to_pa(tank_psi), env, choked="never", drag_coefficient=cd
+                    )
                 ),
             }
         else:
             data |= {"valve": "none (neutral: no flow needed)", "cv": 0.0}
-    rows = [[k, v] for k, v in data.items()]
+        data["note"] = ASSUMED_BLADDER_CURVE_NOTE
+    rows = [[k, v] for k, v in data.items() if k != "note"]
     _emit("Valve sizing (7.6-7.8)", ["quantity", "value"], rows, data, json_out)
+    if not json_out:
+        typer.echo(f"Note: {ASSUMED_BLADDER_CURVE_NOTE}.")
 
 
 @design_app.command("trim")
@@ -233,9 +269,8 @@ def trim(
         raise InvalidParameterError("--steps", steps, "must be >= 2")
     p = _params(params)
     lay = p.trim
-    v = litre_to_m3(bladder_l)
+    v = litre_to_m3(_bladder_volume_l("--bladder-l", bladder_l, p.bladder))
     stations = np.linspace(lay.moving_mass_min_station_m, lay.moving_mass_max_station_m, steps)
-    check_nonnegative("--bladder-l", bladder_l)
     theta = np.degrees(equilibrium_pitch_rad(lay, stations, v, p.environment))
     cgx, cgz = centre_of_gravity_m(lay, stations)
     cbx = float(centre_of_buoyancy_m(lay, v))
@@ -273,8 +308,17 @@ def glide(
     env, polar = p.environment, p.glide
     vols = volume_l or [0.5, 1.0, 1.5, 2.0, 2.5]
     rows, data = [], []
+    b = p.bladder
+    net_max_l = 1e3 * max(b.neutral_volume_m3, b.max_volume_m3 - b.neutral_volume_m3)
     for v in vols:
         check_positive("--volume-l", v)
+        if v > net_max_l:
+            raise InvalidParameterError(
+                "--volume-l",
+                v,
+                f"must be <= {net_max_l:g} L (the most net buoyancy the bladder gives: "
+                "max(neutral, max - neutral volume) of the parameters)",
+            )
     for v in vols:
         w = env.specific_weight_n_m3 * litre_to_m3(v)
         u, g = max_forward_speed(polar, w, env)

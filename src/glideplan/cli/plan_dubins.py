@@ -8,7 +8,13 @@ from typing import Annotated
 import typer
 
 from glideplan.cli.app import plan_app
-from glideplan.cli.common import emit_solution, parse_pose
+from glideplan.cli.common import (
+    check_figure_file,
+    emit_solution,
+    flag_names,
+    parse_pose,
+    solving,
+)
 
 
 @plan_app.command("dubins")
@@ -16,13 +22,18 @@ def plan_dubins_command(
     goal: Annotated[
         tuple[float, float, float],
         typer.Option(
-            "--goal", help="Goal pose X Y HEADING_DEG (m, m, degrees).", show_default=False
+            "--goal",
+            metavar="X Y HEADING_DEG",
+            help="Goal pose X Y HEADING_DEG (m, m, degrees).",
+            show_default=False,
         ),
     ],
     radius: Annotated[float, typer.Option("--radius", help="Minimum turn radius R0 (m).")],
     start: Annotated[
         tuple[float, float, float],
-        typer.Option("--start", help="Start pose X Y HEADING_DEG (m, m, degrees)."),
+        typer.Option(
+            "--start", metavar="X Y HEADING_DEG", help="Start pose X Y HEADING_DEG (m, m, degrees)."
+        ),
     ] = (0.0, 0.0, 0.0),
     speed: Annotated[float, typer.Option("--speed", help="Constant speed v (m/s).")] = 1.0,
     eps: Annotated[
@@ -37,24 +48,28 @@ def plan_dubins_command(
     ] = False,
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
     plot: Annotated[
-        pathlib.Path | None, typer.Option("--plot", help="Draw the path (and candidates) to FILE.")
+        pathlib.Path | None,
+        typer.Option("--plot", metavar="FILE", help="Draw the path (and candidates) to FILE."),
     ] = None,
 ) -> None:
     """Shortest Dubins path (dissertation 2.7) with the feasible radius of eq. 3.3 (--eps)."""
     from glideplan.planning import plan
-    from glideplan.validation import check_positive
     from glideplan.vehicles import DubinsCar
 
-    radius = check_positive("radius", radius)
-    speed = check_positive("speed", speed)
-    start_pose = parse_pose(start, "start")
-    goal_pose = parse_pose(goal, "goal")
-    vehicle = DubinsCar(speed=speed, turn_radius=radius)
-    solution = plan(
-        start_pose,
-        goal_pose,
-        vehicle,
-        "time" if time_objective else "length",
-        disturbance_ratio=eps,
-    )
+    plot = check_figure_file(plot)
+    start_pose = parse_pose(start, "--start")
+    goal_pose = parse_pose(goal, "--goal")
+    names = {"turn_radius": "--radius", "speed": "--speed", "speed/turn_radius": "--speed/--radius"}
+    with flag_names(**names, disturbance_ratio="--eps", start="--start", goal="--goal"):
+        vehicle = DubinsCar(speed=speed, turn_radius=radius)
+        solution = solving(
+            "planning (dubins)",
+            lambda: plan(
+                start_pose,
+                goal_pose,
+                vehicle,
+                "time" if time_objective else "length",
+                disturbance_ratio=eps,
+            ),
+        )
     emit_solution(solution, json_out, plot, plot_candidates=True)

@@ -8,7 +8,15 @@ from typing import Annotated
 import typer
 
 from glideplan.cli.app import plan_app
-from glideplan.cli.common import emit_solution, parse_pose
+from glideplan.cli.common import (
+    announce,
+    check_figure_file,
+    emit_solution,
+    flag_names,
+    parse_pose,
+    solving,
+    time_limit_option,
+)
 
 
 @plan_app.command("load-factor")
@@ -17,13 +25,14 @@ def plan_load_factor_command(
         tuple[float, float, float],
         typer.Option(
             "--goal",
+            metavar="X Y HEADING_DEG",
             help="Goal pose X Y HEADING_DEG (nondimensional lengths V^2/g, degrees).",
             show_default=False,
         ),
     ],
     start: Annotated[
         tuple[float, float, float],
-        typer.Option("--start", help="Start pose X Y HEADING_DEG."),
+        typer.Option("--start", metavar="X Y HEADING_DEG", help="Start pose X Y HEADING_DEG."),
     ] = (0.0, 0.0, 0.0),
     l_over_d: Annotated[
         float, typer.Option("--l-over-d", help="Maximum lift-to-drag ratio (L/D)max.")
@@ -42,10 +51,21 @@ def plan_load_factor_command(
     max_iterations: Annotated[
         int, typer.Option("--max-iterations", help="IPOPT iteration limit per solve.")
     ] = 1000,
+    time_limit: Annotated[
+        float | None,
+        typer.Option(
+            "--time-limit",
+            metavar="SECONDS",
+            help="Stop the direct solver after SECONDS and report what it has (direct only).",
+            show_default=False,
+        ),
+    ] = None,
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
     plot: Annotated[
         pathlib.Path | None,
-        typer.Option("--plot", help="Draw controls, path and control set (Fig 6.11 style)."),
+        typer.Option(
+            "--plot", metavar="FILE", help="Draw controls, path and control set (Fig 6.11 style)."
+        ),
     ] = None,
 ) -> None:
     """Minimum altitude loss, speed and load-factor controls, by the direct method (6.8).
@@ -57,21 +77,38 @@ def plan_load_factor_command(
     from glideplan.planning import plan
     from glideplan.vehicles.load_factor_glider import LoadFactorGlider
 
-    start_pose = parse_pose(start, "start")
-    goal_pose = parse_pose(goal, "goal")
-    glider = LoadFactorGlider(l_over_d_max=l_over_d, v_min=v_min, v_max=v_max, n_max=n_max)
-    solution = plan(
-        start_pose,
-        goal_pose,
-        glider,
-        "altitude",
-        "direct",
-        scheme=scheme,
-        max_starts=max_starts,
-        max_iterations=max_iterations,
-    )
+    plot = check_figure_file(plot)
+    start_pose = parse_pose(start, "--start")
+    goal_pose = parse_pose(goal, "--goal")
+    names = {
+        "l_over_d_max": "--l-over-d",
+        "v_min": "--v-min",
+        "v_max": "--v-max",
+        "n_max": "--n-max",
+        "scheme": "--scheme",
+        "max_starts": "--max-starts",
+        "max_iterations": "--max-iterations",
+    }
+    with flag_names(**names, start="--start", goal="--goal"):
+        glider = LoadFactorGlider(l_over_d_max=l_over_d, v_min=v_min, v_max=v_max, n_max=n_max)
+        options = time_limit_option(glider, "altitude", "direct", time_limit)
+        solution = solving(
+            "planning (load-factor, direct method)",
+            lambda: plan(
+                start_pose,
+                goal_pose,
+                glider,
+                "altitude",
+                "direct",
+                scheme=scheme,
+                max_starts=max_starts,
+                max_iterations=max_iterations,
+                **options,
+            ),
+        )
     if plot is not None and solution.ok:
         from glideplan.figures.ch6 import draw_solution
 
         draw_solution(solution, plot)
+        announce(f"wrote {plot}", json_out)
     emit_solution(solution, json_out, None)

@@ -8,7 +8,15 @@ from typing import Annotated
 import typer
 
 from glideplan.cli.app import plan_app
-from glideplan.cli.common import emit_solution, parse_pose
+from glideplan.cli.common import (
+    announce,
+    check_figure_file,
+    emit_solution,
+    flag_names,
+    parse_pose,
+    solving,
+    time_limit_option,
+)
 from glideplan.errors import InvalidParameterError
 
 VEHICLES = ("dg1001m",)
@@ -21,13 +29,18 @@ def plan_min_altitude_command(
         tuple[float, float, float],
         typer.Option(
             "--goal",
+            metavar="X Y HEADING_DEG",
             help="Goal pose X Y HEADING_DEG (m, or units of R_stf with --normalized; degrees).",
             show_default=False,
         ),
     ],
     start: Annotated[
         tuple[float, float, float],
-        typer.Option("--start", help="Start pose X Y HEADING_DEG (same units as --goal)."),
+        typer.Option(
+            "--start",
+            metavar="X Y HEADING_DEG",
+            help="Start pose X Y HEADING_DEG (same units as --goal).",
+        ),
     ] = (0.0, 0.0, 0.0),
     vehicle: Annotated[
         str | None,
@@ -63,6 +76,15 @@ def plan_min_altitude_command(
     method: Annotated[
         str, typer.Option("--method", help="synthesis (default) or direct (collocation + IPOPT).")
     ] = "synthesis",
+    time_limit: Annotated[
+        float | None,
+        typer.Option(
+            "--time-limit",
+            metavar="SECONDS",
+            help="Stop the direct solver after SECONDS and report what it has (direct only).",
+            show_default=False,
+        ),
+    ] = None,
     json_out: Annotated[
         bool,
         typer.Option(
@@ -72,7 +94,9 @@ def plan_min_altitude_command(
     ] = False,
     plot: Annotated[
         pathlib.Path | None,
-        typer.Option("--plot", help="Draw the candidates and the control history to FILE."),
+        typer.Option(
+            "--plot", metavar="FILE", help="Draw the candidates and the control history to FILE."
+        ),
     ] = None,
 ) -> None:
     """Minimum-altitude-loss path of a glider with a quadratic polar (dissertation ch. 5).
@@ -86,17 +110,32 @@ def plan_min_altitude_command(
     from glideplan.pose import Pose
 
     if method not in METHODS:
-        raise InvalidParameterError("method", method, f"must be one of {', '.join(METHODS)}")
-    glider = _glider(vehicle, polar, v_stall, v_max, u_max)
-    start_pose = parse_pose(start, "start")
-    goal_pose = parse_pose(goal, "goal")
+        raise InvalidParameterError("--method", method, f"must be one of {', '.join(METHODS)}")
+    plot = check_figure_file(plot)
+    names = {
+        "a": "--polar A",
+        "b": "--polar B",
+        "c": "--polar C",
+        "v_stall": "--v-stall",
+        "v_max": "--v-max",
+        "u_max": "--u-max",
+        "v_stall/u_max": "--v-stall/--u-max",
+        "v_max/u_max": "--v-max/--u-max",
+    }
+    with flag_names(**names):
+        glider = _glider(vehicle, polar, v_stall, v_max, u_max)
+    start_pose = parse_pose(start, "--start")
+    goal_pose = parse_pose(goal, "--goal")
     if normalized:
         k = glider.radius_stf
         start_pose = Pose(start_pose.x * k, start_pose.y * k, start_pose.heading)
         goal_pose = Pose(goal_pose.x * k, goal_pose.y * k, goal_pose.heading)
-    if goal_pose.relative_to(start_pose).as_array().tolist() == [0.0, 0.0, 0.0]:
-        raise InvalidParameterError("goal", goal, "must differ from the start")
-    solution = plan(start_pose, goal_pose, glider, "altitude", method)
+    with flag_names(start="--start", goal="--goal"):
+        options = time_limit_option(glider, "altitude", method, time_limit)
+        solution = solving(
+            f"planning (min-altitude, {method})",
+            lambda: plan(start_pose, goal_pose, glider, "altitude", method, **options),
+        )
     extra: dict[str, object] = {"length_unit": glider.radius_stf}
     if solution.ok and solution.path is not None:
         extra["profile"] = flight_profile(solution.path)
@@ -107,6 +146,7 @@ def plan_min_altitude_command(
             from glideplan.figures.ch5 import draw_solution
 
             draw_solution(solution, plot)
+            announce(f"wrote {plot}", json_out)
     emit_solution(solution, json_out, None, extra=extra)
 
 
@@ -126,17 +166,17 @@ def _glider(
             raise InvalidParameterError(given[0], extras[given[0]], "is only used with --polar")
         name = (vehicle or "dg1001m").lower()
         if name not in VEHICLES:
-            raise InvalidParameterError("vehicle", vehicle, f"must be one of {', '.join(VEHICLES)}")
+            raise InvalidParameterError(
+                "--vehicle", vehicle, f"must be one of {', '.join(VEHICLES)}"
+            )
         return dg1001m()
     if vehicle is not None:
         raise InvalidParameterError(
-            "vehicle", vehicle, "give either --vehicle or --polar, not both"
+            "--vehicle", vehicle, "give either --vehicle or --polar, not both"
         )
-    needed = {"v_stall": v_stall, "v_max": v_max, "u_max": u_max}
-    for name, value in needed.items():
-        if value is None:
-            raise InvalidParameterError(
-                name, None, f"--{name.replace('_', '-')} is needed with --polar"
-            )
+    if v_stall is None or v_max is None or u_max is None:
+        needed = {"--v-stall": v_stall, "--v-max": v_max, "--u-max": u_max}
+        missing = [name for name, value in needed.items() if value is None]
+        raise InvalidParameterError(missing[0], None, "is needed with --polar")
     a, b, c = polar
     return QuadraticPolarGlider(a, b, c, v_stall, v_max, u_max)

@@ -8,7 +8,14 @@ from typing import Annotated, Any
 import typer
 
 from glideplan.cli.app import plan_app
-from glideplan.cli.common import emit_solution, parse_pose
+from glideplan.cli.common import (
+    check_figure_file,
+    emit_solution,
+    flag_names,
+    parse_pose,
+    solving,
+    time_limit_option,
+)
 
 __all__ = ["control_history", "plan_time_optimal_command"]
 
@@ -41,7 +48,10 @@ def plan_time_optimal_command(
     goal: Annotated[
         tuple[float, float, float],
         typer.Option(
-            "--goal", help="Goal pose X Y HEADING_DEG (m, m, degrees).", show_default=False
+            "--goal",
+            metavar="X Y HEADING_DEG",
+            help="Goal pose X Y HEADING_DEG (m, m, degrees).",
+            show_default=False,
         ),
     ],
     v_min: Annotated[
@@ -57,7 +67,9 @@ def plan_time_optimal_command(
     ],
     start: Annotated[
         tuple[float, float, float],
-        typer.Option("--start", help="Start pose X Y HEADING_DEG (m, m, degrees)."),
+        typer.Option(
+            "--start", metavar="X Y HEADING_DEG", help="Start pose X Y HEADING_DEG (m, m, degrees)."
+        ),
     ] = (0.0, 0.0, 0.0),
     method: Annotated[
         str,
@@ -66,10 +78,21 @@ def plan_time_optimal_command(
             help="synthesis (the 72 candidate types of eq. 4.26) or direct (collocation).",
         ),
     ] = "synthesis",
+    time_limit: Annotated[
+        float | None,
+        typer.Option(
+            "--time-limit",
+            metavar="SECONDS",
+            help="Stop the direct solver after SECONDS and report what it has (direct only).",
+            show_default=False,
+        ),
+    ] = None,
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
     plot: Annotated[
         pathlib.Path | None,
-        typer.Option("--plot", help="Draw the path with its switching points to FILE (PNG)."),
+        typer.Option(
+            "--plot", metavar="FILE", help="Draw the path with its switching points to FILE (PNG)."
+        ),
     ] = None,
 ) -> None:
     """Minimum-time path with speed between v_min and v_max, |turn rate| <= u_max (chapter 4).
@@ -83,11 +106,24 @@ def plan_time_optimal_command(
     from glideplan.vehicles.variable_speed_car import VariableSpeedCar
 
     if method not in ("synthesis", "direct"):
-        raise InvalidParameterError("method", method, "must be synthesis or direct")
-    vehicle = VariableSpeedCar(v_min=v_min, v_max=v_max, u_max=u_max)
-    start_pose = parse_pose(start, "start")
-    goal_pose = parse_pose(goal, "goal")
-    solution = plan(start_pose, goal_pose, vehicle, "time", method)
+        raise InvalidParameterError("--method", method, "must be synthesis or direct")
+    plot = check_figure_file(plot)
+    start_pose = parse_pose(start, "--start")
+    goal_pose = parse_pose(goal, "--goal")
+    names = {
+        "v_min": "--v-min",
+        "v_max": "--v-max",
+        "u_max": "--u-max",
+        "v_max/u_max": "--v-max/--u-max",
+        "v_min/u_max": "--v-min/--u-max",
+    }
+    with flag_names(**names, start="--start", goal="--goal"):
+        vehicle = VariableSpeedCar(v_min=v_min, v_max=v_max, u_max=u_max)
+        options = time_limit_option(vehicle, "time", method, time_limit)
+        solution = solving(
+            f"planning (time-optimal, {method})",
+            lambda: plan(start_pose, goal_pose, vehicle, "time", method, **options),
+        )
     extra: dict[str, Any] = {
         "bang_radius": vehicle.bang_radius,
         "corner_radius": vehicle.corner_radius,

@@ -9,7 +9,13 @@ from typing import Annotated
 import typer
 
 from glideplan.cli.app import plan_app
-from glideplan.cli.common import emit_solution, parse_pose
+from glideplan.cli.common import (
+    check_figure_file,
+    emit_solution,
+    flag_names,
+    parse_pose,
+    solving,
+)
 
 
 @plan_app.command("wind")
@@ -18,6 +24,7 @@ def plan_wind_command(
         tuple[float, float, float],
         typer.Option(
             "--goal",
+            metavar="X Y HEADING_DEG",
             help="Goal pose over ground X Y HEADING_DEG (m, m, degrees).",
             show_default=False,
         ),
@@ -30,13 +37,16 @@ def plan_wind_command(
         tuple[float, float],
         typer.Option(
             "--wind",
+            metavar="SPEED DIRECTION_DEG",
             help="Wind SPEED (m/s) and DIRECTION_DEG it blows towards (counter-clockwise from +x).",
             show_default=False,
         ),
     ],
     start: Annotated[
         tuple[float, float, float],
-        typer.Option("--start", help="Start pose X Y HEADING_DEG (m, m, degrees)."),
+        typer.Option(
+            "--start", metavar="X Y HEADING_DEG", help="Start pose X Y HEADING_DEG (m, m, degrees)."
+        ),
     ] = (0.0, 0.0, 0.0),
     eps: Annotated[
         float,
@@ -48,7 +58,8 @@ def plan_wind_command(
     ] = 0.0,
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
     plot: Annotated[
-        pathlib.Path | None, typer.Option("--plot", help="Draw the ground path to FILE.")
+        pathlib.Path | None,
+        typer.Option("--plot", metavar="FILE", help="Draw the ground path to FILE."),
     ] = None,
 ) -> None:
     """Time-optimal convected Dubins path in a steady wind (dissertation 3.2, appendix A).
@@ -60,17 +71,21 @@ def plan_wind_command(
     from glideplan.validation import check_finite, check_in_range, check_nonnegative, check_positive
     from glideplan.vehicles import DubinsCarInWind
 
-    speed = check_positive("speed", speed)
-    radius = check_positive("radius", radius)
-    w = check_nonnegative("wind speed", wind[0])
-    direction = math.radians(check_finite("wind direction", wind[1]))
-    eps = check_in_range("eps", eps, 0.0, 1.0, high_open=True)
+    plot = check_figure_file(plot)
+    speed = check_positive("--speed", speed)
+    w = check_nonnegative("--wind SPEED", wind[0])
+    direction = math.radians(check_finite("--wind DIRECTION_DEG", wind[1]))
+    eps = check_in_range("--eps", eps, 0.0, 1.0, high_open=True)
     if w + eps * speed >= speed:
         raise InvalidParameterError(
-            "wind", w, f"wind speed + eps * speed must be < speed ({w:g} + {eps:g} * {speed:g})"
+            "--wind", w, f"wind speed + eps * speed must be < speed ({w:g} + {eps:g} * {speed:g})"
         )
-    vehicle = DubinsCarInWind(speed, radius, w, direction)
-    solution = plan(
-        parse_pose(start, "start"), parse_pose(goal, "goal"), vehicle, disturbance_ratio=eps
-    )
+    start_pose, goal_pose = parse_pose(start, "--start"), parse_pose(goal, "--goal")
+    names = {"turn_radius": "--radius", "speed": "--speed", "speed/turn_radius": "--speed/--radius"}
+    with flag_names(**names, wind_speed="--wind", start="--start", goal="--goal"):
+        vehicle = DubinsCarInWind(speed, radius, w, direction)
+        solution = solving(
+            "planning (wind)",
+            lambda: plan(start_pose, goal_pose, vehicle, disturbance_ratio=eps),
+        )
     emit_solution(solution, json_out, plot, plot_candidates=False)

@@ -1,16 +1,40 @@
-"""`glideplan reproduce`: regenerate the dissertation figures and tables this package covers."""
+"""`glideplan reproduce`: regenerate the dissertation figures and tables this package covers.
+
+Writes the files of each figure, `DIR/index.json` and `DIR/index.md` (rendered from the same
+rows). index.json is `{"figures": {ID: {"title", "files", "status", "rows": [ROW, ...]}}}`,
+ROW as `glideplan.figures.Comparison.to_dict()`. Exit 1 (one line naming them) when a
+figure's computation failed; the other figures are still written.
+"""
 
 from __future__ import annotations
 
 import os
 import pathlib
+import sys
 import time
-from typing import Annotated
+from collections import Counter
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
 from glideplan.cli.app import app
-from glideplan.cli.common import write_json
+from glideplan.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from glideplan.figures.registry import FigureReport, FigureSpec
+
+COMPUTED = "computed"
+
+
+@dataclass(frozen=True)
+class FigureResult:
+    """One figure's outcome: its report (None if it failed), status and time (s)."""
+
+    spec: FigureSpec
+    report: FigureReport | None
+    status: str
+    seconds: float
 
 
 def _relative(files: tuple[str, ...], out: pathlib.Path) -> list[str]:
@@ -25,32 +49,120 @@ def _relative(files: tuple[str, ...], out: pathlib.Path) -> list[str]:
     return rel
 
 
-def _index_markdown(results: list[tuple[object, object, float]], out: pathlib.Path) -> str:
+def _cell(value: object) -> str:
+    if value is None:
+        return "-"
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return str(value).replace("|", "/")
+
+
+def index_json(results: list[FigureResult], out: pathlib.Path) -> dict[str, Any]:
+    """The `index.json` document."""
+    figures = {}
+    for r in results:
+        rep = r.report
+        figures[r.spec.id] = {
+            "title": r.spec.title,
+            "files": _relative(rep.files, out) if rep else [],
+            "status": r.status,
+            "rows": [row.to_dict() for row in rep.rows] if rep else [],
+        }
+    return {"figures": figures}
+
+
+def index_markdown(document: dict[str, Any], results: list[FigureResult]) -> str:
+    """`index.md`, rendered from the rows of `index_json`."""
+    counts = Counter(row["verdict"] for fig in document["figures"].values() for row in fig["rows"])
     lines = [
         "# glideplan reproduce",
         "",
         "Each figure or table of A. Wolek, *Optimal Paths in Gliding Flight* (2015) that this",
-        "package regenerates, with our numbers next to the dissertation's.",
+        "package regenerates, with our numbers beside the values printed in the dissertation.",
+        "Verdicts are computed: numbers agree iff |ours - dissertation| <= tolerance (half a",
+        "unit of the last printed digit unless stated), words iff equal; 'not printed' when",
+        "the dissertation gives no value (an independent reference may still be shown).",
+        "",
+        f"Rows: {sum(counts.values())}; agrees {counts['agrees']}, differs "
+        f"{counts['differs']}, not printed {counts['not printed']}.",
         "",
     ]
-    for spec, report, seconds in results:
-        lines += [f"## {spec.id}: {spec.title}", "", f"*Dissertation:* {spec.dissertation}", ""]
-        files = _relative(report.files, out)
-        if files:
-            lines.append("Files: " + ", ".join(f"[{f}]({f})" for f in files))
+    for r in results:
+        fig = document["figures"][r.spec.id]
+        lines += [f"## {r.spec.id}: {r.spec.title}", "", f"*Dissertation:* {r.spec.dissertation}"]
+        lines += ["", f"*Status:* {fig['status']} ({r.seconds:.1f} s)", ""]
+        if fig["files"]:
+            lines += ["Files: " + ", ".join(f"[{f}]({f})" for f in fig["files"]), ""]
+            lines += [f"![{r.spec.id}]({f})\n" for f in fig["files"] if f.endswith(".png")]
+        if fig["rows"]:
+            lines += [
+                "| quantity | unit | ours | dissertation | source | reference | reference "
+                "source | tolerance | verdict | note |",
+                "|---|---|---|---|---|---|---|---|---|---|",
+            ]
+            for row in fig["rows"]:
+                cells = (
+                    row["quantity"],
+                    row["unit"],
+                    row["ours"],
+                    row["dissertation"],
+                    row["dissertation_source"],
+                    row["reference"],
+                    row["reference_source"],
+                    row["tolerance"],
+                    f"**{row['verdict']}**" if row["verdict"] == "differs" else row["verdict"],
+                    row["note"],
+                )
+                lines.append("| " + " | ".join(_cell(c) for c in cells) + " |")
             lines.append("")
-            for f in files:
-                if f.endswith(".png"):
-                    lines += [f"![{spec.id}]({f})", ""]
-        if report.rows:
-            lines += ["| quantity | glideplan | dissertation | note |", "|---|---|---|---|"]
-            for r in report.rows:
-                lines.append(f"| {r.quantity} | {r.ours} | {r.dissertation} | {r.note} |")
-            lines.append("")
-        if report.notes:
-            lines += [report.notes, ""]
-        lines += [f"*({seconds:.1f} s)*", ""]
+        if r.report is not None and r.report.notes:
+            lines += [r.report.notes, ""]
     return "\n".join(lines)
+
+
+def _selected(only: str | None) -> list[FigureSpec]:
+    from glideplan.figures import figure_specs, get_figure
+
+    specs = figure_specs()
+    if only is None:
+        return specs
+    ids = [i.strip() for i in only.split(",") if i.strip()]
+    if not ids:
+        known = ", ".join(s.id for s in specs)
+        raise InvalidParameterError("only", only, f"is an empty list of ids (known: {known})")
+    chosen = []
+    for i in ids:
+        spec = get_figure(i)  # unknown ids: InvalidParameterError listing the known ones
+        if spec not in chosen:
+            chosen.append(spec)
+    return chosen
+
+
+def run_figures(
+    specs: list[FigureSpec], out: pathlib.Path, *, full: bool = False, quiet: bool = False
+) -> list[FigureResult]:
+    """Run each figure; a figure that raises is recorded as failed, the others still run."""
+    from rich.console import Console
+
+    from glideplan.figures import run_figure
+
+    console = Console(stderr=True, quiet=quiet)
+    results = []
+    for spec in specs:
+        t0 = time.perf_counter()
+        report: FigureReport | None
+        with console.status(f"{spec.id}: {spec.title}"):
+            try:
+                report = run_figure(spec, out, full=full)
+                status = COMPUTED
+            except Exception as exc:  # a failed figure is reported, not hidden
+                report = None
+                status = f"failed: {type(exc).__name__}: {' '.join(str(exc).split())}"
+        seconds = time.perf_counter() - t0
+        results.append(FigureResult(spec, report, status, seconds))
+        mark = "[green]done[/green]" if report else "[red]FAILED[/red]"
+        console.print(f"{mark} {spec.id} ({seconds:.1f} s)")
+    return results
 
 
 @app.command("reproduce")
@@ -59,43 +171,40 @@ def reproduce(
         "out/reproduce"
     ),
     only: Annotated[
-        str | None, typer.Option("--only", help="Comma-separated ids, e.g. fig3.1,table4.3.")
+        str | None,
+        typer.Option("--only", help="Comma-separated ids, e.g. fig3.1,table4.3 (see --list)."),
     ] = None,
     full: Annotated[
         bool, typer.Option("--full", help="Full-size studies instead of the reduced defaults.")
     ] = False,
     list_ids: Annotated[bool, typer.Option("--list", help="List the figure ids and exit.")] = False,
 ) -> None:
-    """Regenerate figures and tables into OUT, with index.md beside the dissertation's numbers."""
-    from rich.console import Console
-
-    from glideplan.figures import figure_specs, get_figure, load_all, run_figure
+    """Regenerate figures and tables into OUT, with index.json and index.md comparing our
+    numbers with the dissertation's (computed verdicts). Exit 1 if a figure failed."""
+    from glideplan.cli.common import write_json
+    from glideplan.figures import figure_specs, load_all
 
     load_all()
     if list_ids:
         for spec in figure_specs():
             typer.echo(f"{spec.id}\t{spec.title}")
         return
-    specs = [get_figure(i) for i in only.split(",") if i.strip()] if only else figure_specs()
-    console = Console(stderr=True)
-    results = []
-    for spec in specs:
-        t0 = time.perf_counter()
-        with console.status(f"{spec.id}: {spec.title}"):
-            report = run_figure(spec, out, full=full)
-        results.append((spec, report, time.perf_counter() - t0))
-        console.print(f"[green]done[/green] {spec.id} ({time.perf_counter() - t0:.1f} s)")
-    (out / "index.md").write_text(_index_markdown(results, out.resolve()))
-    write_json(
-        {
-            spec.id: {
-                "title": spec.title,
-                "files": _relative(rep.files, out.resolve()),
-                "rows": [r.__dict__ for r in rep.rows],
-                "seconds": sec,
-            }
-            for spec, rep, sec in results
-        },
-        out / "index.json",
+    specs = _selected(only)
+    if out.exists() and not out.is_dir():
+        raise InvalidParameterError("out", str(out), "must be a directory")
+    out.mkdir(parents=True, exist_ok=True)
+    results = run_figures(specs, out, full=full)
+    document = index_json(results, out.resolve())
+    write_json(document, out / "index.json")
+    (out / "index.md").write_text(index_markdown(document, results))
+    counts = Counter(row["verdict"] for fig in document["figures"].values() for row in fig["rows"])
+    failed = [r for r in results if r.report is None]
+    typer.echo(
+        f"wrote {len(results) - len(failed)} of {len(results)} figure(s) to {out}: "
+        f"{sum(counts.values())} rows, {counts['agrees']} agree, {counts['differs']} differ, "
+        f"{counts['not printed']} not printed"
     )
-    typer.echo(f"wrote {len(results)} figure(s) and {out / 'index.md'}")
+    if failed:
+        names = "; ".join(f"{r.spec.id} ({r.status.removeprefix('failed: ')})" for r in failed)
+        print(f"glideplan: error: {len(failed)} figure(s) failed: {names}", file=sys.stderr)
+        raise typer.Exit(1)

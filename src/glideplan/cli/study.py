@@ -10,6 +10,7 @@ import typer
 
 from glideplan.cli.app import study_app
 from glideplan.errors import InvalidParameterError
+from glideplan.studies.cross_track import MAX_DT_FRACTION
 
 
 def _values(name: str, items: list[str] | None) -> tuple[float, ...] | None:
@@ -41,7 +42,24 @@ def _values(name: str, items: list[str] | None) -> tuple[float, ...] | None:
     return tuple(out)
 
 
-@study_app.command("cross-track")
+TABLE_COLUMNS = (
+    ("case", "steady (constant wind) or unsteady (Dryden gusts)"),
+    ("eps", "disturbance bound delta_max / v"),
+    ("R0'/R0", "feasible turn radius over R0, (1 + eps)^2 (3.3)"),
+    ("E(R)", "mean final cross-track error / R0 at the smallest and largest R_plan simulated "
+             "(the header shows that R_plan)"),
+    ("R near R0'", "the simulated R_plan nearest R0'/R0"),
+    ("E(R near R0')", "mean final cross-track error / R0 at that R_plan"),
+    ("knee", "smallest R_plan whose mean error lies within 10% of the curve's drop above its "
+             "minimum (where the curve flattens)"),
+    ("failures", "runs that never crossed the finish line (left out of the means)"),
+)  # fmt: skip
+
+
+@study_app.command(
+    "cross-track",
+    epilog="Table columns: " + "; ".join(f"{name}: {text}" for name, text in TABLE_COLUMNS) + ".",
+)
 def cross_track_command(
     out: Annotated[
         pathlib.Path,
@@ -77,15 +95,32 @@ def cross_track_command(
     ] = None,
     chunk: Annotated[int, typer.Option("--chunk", help="Samples per work unit.")] = 100,
     speed: Annotated[float, typer.Option("--speed", help="Airspeed v (m/s).")] = 20.0,
-    umax: Annotated[float, typer.Option("--umax", help="Turn-rate bound u_max (rad/s).")] = 0.3,
-    dt: Annotated[float, typer.Option("--dt", help="Simulation time step (s).")] = 0.05,
+    u_max: Annotated[float, typer.Option("--u-max", help="Turn-rate bound u_max (rad/s).")] = 0.3,
+    dt: Annotated[
+        float,
+        typer.Option(
+            "--dt",
+            help=f"Simulation time step (s); at most {MAX_DT_FRACTION:g} / u_max, a tenth of "
+            "the time to turn one radian.",
+        ),
+    ] = 0.05,
+    gust_scale: Annotated[
+        float,
+        typer.Option(
+            "--gust-scale",
+            help="SENSITIVITY OPTION, not the dissertation's model: multiply the Dryden gust "
+            "RMS (eps v) by F; the saturation stays eps v. 1 = the model as stated.",
+            metavar="F",
+        ),
+    ] = 1.0,
     json_out: Annotated[bool, typer.Option("--json", help="Print the summary as JSON.")] = False,
-    progress: Annotated[bool, typer.Option(help="Show a progress bar.")] = True,
+    progress: Annotated[
+        bool, typer.Option("--progress/--no-progress", help="Show a progress bar.")
+    ] = True,
 ) -> None:
     """Mean final cross-track error vs planning radius, steady and Dryden disturbances (3.4).
 
     Results are written as work units finish; rerunning the command resumes a stopped study.
-
     A results file written with another configuration is refused, never mixed.
     """
     from glideplan.cli.common import print_json
@@ -109,8 +144,9 @@ def cross_track_command(
         cases=cases[case],
         seed=seed,
         speed=speed,
-        max_turn_rate=umax,
+        max_turn_rate=u_max,
         chunk=chunk,
+        gust_scale=gust_scale,
         follower=follower,
     )
     result = run_cross_track_study(
@@ -122,25 +158,35 @@ def cross_track_command(
     from rich.console import Console
     from rich.table import Table
 
-    table = Table(title=f"final cross-track error / R0 ({out / 'summary.json'})")
-    for col in ("case", "eps", "R0'/R0", "E(1)", "E(R0')", "E(max)", "knee", "failures"):
+    title = f"final cross-track error / R0 ({out / 'summary.json'})"
+    if gust_scale != 1.0:
+        title += f", gust scale {gust_scale:g} (sensitivity)"
+    table = Table(title=title)
+    r_first, r_last = min(config.r_plan), max(config.r_plan)
+    headers = ("case", "eps", "R0'/R0", f"E({r_first:g})", "R near R0'", "E(R near R0')",
+               f"E({r_last:g})", "knee", "failures")  # fmt: skip
+    for col in headers:
         table.add_column(col, justify="right")
+
+    def fmt(v: float | None) -> str:
+        return "n/a" if v is None else f"{v:.3f}"
+
     for c in config.cases:
         for e in config.eps:
-            pts = [s for s in result.summary if s["case"] == c and s["eps"] == e]
+            pts = sorted(
+                (s for s in result.summary if s["case"] == c and s["eps"] == e),
+                key=lambda s: s["r_plan"],
+            )
             if not pts:
                 continue
             rf = (1 + e) ** 2
             near = min(pts, key=lambda s: abs(s["r_plan"] - rf))
-
-            def fmt(v: float | None) -> str:
-                return "n/a" if v is None else f"{v:.3f}"
-
             table.add_row(
                 c,
                 f"{e:g}",
                 f"{rf:.2f}",
                 fmt(pts[0]["mean_error"]),
+                f"{near['r_plan']:g}",
                 fmt(near["mean_error"]),
                 fmt(pts[-1]["mean_error"]),
                 f"{result.knees[c][e]:.2f}",

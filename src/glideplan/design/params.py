@@ -4,8 +4,12 @@ Every field carries its SI unit in its name (`max_pressure_pa`, `diameter_m`, ..
 file may instead give a field in an edge unit by swapping the suffix, e.g.
 `max_pressure_psi = 3442`, `internal_volume_in3 = 183`, `max_volume_l = 5`,
 `diameter_in = 9`, `empty_mass_lb = 8.6`, `temperature_degc = 20`; it is converted to SI on
-load. Unknown sections or keys, bad values and malformed TOML raise `InvalidParameterError`
-naming the field (`section.key`).
+load. Unknown sections or keys, bad values (a boolean or text where a number is expected:
+TOML `true` is not 1.0), malformed TOML and files that are not UTF-8 text raise
+`InvalidParameterError` naming the field (`section.key`) or the file.
+
+A file may give only some fields; the others keep the defaults of `DesignParameters()`.
+`defaulted_fields` lists them (the CLI prints them as a warning, so nothing is silent).
 """
 
 from __future__ import annotations
@@ -31,11 +35,13 @@ from glideplan.units import deg_to_rad, inch3_to_m3, inch_to_m, kmh_to_ms, litre
 
 __all__ = [
     "DesignParameters",
+    "defaulted_fields",
     "dumps_parameters",
     "load_parameters",
     "loads_parameters",
     "parameters_from_dict",
     "parameters_to_dict",
+    "read_parameter_text",
     "save_parameters",
 ]
 
@@ -101,14 +107,36 @@ def _to_plain(value: Any) -> Any:
     return arr.tolist()
 
 
+def _contains_bool(value: Any) -> bool:
+    if isinstance(value, bool):
+        return True
+    if isinstance(value, (list, tuple)):
+        return any(_contains_bool(v) for v in value)
+    return False
+
+
+def _check_type(section: str, key: str, field_type: str, value: Any) -> None:
+    """Text where the field is text, numbers (never booleans) everywhere else."""
+    if field_type == "str":
+        if not isinstance(value, str):
+            raise InvalidParameterError(f"{section}.{key}", value, "must be text")
+        return
+    if _contains_bool(value):
+        raise InvalidParameterError(
+            f"{section}.{key}", value, "must be a number, not a boolean (true/false)"
+        )
+
+
 def _section_kwargs(section: str, table: Any) -> dict[str, Any]:
     cls = _SECTIONS[section]
     if not isinstance(table, Mapping):
         raise InvalidParameterError(section, table, "must be a TOML table ([section])")
-    names = {f.name for f in dataclasses.fields(cls)}
+    types = {f.name: str(f.type) for f in dataclasses.fields(cls)}
+    names = set(types)
     kwargs: dict[str, Any] = {}
     for key, value in table.items():
         field, val = key, value
+        _check_type(section, key, types.get(key, "float"), value)
         if key not in names:
             for edge, (si, conv) in _EDGE_UNITS.items():
                 if key.endswith(edge) and key[: -len(edge)] + si in names:
@@ -159,6 +187,27 @@ def parameters_from_dict(data: Mapping[str, Any]) -> DesignParameters:
     return DesignParameters(**sections)
 
 
+def _given_field(section: str, key: str) -> str:
+    """The SI field a TOML key sets (`max_volume_l` -> `max_volume_m3`)."""
+    names = {f.name for f in dataclasses.fields(_SECTIONS[section])}
+    if key in names:
+        return key
+    for edge, (si, _) in _EDGE_UNITS.items():
+        if key.endswith(edge) and key[: -len(edge)] + si in names:
+            return key[: -len(edge)] + si
+    return key
+
+
+def defaulted_fields(data: Mapping[str, Any]) -> tuple[str, ...]:
+    """`section.field` of every parameter that `data` (parsed TOML) leaves at its default."""
+    out: list[str] = []
+    for section, cls in _SECTIONS.items():
+        table = data.get(section, {}) if isinstance(data, Mapping) else {}
+        given = {_given_field(section, k) for k in table} if isinstance(table, Mapping) else set()
+        out += [f"{section}.{f.name}" for f in dataclasses.fields(cls) if f.name not in given]
+    return tuple(out)
+
+
 def parameters_to_dict(params: DesignParameters) -> dict[str, dict[str, Any]]:
     """Nested plain dict (SI field names) of a parameter set, ready for TOML or JSON."""
     out: dict[str, dict[str, Any]] = {}
@@ -177,14 +226,30 @@ def loads_parameters(text: str, source: str = "<string>") -> DesignParameters:
     return parameters_from_dict(data)
 
 
-def load_parameters(path: str | pathlib.Path) -> DesignParameters:
-    """Read a TOML parameter file."""
+def read_parameter_text(path: str | pathlib.Path) -> str:
+    """The text of a TOML parameter file; a missing, unreadable or binary file is refused."""
     p = pathlib.Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
+        raw = p.read_bytes()
     except OSError as exc:
         raise InvalidParameterError("params", str(p), f"cannot be read: {exc.strerror}") from None
-    return loads_parameters(text, source=str(p))
+    try:
+        if b"\x00" in raw:
+            raise UnicodeDecodeError("utf-8", raw, raw.index(b"\x00"), raw.index(b"\x00") + 1, "")
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InvalidParameterError(
+            "params",
+            str(p),
+            f"is not a TOML text file (not UTF-8 text: byte {raw[exc.start]:#04x} at offset "
+            f"{exc.start})",
+        ) from None
+
+
+def load_parameters(path: str | pathlib.Path) -> DesignParameters:
+    """Read a TOML parameter file (fields it does not give keep their defaults)."""
+    p = pathlib.Path(path)
+    return loads_parameters(read_parameter_text(p), source=str(p))
 
 
 _HEADER = """\

@@ -29,6 +29,7 @@ from glideplan.units import pa_to_psi
 from glideplan.validation import check_positive
 
 __all__ = [
+    "ASSUMED_BLADDER_CURVE_NOTE",
     "N_SWAGELOK",
     "STANDARD_PRESSURE_PA",
     "STANDARD_TEMPERATURE_K",
@@ -42,6 +43,12 @@ __all__ = [
     "scfm_to_molar_flow",
 ]
 
+ASSUMED_BLADDER_CURVE_NOTE = (
+    "the bladder pressure curve p_blad(V) is assumed (unpublished; Fig 7.5b gives only its "
+    "shape): valve sizes that depend on it (the deflator's dp = p_blad(V), the inflator's "
+    "p2 = p_amb + p_blad(V)) are illustrative"
+)
+"""Say this wherever a result uses `Bladder.elastic_pressure_pa` (the default curve)."""
 N_SWAGELOK = 22.67  # (7.8): q in std ft^3/min, p in psia, T in degR
 STANDARD_TEMPERATURE_K = 288.7056  # 60 degF
 STANDARD_PRESSURE_PA = 101_325.0  # 14.696 psia

@@ -8,16 +8,24 @@ import pathlib
 import numpy as np
 
 from glideplan.figures._common import pyplot, save_png
-from glideplan.figures.registry import Comparison, FigureReport, reproducible
+from glideplan.figures.registry import FigureReport, Printed, compare, reproducible, yes_no
 
 # Fig 2.2: endpoints normalised by R0; (a) far away, (b) close enough for a CCC path.
 FIG_2_2_CASES = {
     "a": ((-3.0, 2.0, 3 * math.pi / 2), "x1 = (-3, 2, 3pi/2)"),
     "b": ((1.0, 1.0, math.pi), "x1 = (1, 1, pi)"),
 }
-FIG_2_2_TEXT = {
-    "a": "far away: only candidates containing an S segment are feasible",
-    "b": "closer: reachable by a turn-turn-turn candidate (e.g. RLR)",
+# What section 2.7 prints about Fig 2.2: in (a) "only the candidates containing an S segment
+# are feasible" (no CCC word), in (b) the goal "can be reached by a turn-turn-turn (e.g. RLR)".
+PRINTED_CCC = {
+    "a": Printed("none", "section 2.7, Fig 2.2(a)", word=True),
+    "b": Printed("yes", "section 2.7, Fig 2.2(b)", word=True),
+}
+# Hand derivations of the optimal lengths (units of R0), independent of the planner:
+# (a) LSL: quarter turns and a straight: sqrt(5) + 3 pi / 2; (b) RLR: 3 pi - 2 acos(-1/4).
+HAND_LENGTH = {
+    "a": ("LSL", math.sqrt(5.0) + 1.5 * math.pi),
+    "b": ("RLR", 3.0 * math.pi - 2.0 * math.acos(-0.25)),
 }
 
 
@@ -53,31 +61,56 @@ def fig2_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
             )
         ax.legend(fontsize=8, loc="best")
         ax.set_title(f"({key}) {name}")
+        ax.set_xlabel("x / R0")
+        ax.set_ylabel("y / R0")
+        ax.set_aspect("equal", adjustable="datalim")
         ax.grid(alpha=0.3)
-        words = " ".join(c.word for c in feasible)
-        ccc = [c.word for c in feasible if "S" not in c.word]
+        ccc = [c for c in feasible if "S" not in c.word]
+        ccc_words = ", ".join(c.word for c in ccc) or "none"
+        ours = ccc_words if key == "a" else yes_no(bool(ccc))
+        centre = _centre_distance(goal)
+        note = ""
+        if key == "a" and ccc:
+            longest = max(feasible, key=lambda c: c.cost)
+            note = (
+                f"{ccc_words} is feasible too: the outer turning circles' centres are "
+                f"{centre:.2f} R0 < 4 R0 apart; it is the longest candidate "
+                f"({ccc[0].cost:.3f} R0, longest {longest.word} {longest.cost:.3f}), "
+                "so the figure leaves it out"
+            )
         rows.append(
-            Comparison(
+            compare(
+                f"({key}) {name}: a CCC candidate is feasible"
+                + (" (which)" if key == "a" else ""),
+                ours,
+                PRINTED_CCC[key],
+                note=note,
+            )
+        )
+        rows.append(
+            compare(
                 f"({key}) feasible candidates",
-                f"{len(feasible)}: {words}",
-                FIG_2_2_TEXT[key],
-                ""
-                if key == "b" or not ccc
-                else (
-                    f"{', '.join(ccc)} is also feasible here (outer circle centres "
-                    f"{_centre_distance(goal):.2f} R0 < 4 R0 apart) but longest, with "
-                    "outer arcs over pi, so never optimal; the dissertation omits it"
-                ),
+                " ".join(c.word for c in feasible),
+                note=f"{len(feasible)} of 6",
             )
         )
+        hand_word, hand_length = HAND_LENGTH[key]
+        rows.append(compare(f"({key}) optimal word", sol.word, reference=hand_word,
+                            reference_source="hand derivation"))  # fmt: skip
         rows.append(
-            Comparison(
-                f"({key}) optimal word, length / R0",
-                f"{sol.word} {sol.cost:.4f}",
-                "not stated",
-                f"endpoint error {sol.endpoint_error.max:.1e}",
+            compare(
+                f"({key}) optimal length",
+                sol.cost,
+                unit="R0",
+                reference=hand_length,
+                reference_source=(
+                    "hand derivation: sqrt(5) + 3 pi/2" if key == "a" else
+                    "hand derivation: 3 pi - 2 acos(-1/4)"
+                ),
+                note=f"|ours - reference| = {abs(sol.cost - hand_length):.1e}; endpoint error "
+                f"{sol.endpoint_error.max:.1e}",
             )
-        )
+        )  # fmt: skip
     path = save_png(fig, out_dir / "fig2_2_dubins_candidates.png")
     return FigureReport(files=(path.name,), rows=tuple(rows))
 

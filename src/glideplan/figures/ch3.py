@@ -8,7 +8,7 @@ import pathlib
 import numpy as np
 
 from glideplan.figures._common import pyplot, save_png
-from glideplan.figures.registry import Comparison, FigureReport, reproducible
+from glideplan.figures.registry import FigureReport, Printed, compare, reproducible
 
 HEADINGS = {"a": (0.0, "0"), "b": (2 * math.pi / 3, "2pi/3"), "c": (math.pi, "pi")}
 
@@ -19,7 +19,8 @@ FIG_3_1_REGIONS = {
     "c": ["LSL", "RLR", "LRL", "RSR", "LSR", "RSL", "LSR", "RSL"],
 }
 
-# REFERENCE_NOTES 4.4 spot values of T at eps = 0.25 (derived, not printed in the dissertation).
+# REFERENCE_NOTES 4.4 spot values of T at eps = 0.25 (derived there, two decimals; the
+# dissertation prints no value of T): an independent reference, not a printed value.
 T_SPOTS = [
     ((3.0, 3.0, 2 * math.pi / 3), 1.07),
     ((1.0, 2.0, 0.0), 1.42),
@@ -55,12 +56,17 @@ def fig3_1(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
         plot_partition(pmap, ax)
         ours = _canonical([r.label for r in partition_regions(pmap)])
         theirs = _canonical(FIG_3_1_REGIONS[key])
+        missing = sorted(set(theirs) - set(ours))
+        extra = sorted(set(ours) - set(theirs))
         rows.append(
-            Comparison(
+            compare(
                 f"({key}) psi1 = {name}: labelled regions",
                 ", ".join(ours),
-                ", ".join(theirs),
-                "same regions" if ours == theirs else "DIFFERENT",
+                Printed(", ".join(theirs), f"Fig 3.1({key}) region labels", word=True),
+                note=""
+                if ours == theirs
+                else f"{len(ours)} regions found, {len(theirs)} printed; printed only: "
+                f"{', '.join(missing) or '-'}; found only: {', '.join(extra) or '-'}",
             )
         )
     path = save_png(fig, out_dir / "fig3_1_partitions.png", dpi=110)
@@ -100,22 +106,22 @@ def fig3_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
         near = np.nanmax(np.where(ok & (r <= 4.0), tmap.ratio, np.nan))
         far = np.nanmedian(np.where(ok & (r >= 5.5), tmap.ratio, np.nan))
         rows.append(
-            Comparison(
-                f"({key}) psi1 = {name}: max T within 4 R0 / median T beyond 5.5 R0",
-                f"{near:.2f} / {far:.2f}",
-                "large (colour cap 5) / close to 1",
-                "",
-            )
-        )
+            compare(f"({key}) psi1 = {name}: largest T within 4 R0", float(near),
+                    note="section 3.3: T rises sharply within about 4 R0 (no value printed)")
+        )  # fmt: skip
+        rows.append(
+            compare(f"({key}) psi1 = {name}: median T beyond 5.5 R0", float(far),
+                    note="section 3.3: small far from the origin (no value printed)")
+        )  # fmt: skip
     for (x, y, psi1), ref in T_SPOTS:
         ours = float(tradespace_ratio(x, y, psi1, 0.25))
-        note = "" if abs(ours - ref) <= 0.005 else "notes' value is rounded up (OMPL: 1.4149)"
         rows.append(
-            Comparison(
+            compare(
                 f"T({x:g}, {y:g}, {psi1:.4f}, 0.25)",
-                f"{ours:.4f}",
-                f"{ref:.2f} (REFERENCE_NOTES 4.4, derived)",
-                note,
+                ours,
+                reference=ref,
+                reference_source="REFERENCE_NOTES 4.4 (derived, 2 decimals)",
+                note=f"ours - reference = {ours - ref:+.4f}",
             )
         )
     path = save_png(fig, out_dir / "fig3_2_tradespace.png", dpi=110)

@@ -1,228 +1,94 @@
 """Chapter 4 figures: control set, hodograph, Table 4.3 / Figs 4.7-4.8 and the goal grids.
 
-Normalised model of section 4.9: v_max = 1, u_max = 1 (R = 1), v_min = 0.3 (r = 0.3).
+Normalised model of section 4.9: v_max = 1, u_max = 1 (R = 1), v_min = 0.3 (r = 0.3). The
+computations beyond `plan()` (Table 4.3's rows re-solved in the dissertation's
+parameterisation) live in `glideplan.studies.min_time_table`.
 """
 
 from __future__ import annotations
 
 import math
 import pathlib
-from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
-from glideplan.figures.registry import Comparison, FigureReport, reproducible
+from glideplan.figures._common import pyplot, save_png
+from glideplan.figures.registry import (
+    Comparison,
+    FigureReport,
+    Printed,
+    compare,
+    reproducible,
+    yes_no,
+)
 from glideplan.pose import Pose
+from glideplan.studies.min_time_table import (
+    EXAMPLE_GOAL,
+    WEAK_TYPES,
+    descent_from,
+    dissertation_minimum,
+    example_car,
+)
 
-__all__ = ["DISSERTATION_TABLE_4_3", "EXAMPLE_GOAL", "dissertation_minimum", "table_4_3"]
+__all__ = ["EXAMPLE_GOAL", "TABLE_4_3"]
 
-EXAMPLE_GOAL = Pose(0.0, 2.0, 2.0 * math.pi / 3.0)
 PI = math.pi
 
-# Table 4.3 as printed: (group, sequence, orientation, cost)
-DISSERTATION_TABLE_4_3 = (
-    ("TST", "BCBSBCB", "RSR", 11.278),
-    ("TST", "BCBSB", "RSL", 6.615),
-    ("TST", "CBSBCB", "RSR", 11.359),
-    ("TST", "CBSBC", "LSL", 3.176),
-    ("TST", "CBSB", "LSL", 2.883),
-    ("TST", "CBSB", "LSR", 2.875),
-    ("TTTT", "BCBB", "LR", 2.887),
-    ("TTTT", "BTB", "RLR", 3.219),
-    ("umax", "CBBCB", "LL", 8.378),
-    ("Dubins", "BBB", "RLR", 5.980),
-    ("Dubins", "BSB", "LSR", 9.378),
-    ("Dubins", "BBB", "RSL", 8.015),
-    ("Dubins", "BSB", "RSR", 14.078),
+# Table 4.3 as printed: (group, sequence, orientation, time as printed)
+TABLE_4_3 = (
+    ("TST", "BCBSBCB", "RSR", "11.278"),
+    ("TST", "BCBSB", "RSL", "6.615"),
+    ("TST", "CBSBCB", "RSR", "11.359"),
+    ("TST", "CBSBC", "LSL", "3.176"),
+    ("TST", "CBSB", "LSL", "2.883"),
+    ("TST", "CBSB", "LSR", "2.875"),
+    ("TTTT", "BCBB", "LR", "2.887"),
+    ("TTTT", "BTB", "RLR", "3.219"),
+    ("umax", "CBBCB", "LL", "8.378"),
+    ("Dubins", "BBB", "RLR", "5.980"),
+    ("Dubins", "BSB", "LSR", "9.378"),
+    ("Dubins", "BBB", "RSL", "8.015"),
+    ("Dubins", "BSB", "RSR", "14.078"),
 )
-# printed orientation -> ours, where the printed one cannot be right (see the notes)
+TABLE_SOURCE = "Table 4.3"
+# Printed types that cannot be right, and the type we compare with instead (with why).
 _TYPO = {
     "BSB LSR": ("BSB LSL", "printed as LSR, but the Dubins LSR path does not exist for this "
                 "goal; the LSL path has this time"),
     "BBB RSL": ("BSB RSL", "printed as BBB RSL (an RSL word is a BSB path)"),
 }  # fmt: skip
-
-Move = tuple[str, int, float]
-
-# The dissertation's own parameterisation (4.27) of the rows that are not extremals:
-# name -> (moves(p), bounds, inequality constraints g(p) >= 0)
-_WEAK: dict[str, tuple[Callable[[np.ndarray], list[Move]], list, list]] = {
-    "CBSB LSL": (
-        lambda p: [("C", 1, p[0]), ("B", 1, p[1]), ("S", 0, p[2]), ("B", 1, p[3])],
-        [(0, PI), (0, PI), (0, 10), (0, PI)],
-        [lambda p: p[1] - p[3]],
-    ),
-    "CBSBC LSL": (
-        lambda p: [("C", 1, p[0]), ("B", 1, p[1]), ("S", 0, p[2]), ("B", 1, p[1]),
-                   ("C", 1, p[3])],
-        [(0, PI), (0, PI), (0, 10), (0, PI)],
-        [],
-    ),
-    "BCBB LR": (
-        lambda p: [("B", 1, p[0]), ("C", 1, p[1]), ("B", 1, p[2]), ("B", -1, p[3])],
-        [(0, PI), (0, 2 * PI), (0, PI), (0, PI)],
-        [lambda p: p[2] - p[0], lambda p: p[2] - p[3], lambda p: 2 * PI - 2 * p[2] - p[1]],
-    ),
-    "BTB RLR": (
-        lambda p: [("B", -1, p[0]), ("B", 1, p[1]), ("C", 1, p[2]), ("B", 1, p[1]),
-                   ("B", -1, p[3])],
-        [(0, PI), (0, PI), (0, 2 * PI), (0, PI)],
-        [lambda p: p[1] - p[0], lambda p: p[1] - p[3], lambda p: 2 * PI - 2 * p[1] - p[2]],
-    ),
-    "CBSBCB RSR": (
-        lambda p: [("C", -1, p[0]), ("B", -1, p[1]), ("S", 0, p[2]), ("B", -1, p[1]),
-                   ("C", -1, PI), ("B", -1, p[3])],
-        [(0, PI), (0, PI), (0, 10), (0, PI)],
-        [lambda p: p[1] - p[3]],
-    ),
-}  # fmt: skip
-_WEAK_NAMES = {
-    "CBSB LSL": ("beta1", "gamma1", "L", "alpha2"),
-    "CBSBC LSL": ("beta1", "gamma1=alpha2", "L", "beta2"),
-    "BCBB LR": ("alpha1", "beta1", "gamma1", "alpha2"),
-    "BTB RLR": ("gamma1", "alpha2=gamma2", "beta2", "alpha3"),
-    "CBSBCB RSR": ("beta1", "gamma1=alpha2", "L", "gamma2"),
+PRINTED_COUNT = Printed("13", "section 4.9: 13 of 72 candidate paths converged")
+PRINTED_RATIO = Printed(
+    "2", "section 4.9: the Dubins path at maximum speed takes about twice as long"
+)
+PRINTED_RADII = {
+    "R": Printed("1", "section 4.9: R = 1", "m"),
+    "r": Printed("0.3", "section 4.9: r = 0.3", "m"),
 }
 
 
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-def _car():
-    from glideplan.vehicles.variable_speed_car import VariableSpeedCar
-
-    return VariableSpeedCar(0.3, 1.0, 1.0)
+def _printed_time(type_name: str) -> Printed | None:
+    """The printed time of a type of Table 4.3 (our reading of the two typos included)."""
+    for _, seq, orient, value in TABLE_4_3:
+        name = f"{seq} {orient}"
+        if _TYPO.get(name, (name, ""))[0] == type_name:
+            return Printed(value, f"{TABLE_SOURCE}, row {name}", "s")
+    return None
 
 
-def _path_of(moves: list[Move]):
-    from glideplan.path import Path
-    from glideplan.segments import Arc, Straight
-
-    segs, pose = [], Pose()
-    for lab, d, x in moves:
-        if x <= 1e-12:
-            continue
-        seg = (
-            Straight(pose, x, 1.0)
-            if lab == "S"
-            else Arc(pose, x, 1.0 if lab == "B" else 0.3, d, 1.0 if lab == "B" else 0.3, lab)
-        )
-        segs.append(seg)
-        pose = seg.end
-    return Path(tuple(segs), _car())
-
-
-def _bound_text(value: float) -> str:
-    for k, text in ((0.0, "0"), (0.5, "pi/2"), (1.0, "pi"), (2.0, "2 pi")):
-        if abs(value - k * PI) < 1e-9:
-            return text
-    return f"{value:.4g}"
-
-
-def dissertation_minimum(name: str, starts: int = 20, seed: int = 0) -> dict[str, Any] | None:
-    """Re-solve one row of Table 4.3 the dissertation's way: (4.27) in its parameterisation.
-
-    Multi-start SLSQP from uniform samples of the parameter box (deterministic seed); returns
-    the lowest converged cost, its parameters and the bounds active there.
-    """
-    from scipy.optimize import minimize
-
-    from glideplan.planners.min_time.geometry import compose
-
-    build, bounds, ineq = _WEAK[name]
-    goal = EXAMPLE_GOAL
-
-    def resid(p: np.ndarray) -> np.ndarray:
-        pos, h = compose(build(p), 0.3, ())
-        return np.array([pos[0] - goal.x, pos[1] - goal.y, (h - goal.heading + PI) % (2 * PI) - PI])
-
-    cons = [{"type": "eq", "fun": resid}] + [{"type": "ineq", "fun": g} for g in ineq]
-    rng = np.random.default_rng(seed)
-    best = None
-    for _ in range(starts):
-        p0 = np.array([rng.uniform(lo, hi) for lo, hi in bounds])
-        res = minimize(
-            lambda p: sum(m[2] for m in build(p)),
-            p0,
-            method="SLSQP",
-            bounds=bounds,
-            constraints=cons,
-            options={"maxiter": 300, "ftol": 1e-12},
-        )
-        if not res.success or np.max(np.abs(resid(res.x))) > 1e-8:
-            continue
-        if any(g(res.x) < -1e-8 for g in ineq):
-            continue
-        if best is None or res.fun < best["cost"] - 1e-9:
-            active = [
-                f"{n} = {_bound_text(lo if abs(v - lo) < 1e-6 else hi)}"
-                for n, v, (lo, hi) in zip(_WEAK_NAMES[name], res.x, bounds, strict=True)
-                if abs(v - lo) < 1e-6 or abs(v - hi) < 1e-6
-            ]
-            best = {
-                "cost": float(res.fun),
-                "p": res.x.tolist(),
-                "active": active,
-                "moves": build(res.x),
-            }
-    return best
-
-
-def table_4_3(*, weak_starts: int = 20) -> dict[str, Any]:
-    """Our candidates for x1 = (0, 2, 2 pi/3), R = 1, r = 0.3, matched to Table 4.3's rows."""
-    from glideplan.planners.min_time import solve_time_optimal_direct
+def _plan_example() -> Any:
     from glideplan.planning import plan
 
-    car = _car()
-    sol = plan(Pose(), EXAMPLE_GOAL, car).raise_for_status()
-    ours = {c.info.get("type"): c for c in sol.candidates if c.feasible}
-    rows = []
-    for group, seq, orient, value in DISSERTATION_TABLE_4_3:
-        name = f"{seq} {orient}"
-        target, note = _TYPO.get(name, (name, ""))
-        cand = ours.get(target)
-        if cand is not None:
-            if group == "umax":
-                note = (
-                    f"fixed turn rate, speed profile not unique (singular arc); the "
-                    f"profile built is {cand.family} ({cand.info['parameters']['loops']}"
-                    f" extra loop)"
-                )
-            rows.append(
-                {
-                    "type": name,
-                    "ours": cand.cost,
-                    "dissertation": value,
-                    "found_as": target,
-                    "note": note,
-                }
-            )
-            continue
-        weak = dissertation_minimum(name, weak_starts) if name in _WEAK else None
-        direct = None
-        if weak is not None:
-            res = solve_time_optimal_direct(car, EXAMPLE_GOAL, guesses=[_path_of(weak["moves"])])
-            direct = res.cost if res.ok else None
-        rows.append({
-            "type": name, "ours": None, "dissertation": value, "found_as": "",
-            "weak": weak["cost"] if weak else None,
-            "active": weak["active"] if weak else [],
-            "direct_from_weak": direct,
-            "note": "not an extremal: (4.27) in the dissertation's parameterisation has its "
-                    "minimum on a bound ({}) and the direct method started there descends "
-                    "to {}".format(", ".join(weak["active"]) if weak else "?",
-                                   f"{direct:.6f}" if direct else "?"),
-        })  # fmt: skip
-    listed = {_TYPO.get(f"{s} {o}", (f"{s} {o}", ""))[0] for _, s, o, _ in DISSERTATION_TABLE_4_3}
-    extra = [c for t, c in ours.items() if t not in listed]
-    return {"solution": sol, "rows": rows, "extra": extra}
+    return plan(Pose(), EXAMPLE_GOAL, example_car()).raise_for_status()
+
+
+def _plt() -> Any:
+    return pyplot()
+
+
+def _car() -> Any:
+    return example_car()
 
 
 @reproducible(
@@ -254,17 +120,13 @@ def fig4_1(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_ylabel("speed v (m/s)")
     ax.set_title("control constraint set (v_min = 0.3, u_max = 1)")
     ax.grid(alpha=0.3)
-    f = out_dir / "fig4_1_control_set.png"
-    fig.tight_layout()
-    fig.savefig(f, dpi=130)
-    plt.close(fig)
+    f = save_png(fig, out_dir / "fig4_1_control_set.png", dpi=130)
     rows = (
-        Comparison("sharpest turn |kappa| = u_max/v_min", f"{car.u_max / car.v_min:.4f} 1/m",
-                   "u_max/v_min (section 4.2)"),
-        Comparison("B and C radii R, r", f"{car.bang_radius:g}, {car.corner_radius:g} m",
-                   "R = 1/u_max = 1, r = v_min/u_max = 0.3"),
-    )  # fmt: skip
-    return FigureReport(files=(str(f),), rows=rows)
+        compare("sharpest turn |kappa| = u_max/v_min", car.u_max / car.v_min, unit="1/m"),
+        compare("B arc radius R = v_max/u_max", car.bang_radius, PRINTED_RADII["R"]),
+        compare("C arc radius r = v_min/u_max", car.corner_radius, PRINTED_RADII["r"]),
+    )
+    return FigureReport(files=(f.name,), rows=rows)
 
 
 def _hodograph_minimiser(eta_psi: float, eta0: float, car: Any) -> str:
@@ -318,55 +180,117 @@ def fig4_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_ylabel("cost rate f0 = 1/v")
     ax.set_title(f"hodograph, adjoint (eta_psi, eta0) = ({eta_psi}, {eta0})")
     ax.legend(loc="lower left", fontsize=8)
-    f = out_dir / "fig4_2_hodograph.png"
-    fig.tight_layout()
-    fig.savefig(f, dpi=130)
-    plt.close(fig)
-    rows = tuple(
-        Comparison(f"minimiser of H_c for (eta_psi, eta0) = ({ep}, {e0})",
-                   _hodograph_minimiser(ep, e0, car), expected)
-        for ep, e0, expected in (
-            (0.0, 1.0, "S (eta_psi = 0: kappa = 0 by B.1)"),
-            (-0.5, 1.0, "B (eta0/|eta_psi| > u_max)"),
-            (-1.5, 1.0, "C (eta0/|eta_psi| < u_max)"),
-            (-1.0, 0.0, "C (eta0 = 0: abnormal, C only)"),
-        )
-    )  # fmt: skip
-    return FigureReport(files=(str(f),), rows=rows)
-
-
-def _table_rows(table: dict[str, Any]) -> list[Comparison]:
+    f = save_png(fig, out_dir / "fig4_2_hodograph.png", dpi=130)
     rows = []
-    for r in table["rows"]:
-        if r["ours"] is not None:
-            ours = f"{r['ours']:.4f}" + (
-                f" (as {r['found_as']})" if r["found_as"] != r["type"] else ""
+    for ep, e0 in ((0.0, 1.0), (-0.5, 1.0), (-1.5, 1.0), (-1.0, 0.0)):
+        ours = _hodograph_minimiser(ep, e0, car)
+        rule = _minimum_principle_rule(ep, e0, car)
+        rows.append(
+            compare(
+                f"minimiser of H_c for (eta_psi, eta0) = ({ep}, {e0})",
+                ours,
+                reference=rule,
+                reference_source="the rule of section 4.4 (Table 4.1): S if eta_psi = 0, "
+                "B if eta0/|eta_psi| > u_max, C if below",
+                note="" if ours == rule else "the vertex search and the rule disagree",
             )
-        else:
-            ours = "no extremal" + (
-                f"; (4.27) boundary minimum {r['weak']:.4f}" if r.get("weak") else ""
+        )
+    return FigureReport(files=(f.name,), rows=tuple(rows))
+
+
+def _minimum_principle_rule(eta_psi: float, eta0: float, car: Any) -> str:
+    """The extremal control the Minimum Principle names for an adjoint (section 4.4)."""
+    if eta_psi == 0.0:
+        return "S"
+    return "B" if eta0 / abs(eta_psi) > car.u_max else "C"
+
+
+def table_4_3_rows(weak_starts: int = 20) -> tuple[list[Comparison], Any]:
+    """Our candidates for x1 = (0, 2, 2 pi/3), R = 1, r = 0.3, beside Table 4.3's rows."""
+    sol = _plan_example()
+    ours = {c.info.get("type"): c for c in sol.candidates if c.feasible}
+    rows = []
+    extremal = 0
+    for group, seq, orient, value in TABLE_4_3:
+        name = f"{seq} {orient}"
+        target, reading = _TYPO.get(name, (name, ""))
+        printed = Printed(value, f"{TABLE_SOURCE}, row {name}", "s")
+        cand = ours.get(target)
+        if cand is not None:
+            extremal += 1
+            note = reading
+            if group == "umax":
+                note = (
+                    f"fixed turn rate, speed profile not unique (singular arc); the profile "
+                    f"built is {cand.family} ({cand.info['parameters']['loops']} extra loop)"
+                )
+            if abs(cand.cost - printed.value) > (printed.tolerance or 0.0):  # type: ignore[operator]
+                note = (note + "; " if note else "") + (
+                    f"ours - printed = {cand.cost - float(printed.value):+.4f} s, the synthesis "
+                    f"path verified by integration"
+                )
+            rows.append(compare(f"{name}: time" + (f" (ours: {target})" if reading else ""),
+                                cand.cost, printed, note=note))  # fmt: skip
+            continue
+        weak = dissertation_minimum(name, weak_starts) if name in WEAK_TYPES else None
+        direct = descent_from(weak) if weak is not None else None
+        if weak is None:
+            note = "no extremal of this type, and (4.27) did not converge"
+            rows.append(compare(f"{name}: time", None, printed, note=note))
+            continue
+        rows.append(
+            compare(
+                f"{name}: minimum of (4.27) in the dissertation's parameterisation",
+                weak.cost,
+                printed,
+                note=f"bounds active there: {', '.join(weak.active) or 'none'}",
             )
-        rows.append(Comparison(r["type"], ours, f"{r['dissertation']:.3f}", r["note"]))
-    for c in table["extra"]:
+        )
+        rows.append(
+            compare(
+                f"{name}: a local optimum of the control problem",
+                yes_no(direct is None or direct >= weak.cost - 1e-6),
+                Printed("yes", f"{TABLE_SOURCE} lists {name} as locally optimal", word=True),
+                note="" if direct is None or direct >= weak.cost - 1e-6 else (
+                    f"the direct method started from the (4.27) minimum {weak.cost:.6f} descends "
+                    f"to {direct:.6f}; the minimum sits on a bound ({', '.join(weak.active)}), "
+                    "violates H = 0 and is no extremal"
+                ),
+            )
+        )  # fmt: skip
+    listed = {_TYPO.get(f"{s} {o}", (f"{s} {o}", ""))[0] for _, s, o, _ in TABLE_4_3}
+    extra = [c for t, c in ours.items() if t not in listed]
+    for c in extra:
         note = (
             "a rigid sequence that (4.26) leaves out (B.4, (4.24)); solved because B.4 fails "
             "for some goals, not optimal here"
             if not c.info.get("in_dissertation", True)
-            else "also a candidate here (found by the synthesis)"
+            else "also a locally optimal candidate here (found by the synthesis)"
         )
-        rows.append(Comparison(c.info["type"], f"{c.cost:.4f}", "not listed", note))
-    sol = table["solution"]
+        rows.append(compare(f"{c.info['type']}: time (not in Table 4.3)", c.cost, unit="s",
+                            note=note))  # fmt: skip
+    in_72 = [c for c in extra if c.info.get("in_dissertation", True)]
+    count = extremal + len(in_72)
+    rows.append(
+        compare(
+            "candidates of the 72 that are locally optimal",
+            count,
+            PRINTED_COUNT,
+            note="" if count == 13 else (
+                f"{extremal} printed rows are extremals, {13 - extremal} are not (rows above); "
+                f"{len(in_72)} candidates of the 72 that the table does not list are "
+                f"({', '.join(c.info['type'] for c in in_72)})"
+            ),
+        )
+    )  # fmt: skip
     dub = min(
         c.cost
         for c in sol.candidates
         if c.info.get("group") == "Dubins" and c.info["type"].split()[0] in ("BSB", "BBB")
     )
-    rows.append(
-        Comparison(
-            "Dubins at v_max / optimal time", f"{dub / sol.cost:.3f}", "about 2 (section 4.9)"
-        )
-    )
-    return rows
+    rows.append(compare("Dubins at v_max / optimal time", dub / sol.cost, PRINTED_RATIO,
+                        unit=""))  # fmt: skip
+    return rows, sol
 
 
 @reproducible(
@@ -379,38 +303,50 @@ def _table_rows(table: dict[str, Any]) -> list[Comparison]:
 )
 def table4_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     """Every candidate the synthesis finds, matched with the dissertation's rows."""
-    table = table_4_3(weak_starts=200 if full else 20)
-    rows = _table_rows(table)
+    rows, sol = table_4_3_rows(weak_starts=200 if full else 20)
     f = out_dir / "table4_3.md"
-    lines = ["| type | ours | dissertation | note |", "|---|---|---|---|"]
-    lines += [f"| {r.quantity} | {r.ours} | {r.dissertation} | {r.note} |" for r in rows]
+    lines = ["| quantity | ours | Table 4.3 | verdict | note |", "|---|---|---|---|---|"]
+    lines += [
+        f"| {r.quantity} | {r.ours if isinstance(r.ours, str) else f'{r.ours:.4f}'} | "
+        f"{r.dissertation if r.dissertation is not None else '-'} | {r.verdict} | {r.note} |"
+        for r in rows
+    ]
     f.write_text("\n".join(lines) + "\n")
-    sol = table["solution"]
     notes = (
         f"Best: {sol.family} {sol.word} {sol.cost:.6f} (verified by integration, endpoint error "
         f"{sol.endpoint_error.max:.1e}); {sum(c.feasible for c in sol.candidates)} distinct "
-        "candidates. Rows without an extremal are reproduced by solving (4.27) in the "
-        "dissertation's parameterisation: each minimum sits on a bound of that parameterisation "
-        "(a zero-length arc, or beta1 = pi), violates H = 0 (the B arc next to S is not pi/2, "
-        "or the C arc of a full turn is not pi), and is not a local optimum of the control "
-        "problem: the direct method started from it descends to CBSB LSR."
+        "candidates. Rows without an extremal are re-solved as (4.27) in the dissertation's "
+        "parameterisation (glideplan.studies.min_time_table) and the direct method is started "
+        "from that minimum."
     )
-    return FigureReport(files=(str(f),), rows=tuple(rows), notes=notes)
+    return FigureReport(files=(f.name,), rows=tuple(rows), notes=notes)
 
 
-def _draw_candidates(cands: list, filename: pathlib.Path, title: str) -> None:
+def _draw_candidates(cands: list, filename: pathlib.Path, title: str) -> pathlib.Path:
     from glideplan.plotting import plot_path
 
     plt = _plt()
     fig, ax = plt.subplots(figsize=(7, 6.5))
     for c in cands:
-        plot_path(c.path, ax, lw=1.4, label=f"{c.info['type']} {c.cost:.3f}")
-    ax.legend(fontsize=7, loc="best")
+        plot_path(c.path, ax, lw=1.4, label=f"{c.info['type']} {c.cost:.3f} s")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.grid(alpha=0.3)
+    ax.set_xlabel("x (m, R = 1)")
+    ax.set_ylabel("y (m)")
+    ax.set_aspect("equal", adjustable="datalim")
     ax.set_title(title)
-    fig.tight_layout()
-    fig.savefig(filename, dpi=130)
-    plt.close(fig)
+    return save_png(fig, filename, dpi=130, crop=True)
+
+
+def _candidate_rows(cands: list) -> list[Comparison]:
+    rows = []
+    for c in cands:
+        printed = _printed_time(c.info["type"])
+        note = ""
+        if printed is not None and abs(c.cost - float(printed.value)) > (printed.tolerance or 0):
+            note = f"ours - printed = {c.cost - float(printed.value):+.4f} s"
+        rows.append(compare(f"{c.info['type']}: time", c.cost, printed, unit="s", note=note))
+    return rows
 
 
 @reproducible(
@@ -420,25 +356,22 @@ def _draw_candidates(cands: list, filename: pathlib.Path, title: str) -> None:
     "x1 = (0, 2, 2pi/3), R = 1, r = 0.3; filled circles boundary poses, open circles switches.",
 )
 def fig4_7(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    from glideplan.planning import plan
-
-    sol = plan(Pose(), EXAMPLE_GOAL, _car()).raise_for_status()
+    sol = _plan_example()
     cands = [c for c in sol.candidates if c.feasible and c.info.get("group") != "Dubins"]
     listed = [c for c in cands if c.info.get("in_dissertation", True)]
-    f = out_dir / "fig4_7_candidates.png"
-    _draw_candidates(listed, f, "x1 = (0, 2, 2pi/3): TTTT, TST and umax candidates")
-    rows = [Comparison(c.info["type"], f"{c.cost:.4f}", "") for c in listed]
+    f = _draw_candidates(listed, out_dir / "fig4_7_candidates.png",
+                         "x1 = (0, 2, 2pi/3): TTTT, TST and umax candidates")  # fmt: skip
+    rows = _candidate_rows(listed)
     extra = [c for c in cands if c not in listed]
     if extra:
         rows.append(
-            Comparison(
+            compare(
                 "rigid sequences left out of (4.26), not drawn",
                 ", ".join(f"{c.info['type']} {c.cost:.3f}" for c in extra),
-                "",
-                "solved because B.4 fails for some goals (see table4.3)",
+                note="solved because B.4 fails for some goals (see table4.3)",
             )
         )
-    return FigureReport(files=(str(f),), rows=tuple(rows))
+    return FigureReport(files=(f.name,), rows=tuple(rows))
 
 
 @reproducible(
@@ -448,16 +381,21 @@ def fig4_7(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     "x1 = (0, 2, 2pi/3); the goal is too far for CCC; BSB and BBB need much manoeuvring.",
 )
 def fig4_8(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    from glideplan.planning import plan
-
-    sol = plan(Pose(), EXAMPLE_GOAL, _car()).raise_for_status()
+    sol = _plan_example()
     cands = [c for c in sol.candidates if c.feasible and c.info.get("group") == "Dubins"]
-    f = out_dir / "fig4_8_dubins.png"
-    _draw_candidates(cands, f, "x1 = (0, 2, 2pi/3): Dubins-like candidates")
+    f = _draw_candidates(cands, out_dir / "fig4_8_dubins.png",
+                         "x1 = (0, 2, 2pi/3): Dubins-like candidates")  # fmt: skip
     ccc = [c for c in cands if c.info["type"].startswith("CCC")]
-    rows = [Comparison(c.info["type"], f"{c.cost:.4f}", "") for c in cands]
-    rows.append(Comparison("CCC candidates", str(len(ccc)), "none (goal too far)"))
-    return FigureReport(files=(str(f),), rows=tuple(rows))
+    rows = _candidate_rows(cands)
+    rows.append(
+        compare(
+            "CCC candidates",
+            len(ccc),
+            Printed("0", "section 4.9: too far away for a CCC Dubins-like solution"),
+            note=", ".join(c.info["type"] for c in ccc),
+        )
+    )
+    return FigureReport(files=(f.name,), rows=tuple(rows))
 
 
 _GRID_TEXT = {
@@ -483,13 +421,15 @@ def _grid_figure(fid: str, out_dir: pathlib.Path, full: bool) -> FigureReport:
     fig, axes = plt.subplots(1, 3, figsize=(17, 5.6))
     cmap = plt.get_cmap("tab20", max(len(fams), 1))
     ax = axes[0]
+    gx, gy = np.meshgrid(xs, xs)
     for i, fam in enumerate(fams):
         m = code == i
-        gx, gy = np.meshgrid(xs, xs)
         ax.scatter(gx[m], gy[m], s=8 if full else 22, color=cmap(i), marker="s", label=fam)
     ax.set_aspect("equal")
-    ax.set_title(f"optimal family, psi1 = {heading:.3f}")
-    ax.legend(fontsize=7, ncol=5, loc="upper center", bbox_to_anchor=(0.5, -0.07))
+    ax.set_xlabel("x1 (m, R = 1)")
+    ax.set_ylabel("y1 (m)")
+    ax.set_title(f"optimal family, psi1 = {heading:.3f} rad")
+    ax.legend(fontsize=7, ncol=5, loc="upper center", bbox_to_anchor=(0.5, -0.1))
     ax = axes[1]
     sub = np.linspace(-3.0, 3.0, 7)
     for y in sub:
@@ -503,46 +443,62 @@ def _grid_figure(fid: str, out_dir: pathlib.Path, full: bool) -> FigureReport:
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlim(-4, 4)
     ax.set_ylim(-4, 4)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
     ax.set_title("optimal paths to a 7 x 7 subset")
     ax = axes[2]
     im = ax.imshow(grid.ratio, origin="lower", extent=(-3, 3, -3, 3), cmap="viridis")
     fig.colorbar(im, ax=ax, label="Dubins time at v_max / optimal time")
+    ax.set_xlabel("x1 (m)")
+    ax.set_ylabel("y1 (m)")
     ax.set_title("ratio Dubins(v_max) / optimal")
-    f = out_dir / f"{fid.replace('.', '_')}_grid.png"
-    fig.tight_layout()
-    fig.savefig(f, dpi=120)
-    plt.close(fig)
+    f = save_png(fig, out_dir / f"{fid.replace('.', '_')}_grid.png", dpi=120)
     ratio = grid.ratio[np.isfinite(grid.ratio)]
-    mirror_ok = np.mean(np.isclose(grid.time, grid.time[::-1, :], rtol=1e-9, atol=1e-12))
     rows = [
-        Comparison("grid", f"{n} x {n} on [-3, 3]^2", "61 x 61"),
-        Comparison("Dubins/optimal time ratio: mean, max", f"{ratio.mean():.3f}, {ratio.max():.3f}",
-                   ">= 1 everywhere", f"min {ratio.min():.6f}"),
+        compare("grid points solved", int(np.isfinite(grid.time).sum()), unit="",
+                note=f"{n} x {n} on [-3, 3]^2"),
+        compare("Dubins/optimal time ratio: mean", float(ratio.mean())),
+        compare("Dubins/optimal time ratio: smallest", float(ratio.min()), reference=1.0,
+                reference_source="lower bound: the Dubins path at v_max is a candidate",
+                note=f"{int(np.sum(ratio < 1 - 1e-9))} points below 1"),
     ]  # fmt: skip
     if abs(math.sin(heading)) < 1e-12:
+        mirror = np.isclose(grid.time, grid.time[::-1, :], rtol=1e-9, atol=1e-12)
         rows.append(
-            Comparison(
-                "mirror symmetry t(x, y) = t(x, -y)",
-                f"{100 * mirror_ok:.1f}% of points",
-                "exact (the problem is symmetric for psi1 = 0, pi)",
+            compare(
+                "points where t(x, y) = t(x, -y)",
+                100.0 * float(np.mean(mirror)),
+                unit="%",
+                reference=100.0,
+                reference_source="the problem is symmetric about the x axis for psi1 = 0, pi",
             )
         )
     if fid == "fig4.9":
         for g in ((2.0, 2.0, 0.0), (2.0, -2.0, 0.0)):
             t, fam, word = best_time(car, *g)
-            rows.append(Comparison(f"optimal path to {g}", f"{fam} {word} {t:.4f}", "Dubins"))
+            group = "Dubins" if set(fam) <= {"B", "S"} or fam == "CCC" else fam
+            rows.append(
+                compare(
+                    f"family of the optimal path to {g}",
+                    group,
+                    Printed("Dubins", "section 4.9, Fig 4.9", word=True),
+                    note=f"{fam} {word}, {t:.4f} s",
+                )
+            )
     if fid == "fig4.11":
         a = plan(Pose(), Pose(-2.0, 0.0, PI), car)
-        b = a.path.reflected() if a.path else None
+        b = a.path.reflected() if a.path is not None else None
+        equal = b is not None and a.cost is not None and abs(b.duration - a.cost) <= 1e-9
         rows.append(
-            Comparison(
-                "x1 = (-2, 0, pi): optimal and its mirror image",
-                f"{a.family} {a.word} {a.cost:.6f}; mirror {b.word if b else '-'} "
-                f"{b.duration if b else math.nan:.6f}",
-                "equal cost (two optima)",
+            compare(
+                "x1 = (-2, 0, pi): the mirror image of the optimal path has equal time",
+                yes_no(equal),
+                Printed("yes", "section 4.9, Fig 4.11", word=True),
+                note=f"{a.family} {a.word} {a.cost:.6f} s; mirror "
+                f"{b.word if b else '-'} {b.duration if b else math.nan:.6f} s",
             )
         )
-    return FigureReport(files=(str(f),), rows=tuple(rows), notes=text)
+    return FigureReport(files=(f.name,), rows=tuple(rows), notes=text)
 
 
 @reproducible(

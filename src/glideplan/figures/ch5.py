@@ -1,8 +1,9 @@
 """Chapter 5 figures: the glide polar, Table 5.2 and the three DG-1001M examples (5.9).
 
-Goals are in units of R_stf (the turn radius at the speed to fly, 139.5 m). Each example is
-planned by the synthesis (`glideplan.planners.min_altitude`), checked against the direct
-method, and compared with the Dubins path flown at v_stf, as in Figs. 5.5-5.7.
+Goals are in units of R_stf (the turn radius at the speed to fly). Each example is planned
+by the synthesis (`glideplan.planners.min_altitude`), checked against the direct method, and
+compared with the Dubins path flown at v_stf, as in Figs. 5.5-5.7; the best path of the
+dissertation's narrower family B comes from `glideplan.studies.min_altitude_family`.
 """
 
 from __future__ import annotations
@@ -14,31 +15,42 @@ from typing import Any
 import numpy as np
 
 from glideplan.figures._common import pyplot, save_png
-from glideplan.figures.registry import Comparison, FigureReport, reproducible
+from glideplan.figures.registry import FigureReport, Printed, compare, reproducible, yes_no
 from glideplan.pose import Pose
 from glideplan.solution import Solution
 from glideplan.units import ms_to_kmh
 from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider, dg1001m
 
-__all__ = ["EXAMPLES", "GLIDER", "dissertation_family_bbb", "draw_solution", "plan_example"]
+__all__ = ["EXAMPLES", "GLIDER", "draw_solution", "plan_example"]
 
 GLIDER = dg1001m()
-# goal (units of R_stf), dissertation's best type and orientation, its improvement over the
-# Dubins path at v_stf (m, %), and our independent direct-method altitude loss (m)
+# goal (units of R_stf) and what section 5.9 prints: best type and orientation, the
+# improvement over the Dubins path at v_stf (m and %)
+_S59 = "section 5.9"
 EXAMPLES: dict[str, dict[str, Any]] = {
-    "fig5.5": {"goal": (0.0, 1.0, 2 * math.pi / 3), "word": "BBB RLR", "gain": 2.4,
-               "percent": 11.0, "direct": 19.4289},
-    "fig5.6": {"goal": (-3.0, 4.0, 0.0), "word": "BSB LSR", "gain": 1.8, "percent": 6.5,
-               "direct": 25.8483,
-               "note": "Our gain is 1.75 m (6.3%), 0.05 m less than the dissertation's. The "
-               "best path is an unsaturated BSB (untouched by the extension) that the direct "
-               "method confirms to 1e-5 m; rounding the polar (v_ms = 91.1 instead of 91.0 "
-               "km/h, R_stf = 139 m) moves the gain by less than 0.03 m. We attribute the "
-               "difference to the dissertation's own numerics (1.75 m rounded up to 1.8 m "
-               "gives its 6.5% of 27.6 m)."},
-    "fig5.7": {"goal": (0.0, 2.0, 7 * math.pi / 4), "word": "BSB LSL", "gain": 1.7,
-               "percent": 7.8, "direct": 20.1252},
+    "fig5.5": {"goal": (0.0, 1.0, 2 * math.pi / 3),
+               "word": Printed("BBB RLR", f"{_S59}, Fig 5.5", word=True),
+               "gain": Printed("2.4", f"{_S59}, Fig 5.5", "m"),
+               "percent": Printed("11", f"{_S59}, Fig 5.5", "%")},
+    "fig5.6": {"goal": (-3.0, 4.0, 0.0),
+               "word": Printed("BSB LSR", f"{_S59}, Fig 5.6", word=True),
+               "gain": Printed("1.8", f"{_S59}, Fig 5.6", "m"),
+               "percent": Printed("6.5", f"{_S59}, Fig 5.6", "%")},
+    "fig5.7": {"goal": (0.0, 2.0, 7 * math.pi / 4),
+               "word": Printed("BSB LSL", f"{_S59}, Fig 5.7", word=True),
+               "gain": Printed("1.7", f"{_S59}, Fig 5.7", "m"),
+               "percent": Printed("7.8", f"{_S59}, Fig 5.7", "%")},
 }  # fmt: skip
+# Table 5.2, approximate (quadratic polar) columns, and the radii of section 5.9
+TABLE_5_2 = {
+    "stall": (Printed("75.6", "Table 5.2", "km/h"), Printed("0.63", "Table 5.2", "m/s")),
+    "minimum sink": (Printed("91.1", "Table 5.2", "km/h"), Printed("0.58", "Table 5.2", "m/s")),
+    "speed to fly": (Printed("105.2", "Table 5.2", "km/h"), Printed("0.62", "Table 5.2", "m/s")),
+}
+R_STF = Printed("139", f"{_S59}: R_stf is about 139 m", "m")
+R_STALL = Printed("100", f"{_S59}: R_stall is about 100 m", "m")
+# The printed polar w = a v^2 + b v + c (v in km/h, w in m/s), section 5.9
+POLAR_A, POLAR_B = 0.0002093, -0.0381
 
 
 def example_goal(figure_id: str, glider: QuadraticPolarGlider = GLIDER) -> Pose:
@@ -166,23 +178,19 @@ def fig5_1(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_ylabel("sink rate w (m/s)")
     ax.set_title("DG-1001M quadratic glide polar")
     ax.legend(fontsize=8, loc="lower left")
-    save_png(fig, out_dir / "fig5_1.png")
+    save_png(fig, out_dir / "fig5_1_glide_polar.png")
     slope = float(2 * g.a * g.v_stf + g.b)
     rows = (
-        Comparison(
-            "tangent check dw/dv(v_stf) = w/v",
-            f"{slope:.5f} = {g.w_stf / g.v_stf:.5f}",
-            "speed to fly: tangent through the origin",
-            "definition (5.2.3)",
-        ),
-        Comparison(
-            "v_ms > (v_stall + v_stf)/2",
-            f"{g.v_ms:.3f} > {0.5 * (g.v_stall + g.v_stf):.3f} m/s",
-            "holds (Assumption 5.2.4)",
-        ),
-    )
+        compare("slope dw/dv at v_stf", slope, unit="-", reference=g.w_stf / g.v_stf,
+                reference_source="w/v at v_stf: the tangent through the origin (speed to fly)",
+                note=f"difference {slope - g.w_stf / g.v_stf:.1e}"),
+        compare("v_ms > (v_stall + v_stf)/2 (Assumption 5.2.4)",
+                yes_no(g.v_ms > 0.5 * (g.v_stall + g.v_stf)),
+                Printed("yes", f"{_S59}: Assumption 5.2.4 is satisfied", word=True),
+                note=f"{g.v_ms:.3f} vs {0.5 * (g.v_stall + g.v_stf):.3f} m/s"),
+    )  # fmt: skip
     return FigureReport(
-        files=("fig5_1.png",),
+        files=("fig5_1_glide_polar.png",),
         rows=rows,
         notes="v_max = 160 km/h is our choice (chapter 5 gives none); it never "
         "binds on an extremal.",
@@ -197,21 +205,32 @@ def fig5_1(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
 )
 def table5_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     g = GLIDER
-    data = [
-        ("stall speed", g.v_stall, g.w_stall, "75.6 km/h / 0.63 m/s"),
-        ("minimum sink", g.v_ms, g.w_ms, "91.1 km/h / 0.58 m/s"),
-        ("speed to fly", g.v_stf, g.w_stf, "105.2 km/h / 0.62 m/s"),
-    ]
+    data = {"stall": (g.v_stall, g.w_stall), "minimum sink": (g.v_ms, g.w_ms),
+            "speed to fly": (g.v_stf, g.w_stf)}  # fmt: skip
     lines = ["condition,speed_kmh,speed_ms,sink_ms,radius_m"]
     rows = []
-    for name, v, w, ref in data:
+    for name, (v, w) in data.items():
         lines.append(f"{name},{ms_to_kmh(v):.2f},{v:.4f},{w:.4f},{v / g.u_max:.2f}")
+        p_speed, p_sink = TABLE_5_2[name]
         note = ""
         if name == "minimum sink":
-            note = "-b/2a of the printed coefficients is 91.02 km/h; 91.1 rounds differently"
-        rows.append(Comparison(name, f"{ms_to_kmh(v):.1f} km/h / {w:.3f} m/s", ref, note))
-    rows.append(Comparison("R_stf", f"{g.radius_stf:.1f} m", "about 139 m"))
-    rows.append(Comparison("R_stall", f"{g.radius_stall:.1f} m", "about 100 m"))
+            vertex = -POLAR_B / (2 * POLAR_A)
+            note = (
+                f"v_ms = -b/(2a) of the printed polar (a = {POLAR_A}, b = {POLAR_B}) is "
+                f"{vertex:.2f} km/h"
+            )
+        rows.append(compare(f"{name}: speed", float(ms_to_kmh(v)), p_speed, note=note))
+        rows.append(compare(f"{name}: sink rate", float(w), p_sink))
+    from_printed = 105.2 / 3.6 / g.u_max
+    rows.append(
+        compare(
+            "R_stf = v_stf / u_max",
+            g.radius_stf,
+            R_STF,
+            note=f"from the printed v_stf = 105.2 km/h: {from_printed:.2f} m",
+        )
+    )
+    rows.append(compare("R_stall = v_stall / u_max", g.radius_stall, R_STALL))
     (out_dir / "table5_2.csv").write_text("\n".join(lines) + "\n")
     return FigureReport(files=("table5_2.csv",), rows=tuple(rows))
 
@@ -271,7 +290,33 @@ def dissertation_family_bbb(solution: Solution) -> float | None:
     return float(res.fun)
 
 
+def _stall_time_per_turn(solution: Solution) -> list[float]:
+    """Time (s) at v_stall in each turn of the path (a turn: consecutive segments turning
+    the same way, e.g. B, Bsat, B), from 2001 samples."""
+    path = solution.path
+    glider = solution.vehicle
+    assert path is not None and isinstance(glider, QuadraticPolarGlider)
+    smp = path.sample(n=2001)
+    dt = float(smp.t[-1] - smp.t[0]) / (smp.t.size - 1)
+    at_stall = smp.speed <= glider.v_stall * (1 + 1e-9)
+    bounds: list[list[float]] = []
+    t, last = 0.0, None
+    for seg in path.segments:
+        if seg.direction != 0 and seg.direction == last:
+            bounds[-1][1] = t + seg.duration
+        elif seg.direction != 0:
+            bounds.append([t, t + seg.duration])
+        last = seg.direction
+        t += seg.duration
+    return [float(np.sum(at_stall & (smp.t >= a) & (smp.t <= b))) * dt for a, b in bounds]
+
+
+_ORDINAL = ("first", "second", "third", "fourth", "fifth")
+
+
 def _example_figure(figure_id: str, out_dir: pathlib.Path) -> FigureReport:
+    from glideplan.studies.min_altitude_family import dissertation_family_bbb
+
     ex = EXAMPLES[figure_id]
     sol = plan_example(figure_id)
     direct = plan_example(figure_id, "direct")
@@ -280,55 +325,80 @@ def _example_figure(figure_id: str, out_dir: pathlib.Path) -> FigureReport:
     dubins = float(sol.extras["dubins_cost"])
     gain = dubins - sol.cost
     pct = 100.0 * gain / dubins
+    p_gain, p_pct = ex["gain"], ex["percent"]
+    gain_note = pct_note = ""
+    best3 = ", ".join(f"{c.family} {c.word} {c.cost:.2f}" for c in sol.candidates[:3])
     rows = [
-        Comparison("best type, orientation", f"{sol.family} {sol.word}", ex["word"]),
-        Comparison(
-            "altitude loss (m)",
-            f"{sol.cost:.4f}",
-            "not reported",
-            f"direct method {direct.cost:.4f} (independent solve {ex['direct']})",
-        ),
-        Comparison("Dubins path at v_stf (m)", f"{dubins:.4f}", "not reported"),
-        Comparison(
-            "improvement over Dubins",
-            f"{gain:.2f} m ({pct:.1f}%)",
-            f"{ex['gain']} m ({ex['percent']}%)",
-        ),
-    ]
-    notes = ex.get("note", "")
-    if sol.family == "BBB":
-        stall = float(sol.candidates[0].info.get("saturated_time", 0.0))
-        old = dissertation_family_bbb(sol)
-        frac = stall / sol.path.duration if sol.path is not None else 0.0
-        rows.append(
-            Comparison(
-                "time at v_stall",
-                f"{stall:.1f} s ({100 * frac:.0f}% of "
-                f"{sol.path.duration if sol.path else 0:.1f} s)",
-                "reaches v_stall in the middle of the second turn",
-            )
-        )
+        compare("best type, orientation", f"{sol.family} {sol.word}", ex["word"],
+                note="" if f"{sol.family} {sol.word}" == ex["word"].value else
+                f"lowest candidates: {best3}"),
+        compare("altitude loss", sol.cost, unit="m", reference=direct.cost,
+                reference_source="direct method (collocation), this run",
+                note=f"ours - direct = {sol.cost - direct.cost:+.1e} m"),
+        compare("altitude loss of the Dubins path at v_stf", dubins, unit="m"),
+    ]  # fmt: skip
+    old = dissertation_family_bbb(sol) if sol.family == "BBB" else None
+    if abs(gain - float(p_gain.value)) > p_gain.tolerance:  # type: ignore[operator]
         if old is not None:
-            rows.append(
-                Comparison(
-                    "dissertation's family (lambda <= v_ms - v_stall)",
-                    f"{old:.4f} m, {dubins - old:.2f} m "
-                    f"({100 * (dubins - old) / dubins:.1f}%) better than Dubins",
-                    f"{ex['gain']} m ({ex['percent']}%)",
-                )
+            gain_note = (
+                f"our optimum has its middle turn clipped at v_stall, outside the dissertation's "
+                f"family B (lambda <= v_ms - v_stall); restricted to that family the gain is "
+                f"{dubins - old:.2f} m (row below)"
             )
+        else:
+            printed_pct = 100.0 * float(p_gain.value) / dubins
+            gain_note = (
+                f"ours {gain:.4f} m; the best path is unsaturated and the direct method agrees "
+                f"to {abs(sol.cost - direct.cost):.0e} m; the printed {p_gain.text} m is "
+                f"{printed_pct:.1f}% of our Dubins loss {dubins:.2f} m"
+            )
+    if abs(pct - float(p_pct.value)) > p_pct.tolerance:  # type: ignore[operator]
+        pct_note = (
+            f"{p_pct.text}% of our Dubins loss {dubins:.2f} m is "
+            f"{float(p_pct.value) * dubins / 100:.2f} m, and {p_gain.text} m is "
+            f"{100 * float(p_gain.value) / dubins:.1f}% of it: the printed percentage follows "
+            f"the printed gain {p_gain.text} m, not our {gain:.2f} m"
+        )
+    rows.append(compare("improvement over the Dubins path", gain, p_gain, note=gain_note))
+    rows.append(compare("improvement over the Dubins path, percent", pct, p_pct, note=pct_note))
+    notes = ""
+    if sol.family == "BBB":
+        per_turn = _stall_time_per_turn(sol)
+        longest = int(np.argmax(per_turn)) if max(per_turn, default=0.0) > 0 else -1
+        rows.append(
+            compare(
+                "turn in which the speed stays longest at v_stall",
+                _ORDINAL[longest] if 0 <= longest < len(_ORDINAL) else "none",
+                Printed("second", f"{_S59}, Fig 5.5(b): v_stall in the middle of the second "
+                        "turn", word=True),
+                note="time at v_stall per turn: "
+                + ", ".join(f"{x:.1f} s" for x in per_turn),
+            )
+        )  # fmt: skip
+        old_gain = None if old is None else dubins - old
+        rows.append(
+            compare(
+                "improvement, best BBB of the dissertation's family B (lambda <= v_ms - v_stall)",
+                old_gain,
+                p_gain,
+                note="" if old_gain is not None and abs(old_gain - float(p_gain.value))
+                <= p_gain.tolerance  # type: ignore[operator]
+                else ("the family search (SLSQP from the best BBB candidate) found no path"
+                      if old_gain is None else f"{old_gain:.4f} m"),
+            )
+        )  # fmt: skip
         notes = (
             "The optimum's middle turn is a B arc clipped at v_stall (lambda > v_ms - v_stall), "
-            "which the dissertation's family B excludes (Lemma 5.7.6). Restricted to that "
-            "family, the best BBB RLR path reproduces the dissertation's 2.4 m (11%); the "
-            "saturated arc saves a further few centimetres."
+            "which the dissertation's family B excludes (Lemma 5.7.6); the last row restricts "
+            "the search to that family."
         )
     return FigureReport(
         files=(name,),
         rows=tuple(rows),
         notes=notes,
-        data={"cost": sol.cost, "dubins_cost": dubins, "direct_cost": direct.cost},
-    )
+        data={"cost": sol.cost, "dubins_cost": dubins, "direct_cost": direct.cost,
+              "family_bbb_cost": old},
+    )  # fmt: skip
 
 
 @reproducible(

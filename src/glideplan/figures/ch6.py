@@ -1,9 +1,9 @@
 """Chapter 6 figures: control set, hodograph, polars, extremal arcs, three examples (6.3-6.13).
 
 Parameters (6.21): n_max = 2, (L/D)max = 30, v_min = 0.75, v_max = 2. The examples are solved
-by the direct method (`glideplan.planners.load_factor`) and compared with the dissertation's
-qualitative results and with an independent multi-start collocation (costs 0.36138, 0.26256,
-0.20926).
+by the direct method (`glideplan.planners.load_factor`) and compared with what section 6.8
+states and, as references, with an independent multi-start collocation run by the project
+(costs 0.36138, 0.26256, 0.20926; the dissertation prints no cost).
 """
 
 from __future__ import annotations
@@ -16,15 +16,18 @@ from typing import Any
 import numpy as np
 
 from glideplan.analysis import load_factor as lf
+from glideplan.errors import PlanningError
 from glideplan.figures._common import pyplot, save_png
-from glideplan.figures.registry import Comparison, FigureReport, reproducible
+from glideplan.figures.registry import FigureReport, Printed, compare, reproducible, yes_no
 from glideplan.pose import Pose
+from glideplan.studies.load_factor_hodograph import hc_minimiser
 from glideplan.vehicles.load_factor_glider import LoadFactorGlider
 
 __all__ = ["EXAMPLES", "draw_solution", "solve_example"]
 
 GLIDER = LoadFactorGlider()  # (6.21)
-# goal, dissertation figure, independent cost, turn word, corner reached (section 6.8)
+# goal; independent cost (project's multi-start collocation); turn word of the drawn path;
+# whether section 6.8 says the corner condition becomes active; s axis of the figure
 EXAMPLES: dict[str, dict[str, Any]] = {
     "fig6.11": {"goal": (-2.0, 4.0, 7 * math.pi / 4), "cost": 0.36138, "word": "L",
                 "corner": False, "s_axis": 8.0},
@@ -33,6 +36,9 @@ EXAMPLES: dict[str, dict[str, Any]] = {
     "fig6.13": {"goal": (1.1, 2.0, 0.0), "cost": 0.20926, "word": "LR",
                 "corner": True, "s_axis": 2.5},
 }  # fmt: skip
+INDEPENDENT = "independent multi-start collocation (project record; no cost is printed)"
+CORNER_SOURCE = "section 6.8: only in Figure 6.13(c) does the corner condition become active"
+S67 = "section 6.7"
 _CLASS_STYLE = {
     "corner": ("tab:red", "corner"),
     "stall": ("tab:orange", "stall boundary"),
@@ -81,31 +87,25 @@ def fig6_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.legend(fontsize=7, loc="upper right")
     ax.set_title("Control set Omega (6.20), parameters (6.21)")
     vl, nl = lf.locus_stall_intersection(g)
+    v_lim = (2.0 / (1.0 + g.p2**2)) ** 0.25
     rows = (
-        Comparison("p1 = 1/(2 (L/D)max)", f"{g.p1:.5f}", "1/60 (REFERENCE_NOTES 5.4)"),
-        Comparison("p2 = 1/v_min^2", f"{g.p2:.4f}", "1.778"),
-        Comparison("v_lim, n_lim", f"{vl:.4f}, {nl:.4f}", "(2/(1+p2^2))^(1/4), sqrt(2-v^4)"),
-        Comparison("corner (v_c, n_max)", f"{g.corner_speed:.4f}, {g.n_limit:g}",
-                   "v_c = sqrt(n_max/p2)"),
-        Comparison("smallest turn radius (corner)", f"{g.corner_radius:.4f}", "",
-                   "v_c^2 / sqrt(n_max^2 - 1)"),
+        compare("n_max", g.n_limit, Printed("2", "(6.21)")),
+        compare("v_min", math.sqrt(1.0 / g.p2), Printed("0.75", "(6.21)")),
+        compare("p1 = 1/(2 (L/D)max)", g.p1, reference=1 / 60,
+                reference_source="REFERENCE_NOTES 5.4: (L/D)max = 30 -> 1/60"),
+        compare("p2 = 1/v_min^2", g.p2, reference=1.778,
+                reference_source="REFERENCE_NOTES 5.4 (3 decimals)"),
+        compare("v_lim: the extremal locus meets the stall boundary", vl, reference=v_lim,
+                reference_source="closed form (2/(1+p2^2))^(1/4): (6.35) with n = p2 v^2"),
+        compare("n_lim", nl, reference=math.sqrt(2 - v_lim**4),
+                reference_source="closed form sqrt(2 - v_lim^4) (6.35)"),
+        compare("corner speed v_c", g.corner_speed, reference=math.sqrt(g.n_limit / g.p2),
+                reference_source="closed form sqrt(n_max/p2)"),
+        compare("smallest turn radius (corner)", g.corner_radius,
+                reference=g.corner_speed**2 / math.sqrt(g.n_limit**2 - 1),
+                reference_source="closed form v_c^2 / sqrt(n_max^2 - 1)"),
     )  # fmt: skip
     return FigureReport(files=(save_png(fig, out_dir / "fig6_3.png", crop=True).name,), rows=rows)
-
-
-def _hc_minimiser(g: LoadFactorGlider, lam: float, grid: int) -> tuple[float, float]:
-    """(v, n) minimising f0 - lam f_psi over Omega (turning left), by dense grid search.
-
-    The grid is laid in the box coordinates (6.53)-(6.54), bank angle phi and speed fraction
-    vbar (squared spacing, dense near the stall boundary), so that the stall boundary and the
-    corner are grid points.
-    """
-    vbar, phi = np.meshgrid(np.linspace(0.0, 1.0, grid) ** 2, np.linspace(0, g.max_bank, grid))
-    n = 1.0 / np.cos(phi)
-    v = np.sqrt(n / g.p2) * (1.0 - vbar) + g.v_max * vbar
-    h = g.sink_per_length(v, n) - lam * np.sqrt(np.maximum(n**2 - 1, 0)) / v**2
-    i = np.unravel_index(np.argmin(h), h.shape)
-    return float(v[i]), float(n[i])
 
 
 @reproducible(
@@ -131,7 +131,7 @@ def fig6_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     # a separating plane tangent at a stall-boundary point: |eta_psi| / (2 eta0 p1) = 2,
     # between the stall (0.72) and corner (4.56) thresholds of fig6.5
     lam = 2.0 * g.p1 * 2.0
-    v, n = _hc_minimiser(g, lam, 600)
+    v, n = hc_minimiser(g, lam, 600)
     k0 = math.sqrt(n**2 - 1) / v**2
     f0 = float(g.sink_per_length(v, n))
     xs = np.linspace(-2, 2, 10)
@@ -151,10 +151,14 @@ def fig6_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ref = np.interp(loc.x[5:-5:10], loc.x, loc.y)
     gap = float(np.nanmin(np.asarray(grid_min) - ref))
     rows = (
-        Comparison("lowest sink (wings level, v = 1)", f"{2 * g.p1:.5f}", "2 p1 = 0.0333"),
-        Comparison("largest turn rate (corner)", f"{1 / g.corner_radius:.4f}", "about 1.5 (axis)"),
-        Comparison("grid minimum of f0 minus locus image", f"{gap:.2e}", ">= 0",
-                   "the locus is the southern boundary"),
+        compare("lowest sink per unit length (hodograph grid)", float(pts[:, 1].min()),
+                reference=1 / 30, reference_source="1/(L/D)max with (L/D)max = 30 (6.21)"),
+        compare("largest turn rate per unit length (hodograph grid)", float(pts[:, 0].max()),
+                reference=1 / g.corner_radius,
+                reference_source="the corner: sqrt(n_max^2-1)/v_c^2"),
+        compare("grid minimum of f0 minus the locus image", gap, reference=0.0,
+                reference_source="section 6.5: the extremal locus is the southern boundary",
+                note="a value >= 0 (up to the grid step) confirms it"),
     )  # fmt: skip
     return FigureReport(files=(save_png(fig, out_dir / "fig6_4.png", crop=True).name,), rows=rows)
 
@@ -175,7 +179,7 @@ def fig6_5(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
         [np.linspace(0.0, lam_stall_p, 8), np.linspace(0.75, 3.0, 10), [4.0, 4.5, 4.6, 6.0, 10.0]]
     )
     lams = 2 * g.p1 * lamp
-    mins = np.array([_hc_minimiser(g, lam, grid) for lam in lams])
+    mins = np.array([hc_minimiser(g, lam, grid) for lam in lams])
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 4))
     _draw_control_set(a1, g)
     a1.plot(mins[:, 0], mins[:, 1], "ro-", ms=3, label="minimiser of Hc")
@@ -205,14 +209,18 @@ def fig6_5(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     lam_corner = 0.5 * (1 / g.p2**2 + 1) * g.n_limit**2 * math.sqrt(g.n_limit**2 - 1)
     on_stall = np.abs(mins[:, 1] - g.p2 * mins[:, 0] ** 2) < 0.02
     rows = (
-        Comparison("max |n_grid - n(6.36)| on the locus", f"{err_n:.1e}", "0",
-                   f"grid {grid}^2 (step {1 / grid:.0e})"),
-        Comparison("max |v_grid - v(6.37)| on the locus", f"{err_v:.1e}", "0"),
-        Comparison("stall binds at |eta_psi|/(2 eta0 p1)", f"{lam_stall_p:.4f}",
-                   "sqrt((p2^2-1)/(p2^2+1))",
-                   f"grid minimisers on the stall boundary beyond: {bool(np.all(on_stall[8:]))}"),
-        Comparison("corner reached by |eta_psi|/(2 eta0 p1)", f"<= {corner_from:.2f}",
-                   f"{lam_corner:.4f}", "(6.47) at n = n_max; the minimiser then stays there"),
+        compare("max |n_grid - n(6.36)| on the locus", err_n, reference=0.0,
+                reference_source="closed form (6.36)", note=f"grid {grid}^2 (step {1 / grid:.0e})"),
+        compare("max |v_grid - v(6.37)| on the locus", err_v, reference=0.0,
+                reference_source="closed form (6.37)"),
+        compare("grid minimisers on the stall boundary past the stall threshold",
+                yes_no(bool(np.all(on_stall[8:]))), reference="yes",
+                reference_source="section 6.7: beyond sqrt((p2^2-1)/(p2^2+1)) the stall binds"),
+        compare("first adjoint ratio of the grid at the corner", corner_from,
+                reference=lam_corner, reference_source="(6.47) at n = n_max",
+                note="adjoint ratios searched above 3: "
+                + ", ".join(f"{x:g}" for x in lamp[lamp > 3])
+                + "; ours is the first of them at the corner"),
     )  # fmt: skip
     return FigureReport(files=(save_png(fig, out_dir / "fig6_5.png", crop=True).name,), rows=rows)
 
@@ -237,11 +245,29 @@ def fig6_6(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_xlabel("f_psi")
     ax.set_ylabel("f0")
     ax.legend(fontsize=7)
-    area_ratio = hull.volume
+    inside = _hull_fraction_filled(pts, hull)
     rows = (
-        Comparison("hull area", f"{area_ratio:.4f}", "", "nonconvex: hull adds area in the north"),
-    )
+        compare("area of the convex hull (relaxed hodograph)", float(hull.volume)),
+        compare("share of the hull covered by the hodograph", inside, unit="%",
+                note="below 100%: the hodograph is nonconvex (section 6.6)"),
+    )  # fmt: skip
     return FigureReport(files=(save_png(fig, out_dir / "fig6_6.png", crop=True).name,), rows=rows)
+
+
+def _hull_fraction_filled(pts: np.ndarray, hull: Any, bins: int = 80) -> float:
+    """Percentage of the hull's grid cells (bins x bins over its box) holding a hodograph point
+    among the cells whose centre lies inside the hull."""
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    xs = lo[0] + (np.arange(bins) + 0.5) * (hi[0] - lo[0]) / bins
+    ys = lo[1] + (np.arange(bins) + 0.5) * (hi[1] - lo[1]) / bins
+    cx, cy = np.meshgrid(xs, ys, indexing="ij")
+    centres = np.column_stack([cx.ravel(), cy.ravel()])
+    eq = hull.equations
+    in_hull = np.all(centres @ eq[:, :2].T + eq[:, 2] <= 1e-12, axis=1).reshape(bins, bins)
+    ij = np.clip(((pts - lo) / (hi - lo) * bins).astype(int), 0, bins - 1)
+    filled = np.zeros((bins, bins), dtype=bool)
+    filled[ij[:, 0], ij[:, 1]] = True
+    return 100.0 * float(np.sum(filled & in_hull)) / float(np.sum(in_hull))
 
 
 @reproducible(
@@ -264,10 +290,13 @@ def fig6_7(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.legend(fontsize=7)
     n15 = curves["n=1.5"]
     i = int(np.argmin(n15.y))
+    n1 = curves["n=1"] if "n=1" in curves else None
     rows = (
-        Comparison("argmin_v f0 at n = 1.5", f"{n15.x[i]:.3f}",
-                   f"sqrt(1.5) = {math.sqrt(1.5):.3f}"),
-        Comparison("best glide f0 at n = 1", f"{2 * g.p1:.4f}", "1/(L/D)max = 0.0333"),
+        compare("argmin over v of f0 at n = 1.5", float(n15.x[i]), reference=math.sqrt(1.5),
+                reference_source="the extremal locus n = v^2 (section 6.7)",
+                note=f"curve sampled every {float(np.mean(np.diff(n15.x))):.3f}"),
+        compare("best glide f0 at n = 1", float(np.min(n1.y)) if n1 is not None else 2 * g.p1,
+                reference=1 / 30, reference_source="1/(L/D)max with (L/D)max = 30 (6.21)"),
     )  # fmt: skip
     return FigureReport(files=(save_png(fig, out_dir / "fig6_7.png", crop=True).name,), rows=rows)
 
@@ -291,9 +320,8 @@ def fig6_8(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_ylabel("turn rate per unit length psi'")
     ax.legend(fontsize=7)
     rows = (
-        Comparison("best turn rate, at v_c",
-                   f"{1 / g.corner_radius:.4f} at v = {g.corner_speed:.4f}",
-                   "corner speed v_c", "y axis of Fig 6.8 reaches 1.5"),
+        compare("best turn rate per unit length (the corner)", 1 / g.corner_radius,
+                note=f"at v = v_c = {g.corner_speed:.4f}; the y axis of Fig 6.8 ends at 1.5"),
     )  # fmt: skip
     notes = (
         "The extracted text calls Fig 6.8 sink rate versus speed; its axis range (0 to 1.5) "
@@ -316,14 +344,23 @@ def fig6_9(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     g = GLIDER
     fig, ax = plt.subplots(figsize=(6, 4))
     rows = []
+    s1s = []
     for p3 in (1.02, 1.1, 1.5, 3.0):
         s, v, s1 = lf.locus_speed_history(g, p3)
         vn = lf.locus_speed_history_numeric(g, p3, s)
         ax.plot(s, v, label=f"p3 = {p3:g}")
+        s1s.append(s1)
+        rows.append(compare(f"p3 = {p3:g}: arc length s1 (6.44)", s1))
         rows.append(
-            Comparison(f"s1 (6.44), p3 = {p3:g}", f"{s1:.4f}",
-                       f"numerical (6.41): max |dv| {np.max(np.abs(v - vn)):.1e}")
+            compare(f"p3 = {p3:g}: max |v(6.44) - v from integrating (6.41)|",
+                    float(np.max(np.abs(v - vn))), reference=0.0,
+                    reference_source="numerical integration of (6.41) (solve_ivp)")
         )  # fmt: skip
+    rows.append(
+        compare("s1 grows as p3 decreases towards 1", yes_no(bool(np.all(np.diff(s1s) < 0))),
+                Printed("yes", f"{S67}: s1 -> infinity as p3 -> 1", word=True),
+                note="s1 = " + ", ".join(f"{x:.3f}" for x in s1s))
+    )  # fmt: skip
     ax.set_xlim(0, 2)
     ax.set_xlabel("arc length s")
     ax.set_ylabel("speed v")
@@ -348,8 +385,10 @@ def fig6_10(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
         r = lf.stall_load_factor_history(g, p3)
         ax.plot(r["s"], r["n"], label=f"p3 = {p3:g}")
         rows.append(
-            Comparison(f"p3 = {p3:g}: corner reached", str(r["corner"]),
-                       "yes" if p3 == 10.0 else "no", f"max n = {np.max(r['n']):.4f}")
+            compare(f"p3 = {p3:g}: the corner is reached", yes_no(bool(r["corner"])),
+                    Printed("yes" if p3 == 10.0 else "no",
+                            f"{S67}: in Figure 6.10 only p3 = 10 reaches the corner", word=True),
+                    note=f"max n = {np.max(r['n']):.4f}, n_max = {g.n_limit:g}")
         )  # fmt: skip
     ax.axhline(g.n_limit, color="k", ls=":", lw=0.8)
     ax.set_xlim(0, 3)
@@ -411,25 +450,34 @@ def _example(fig_id: str, out_dir: pathlib.Path) -> FigureReport:
     ex = EXAMPLES[fig_id]
     sol = solve_example(ex["goal"])
     name = f"{fig_id.replace('.', '_')}.png"
-    if not sol.ok:
-        return FigureReport(notes=f"the direct method failed: {sol.message}")
+    if not sol.ok or sol.path is None:
+        raise PlanningError(f"the direct method failed for {fig_id}: {sol.message}")
     draw_solution(sol, out_dir / name, f"{fig_id}: x1 = {tuple(round(c, 4) for c in ex['goal'])}")
     arcs = sol.extras["arcs"]
     fr = arcs["fractions"]
     err = sol.endpoint_error
+    figure = fig_id.replace("fig", "Figure ")
     rows = (
-        Comparison("altitude loss (cost)", f"{sol.cost:.5f}", f"{ex['cost']:.5f} (independent)",
-                   f"difference {sol.cost - ex['cost']:+.1e}"),
-        Comparison("turn word", arcs["turn_word"], "-".join(ex["word"])),
-        Comparison("corner reached", str(arcs["reaches_corner"]), str(ex["corner"]),
-                   f"{100 * fr['corner']:.0f}% of s at the corner"),
-        Comparison("arc length s1", f"{sol.path.length:.3f}",
-                   f"s axis of the figure ticks to {ex['s_axis']:g}"),
-        Comparison("share on locus / stall / corner", f"{fr['locus']:.2f} / {fr['stall']:.2f} / "
-                   f"{fr['corner']:.2f}", "locus and stall boundary (section 6.8)"),
-        Comparison("endpoint error (integration)", f"{err.max:.1e}", "", "plan() verification"),
-        Comparison("mesh costs", ", ".join(f"{c:.6f}" for c in sol.stats["mesh_costs"]), "",
-                   "mesh sizes " + ", ".join(str(m) for m in sol.stats["mesh_sizes"])),
+        compare("altitude loss (cost)", sol.cost, reference=ex["cost"],
+                reference_source=INDEPENDENT,
+                note=f"ours - reference {sol.cost - ex['cost']:+.1e}"),
+        compare("turn word", arcs["turn_word"], reference="-".join(ex["word"]),
+                reference_source=f"the path drawn in {figure}(b) (read by the project)"),
+        compare("the corner condition becomes active", yes_no(bool(arcs["reaches_corner"])),
+                Printed(yes_no(ex["corner"]), CORNER_SOURCE, word=True),
+                note=f"{100 * fr['corner']:.0f}% of s at the corner"),
+        compare("arc length s1", sol.path.length,
+                note=f"the s axis of {figure}(a) ticks to {ex['s_axis']:g}"),
+        compare("share of s on the extremal locus", fr["locus"]),
+        compare("share of s on the stall boundary", fr["stall"]),
+        compare("share of s at the corner", fr["corner"]),
+        compare("share of s wings level", fr["wings_level"],
+                note="section 6.8: wings level only at isolated points"),
+        compare("endpoint error (integration)", err.max, reference=0.0,
+                reference_source="plan() verification by integrating the controls"),
+        compare("cost on the final mesh", float(sol.stats["mesh_costs"][-1]),
+                note="mesh costs " + ", ".join(f"{c:.6f}" for c in sol.stats["mesh_costs"])
+                + "; sizes " + ", ".join(str(m) for m in sol.stats["mesh_sizes"])),
     )  # fmt: skip
     return FigureReport(files=(name,), rows=rows, data={"cost": sol.cost})
 

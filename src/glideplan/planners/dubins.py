@@ -98,7 +98,7 @@ def feasible_radius(radius: ArrayLike, eps: ArrayLike) -> np.ndarray | float:
 # ----- kernels on normalised start-frame goals (x, y, psi), unit radius ---------------------
 
 
-def _mod(a: np.ndarray) -> np.ndarray:
+def mod_2pi_snapped(a: np.ndarray) -> np.ndarray:
     """Angles to [-2 pi * _SNAP, 2 pi - 2 pi * _SNAP) (mod 2 pi; rounding noise below 0 kept)."""
     return a - TWO_PI * np.floor(a * _INV_2PI + _SNAP)
 
@@ -112,12 +112,12 @@ def _normalise(start: ArrayLike, goal: ArrayLike, radius: ArrayLike) -> tuple[np
     inv = 1.0 / r
     x = (c * dx + sn * dy) * inv
     y = (c * dy - sn * dx) * inv
-    psi = _mod(g[:, 2] - s[:, 2])
+    psi = mod_2pi_snapped(g[:, 2] - s[:, 2])
     r = np.broadcast_to(r, x.shape)
     return tuple(a.reshape(shape) for a in (x, y, psi, r))
 
 
-def _table(x: np.ndarray, y: np.ndarray, psi: np.ndarray) -> np.ndarray:
+def segment_table(x: np.ndarray, y: np.ndarray, psi: np.ndarray) -> np.ndarray:
     """Segment lengths (t, p, q) of the six words for unit radius: `(..., 6, 3)`, NaN infeasible.
 
     Dissertation eq. 2.11; closed forms of REFERENCE_NOTES 4.2 in circle-centre form.
@@ -128,19 +128,23 @@ def _table(x: np.ndarray, y: np.ndarray, psi: np.ndarray) -> np.ndarray:
     vx, vy = x - sp, y + cp - 1.0
     d2_ll = vx * vx + vy * vy
     phi_ll = np.arctan2(vy, vx)
-    out[..., 0, :] = np.stack([_mod(phi_ll), np.sqrt(d2_ll), _mod(psi - phi_ll)], axis=-1)
+    out[..., 0, :] = np.stack(
+        [mod_2pi_snapped(phi_ll), np.sqrt(d2_ll), mod_2pi_snapped(psi - phi_ll)], axis=-1
+    )
     # RSR: start right circle (0, -1), goal right circle (x + sin, y - cos).
     vx, vy = x + sp, y - cp + 1.0
     d2_rr = vx * vx + vy * vy
     phi_rr = np.arctan2(vy, vx)
-    out[..., 3, :] = np.stack([_mod(-phi_rr), np.sqrt(d2_rr), _mod(phi_rr - psi)], axis=-1)
+    out[..., 3, :] = np.stack(
+        [mod_2pi_snapped(-phi_rr), np.sqrt(d2_rr), mod_2pi_snapped(phi_rr - psi)], axis=-1
+    )
     # LSR: start left (0, 1) to goal right circle; internal tangent.
     vx, vy = x + sp, y - cp - 1.0
     p2 = vx * vx + vy * vy - 4.0
     ok = p2 >= -_FEAS_TOL
     p = np.sqrt(np.maximum(p2, 0.0))
     phi = np.arctan2(vy * p + 2.0 * vx, vx * p - 2.0 * vy)
-    row = np.stack([_mod(phi), p, _mod(phi - psi)], axis=-1)
+    row = np.stack([mod_2pi_snapped(phi), p, mod_2pi_snapped(phi - psi)], axis=-1)
     out[..., 1, :] = np.where(ok[..., None], row, np.nan)
     # RSL: start right (0, -1) to goal left circle.
     vx, vy = x - sp, y + cp + 1.0
@@ -148,23 +152,23 @@ def _table(x: np.ndarray, y: np.ndarray, psi: np.ndarray) -> np.ndarray:
     ok = p2 >= -_FEAS_TOL
     p = np.sqrt(np.maximum(p2, 0.0))
     phi = np.arctan2(vy * p - 2.0 * vx, vx * p + 2.0 * vy)
-    row = np.stack([_mod(-phi), p, _mod(psi - phi)], axis=-1)
+    row = np.stack([mod_2pi_snapped(-phi), p, mod_2pi_snapped(psi - phi)], axis=-1)
     out[..., 2, :] = np.where(ok[..., None], row, np.nan)
     # RLR: both right circles, |V| <= 4; middle arc p = 2 pi - acos(1 - |V|^2 / 8).
     c = 1.0 - d2_rr * 0.125
     ok = c >= -1.0 - _FEAS_TOL
     pm = TWO_PI - np.arccos(np.clip(c, -1.0, 1.0))
-    t = _mod(0.5 * pm - phi_rr)
-    row = np.stack([t, pm, _mod(pm - t - psi)], axis=-1)
+    t = mod_2pi_snapped(0.5 * pm - phi_rr)
+    row = np.stack([t, pm, mod_2pi_snapped(pm - t - psi)], axis=-1)
     out[..., 4, :] = np.where(ok[..., None], row, np.nan)
     # LRL: both left circles.
     c = 1.0 - d2_ll * 0.125
     ok = c >= -1.0 - _FEAS_TOL
     pm = TWO_PI - np.arccos(np.clip(c, -1.0, 1.0))
-    t = _mod(phi_ll + 0.5 * pm)
-    row = np.stack([t, pm, _mod(psi - t + pm)], axis=-1)
+    t = mod_2pi_snapped(phi_ll + 0.5 * pm)
+    row = np.stack([t, pm, mod_2pi_snapped(psi - t + pm)], axis=-1)
     out[..., 5, :] = np.where(ok[..., None], row, np.nan)
-    # Rounding noise around zero (see _mod) is a zero-length turn.
+    # Rounding noise around zero (see mod_2pi_snapped) is a zero-length turn.
     turns = out[..., [0, 2]]
     turns[np.abs(turns) < _ZERO_TURN] = 0.0
     out[..., [0, 2]] = turns
@@ -177,7 +181,7 @@ def _word_totals_chunk(
 ) -> None:
     """Fill `tot` (6, m) with the six words' total lengths in units of R (inf infeasible).
 
-    The fast path of `_table` for flat `(m, 3)` start/goal chunks: the goal is moved into the
+    The fast path of `segment_table` for flat `(m, 3)` start/goal chunks: the goal is moved into the
     start frame here, and each word's two turn angles are summed in closed form. With
     t' = M(phi), psi' = M(psi) in [0, 2 pi): LSL turns sum to psi' (+ 2 pi when t' > psi'),
     RSR to M(-psi) (+ 2 pi when M(-phi) > M(-psi)), LSR to 2 t' - psi' (+ 2 pi when t' < psi'),
@@ -196,7 +200,7 @@ def _word_totals_chunk(
     y -= s0 * dx
     y *= inv_radius
     psi = goal[:, 2] - sh
-    psi = _mod(psi)  # [-tiny, 2 pi - tiny)
+    psi = mod_2pi_snapped(psi)  # [-tiny, 2 pi - tiny)
     sp, cp = np.sin(psi), np.cos(psi)
     np.maximum(psi, 0.0, out=psi)
     psi_neg = TWO_PI - psi  # M(-psi), with M(-0) = 0
@@ -277,8 +281,8 @@ def _word_totals_chunk(
         np.clip(c, -1.0, 1.0, out=c)
         pm = TWO_PI - np.arccos(c)
         ps = psi[near]
-        t = _mod(0.5 * pm + sign * phi_c[near])
-        row[near] = pm + t + _mod(pm - t + sign * ps)
+        t = mod_2pi_snapped(0.5 * pm + sign * phi_c[near])
+        row[near] = pm + t + mod_2pi_snapped(pm - t + sign * ps)
 
 
 def _word_totals(start: np.ndarray, goal: np.ndarray, radius: np.ndarray) -> np.ndarray:
@@ -323,7 +327,7 @@ def dubins_segment_lengths(start: ArrayLike, goal: ArrayLike, radius: ArrayLike)
     `WORDS[k]`; the three lengths (m) are those of its first turn, middle segment and last turn.
     """
     x, y, psi, r = _normalise(start, goal, radius)
-    return _table(x, y, psi) * r[..., None, None]
+    return segment_table(x, y, psi) * r[..., None, None]
 
 
 def dubins_word_lengths(start: ArrayLike, goal: ArrayLike, radius: ArrayLike) -> np.ndarray:

@@ -25,13 +25,12 @@ import functools
 import math
 from typing import Any
 
-import casadi as ca
 import numpy as np
 
 from glideplan.analysis.load_factor import best_turn, classify_controls
 from glideplan.errors import InvalidParameterError
 from glideplan.path import Path
-from glideplan.planners.direct import ControlSystem, solve_direct
+from glideplan.planners.direct import ControlSystem, DirectResult, solve_direct
 from glideplan.planners.direct.guesses import dubins_guesses
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import Pose
@@ -54,6 +53,8 @@ TWO_PI = 2.0 * math.pi
 @functools.lru_cache(maxsize=32)
 def control_system(glider: LoadFactorGlider, formulation: str = "bank") -> ControlSystem:
     """The glider as a `ControlSystem` for the direct engine (cached per glider)."""
+    import casadi as ca  # heavy: imported when a direct solve is built
+
     p1, p2, vmax = glider.p1, glider.p2, glider.v_max
     if formulation == "bank":
         phi_max = glider.max_bank
@@ -175,8 +176,12 @@ def solve_load_factor(
     formulation: str = "bank",
     guesses: list[Path] | None = None,
     ipopt_options: dict[str, Any] | None = None,
-):
-    """Solve the chapter 6 problem from the origin to `goal` (a `DirectResult`)."""
+    time_limit: float | None = None,
+) -> DirectResult:
+    """Solve the chapter 6 problem from the origin to `goal` (a `DirectResult`).
+
+    `time_limit`: wall-clock seconds for the direct solve (all starts), or None for no limit.
+    """
     system = control_system(glider, formulation)
     gs = guesses if guesses is not None else initial_guesses(glider, goal, max_starts=max_starts)
     return solve_direct(
@@ -188,6 +193,7 @@ def solve_load_factor(
         mesh_tol=mesh_tol,
         max_refinements=max_refinements,
         ipopt_options=ipopt_options,
+        time_limit=time_limit,
     )
 
 
@@ -224,8 +230,12 @@ def plan_load_factor(
     formulation: str = "bank",
     classification_tol: float = 2e-3,
     max_iterations: int = 1000,
+    time_limit: float | None = None,
 ) -> PlannerOutput:
-    """Direct collocation from analytic guesses; the best start, refined, is the answer."""
+    """Direct collocation from analytic guesses; the best start, refined, is the answer.
+
+    `time_limit`: wall-clock seconds for the direct solve (all starts), or None for no limit.
+    """
     glider = problem.vehicle
     assert isinstance(glider, LoadFactorGlider)
     if int(max_starts) != max_starts or max_starts < 1:
@@ -245,6 +255,7 @@ def plan_load_factor(
         max_starts=max_starts,
         formulation=formulation,
         ipopt_options={"max_iter": int(max_iterations)},
+        time_limit=time_limit,
     )
     starts = [s.to_dict() for s in res.starts]
     stats = {
@@ -263,6 +274,7 @@ def plan_load_factor(
             message=f"direct method failed: {res.message}",
             extras={"starts": starts},
             solver_failed=True,
+            warnings=res.warnings,
         )
     path = res.path.with_vehicle(glider)
     hist = control_history(glider, path)
@@ -304,5 +316,9 @@ def plan_load_factor(
         "starts": starts,
     }
     return PlannerOutput(
-        candidates=(best, *others), stats=stats, message=res.message, extras=extras
+        candidates=(best, *others),
+        stats=stats,
+        message=res.message,
+        extras=extras,
+        warnings=res.warnings,
     )

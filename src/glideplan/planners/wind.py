@@ -36,11 +36,17 @@ from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import brentq
 
 from glideplan.errors import InvalidParameterError
 from glideplan.path import Path
-from glideplan.planners.dubins import WORDS, dubins_word_lengths, feasible_radius, word_directions
+from glideplan.planners.dubins import (
+    WORDS,
+    dubins_word_lengths,
+    feasible_radius,
+    mod_2pi_snapped,
+    segment_table,
+    word_directions,
+)
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import Pose
 from glideplan.segments import Arc, Segment, Straight, _check_direction
@@ -64,7 +70,13 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(24)
 _GRID_STEP = 0.05
 # A bracket whose polished |F_W| (units of R) exceeds this straddles a 2 pi jump, not a root.
 _ROOT_TOL = 1e-7
-_SNAP = 1e-10
+# The bracketing grid is evaluated this many cells at a time (memory ~ 100 bytes per cell),
+# and refused beyond _MAX_GRID_POINTS cells (a wind within ~1e-5 of the airspeed).
+_CHUNK = 65536
+_MAX_GRID_POINTS = 4_000_000
+# Arrival times beyond this (units of R / v) are refused: the end position's rounding error,
+# about 1e-16 per unit of distance flown times a few hundred operations, would pass 1e-6 R.
+_MAX_TAU = 1e9
 
 
 # ----- segments over ground ---------------------------------------------------------------
@@ -252,66 +264,18 @@ class DriftingStraight(_Drifting):
         )
 
 
-# ----- scalar Dubins words (unit radius, start at the origin with heading 0) -----------------
-
-
-def _m(a: float) -> float:
-    r = a % TWO_PI
-    return 0.0 if r > TWO_PI - _SNAP else r
+# ----- the Dubins words for one virtual target (unit radius, start at the origin) ----------
 
 
 def _word_tpq(k: int, x: float, y: float, psi: float) -> tuple[float, float, float] | None:
     """Segment lengths (t, p, q) of word WORDS[k] to (x, y, psi), unit radius; None infeasible.
 
-    The (alpha, beta) closed forms of REFERENCE_NOTES §4.2 (Shkel & Lumelsky 2001).
+    The one Dubins kernel, `glideplan.planners.dubins.segment_table` (eq. 2.11).
     """
-    d = math.hypot(x, y)
-    th = math.atan2(y, x) if d > 0.0 else 0.0
-    a = _m(-th)
-    b = _m(psi - th)
-    sa, ca, sb, cb = math.sin(a), math.cos(a), math.sin(b), math.cos(b)
-    cab = math.cos(a - b)
-    word = WORDS[k]
-    if word == "LSL":
-        p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)
-        if p2 < 0.0:
-            return None
-        tau = math.atan2(cb - ca, d + sa - sb)
-        return _m(tau - a), math.sqrt(p2), _m(b - tau)
-    if word == "RSR":
-        p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)
-        if p2 < 0.0:
-            return None
-        tau = math.atan2(ca - cb, d - sa + sb)
-        return _m(a - tau), math.sqrt(p2), _m(tau - b)
-    if word == "LSR":
-        p2 = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)
-        if p2 < 0.0:
-            return None
-        p = math.sqrt(p2)
-        tau = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
-        return _m(tau - a), p, _m(tau - b)
-    if word == "RSL":
-        p2 = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb)
-        if p2 < 0.0:
-            return None
-        p = math.sqrt(p2)
-        tau = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
-        return _m(a - tau), p, _m(b - tau)
-    if word == "RLR":
-        c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0
-        if abs(c) > 1.0:
-            return None
-        p = _m(TWO_PI - math.acos(c))
-        t = _m(a - math.atan2(ca - cb, d - sa + sb) + 0.5 * p)
-        return t, p, _m(a - b - t + p)
-    # LRL
-    c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0
-    if abs(c) > 1.0:
+    row = segment_table(np.array(x), np.array(y), mod_2pi_snapped(np.array(psi)))[k]
+    if np.isnan(row[0]):
         return None
-    p = _m(TWO_PI - math.acos(c))
-    t = _m(-a - math.atan2(ca - cb, d + sa - sb) + 0.5 * p)
-    return t, p, _m(b - a - t + p)
+    return float(row[0]), float(row[1]), float(row[2])
 
 
 def virtual_target_residual(
@@ -373,6 +337,7 @@ def _polish(
     before an arc wraps) and on F_W itself (a root just after a wrap); a root is valid when
     F_W itself vanishes there (the principal branch: every arc in [0, 2 pi)).
     """
+    from scipy.optimize import brentq  # imported where used (start-up time)
 
     def raw(tau: float) -> float:
         return virtual_target_residual(tau, k, goal, wind)
@@ -404,10 +369,68 @@ def _polish(
     return best
 
 
+def _excess_time(excess: float, goal_xy: tuple[float, float], wind: tuple[float, float]) -> float:
+    """The tau >= 0 at which tau - |p - w tau| = `excess` (p the goal, w the wind, |w| < 1).
+
+    h(tau) = tau - |p - w tau| rises with slope in [1 - |w|, 1 + |w|], so the root is unique;
+    any root of F_W lies where 0 <= h(tau) <= L_W - |g(tau)| (a path is no shorter than the
+    straight line), which bounds the search window independently of the goal's distance.
+    """
+    from scipy.optimize import brentq  # imported where used (start-up time)
+
+    px, py = goal_xy
+    wx, wy = wind
+
+    def h(tau: float) -> float:
+        return tau - math.hypot(px - wx * tau, py - wy * tau) - excess
+
+    # h(hi) >= 0 in exact arithmetic; the margin covers rounding
+    hi = (math.hypot(px, py) + excess) / (1.0 - math.hypot(wx, wy)) * (1.0 + 1e-9) + 1.0
+    if h(0.0) >= 0.0:
+        return 0.0
+    return float(brentq(h, 0.0, hi, xtol=1e-12, rtol=4 * np.finfo(float).eps))
+
+
+def _root_window(
+    goal: tuple[float, float, float], wind: tuple[float, float]
+) -> tuple[float, float, int]:
+    """Start, end and number of grid points of the bracketing scan (normalised units).
+
+    Every word's path exceeds the straight line to g(tau) by at most 6 pi (CCC: three arcs
+    below 2 pi each; CSC: at most 2 + 4 pi), so every first root lies in
+    [h^-1(0), h^-1(6 pi)], a window of width at most 6 pi / (1 - |w|) whatever the goal.
+    """
+    wmag = math.hypot(*wind)
+    lo = _excess_time(0.0, goal[:2], wind)
+    hi = _excess_time(3.0 * TWO_PI, goal[:2], wind) + _GRID_STEP
+    if hi > _MAX_TAU:
+        raise InvalidParameterError(
+            "goal",
+            f"({goal[0]:.6g}, {goal[1]:.6g}) turn radii",
+            f"too far for this wind: the arrival time would exceed {_MAX_TAU:.0e} R / v, where "
+            "rounding alone exceeds the verification tolerance of 1e-6 R",
+        )
+    lo = max(0.0, lo - _GRID_STEP)  # F_W > 0 strictly before h^-1(0)
+    count = max(3, math.ceil((hi - lo) / _GRID_STEP) + 1)
+    if count > _MAX_GRID_POINTS:
+        raise InvalidParameterError(
+            "wind",
+            wmag * 1.0,
+            f"wind speed / airspeed {wmag:.6g} is too close to 1: the arrival-time search "
+            f"would scan {count} grid points (limit {_MAX_GRID_POINTS}; needs wind speed "
+            f"<= {1.0 - 3.0 * TWO_PI / (_MAX_GRID_POINTS * _GRID_STEP):.6g} * airspeed)",
+        )
+    return lo, hi, count
+
+
 def _first_roots(
     goal: tuple[float, float, float], wind: tuple[float, float]
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Smallest root tau_W of each word's F_W (normalised units) and its (t, p, q)."""
+    """Smallest root tau_W of each word's F_W (normalised units) and its (t, p, q).
+
+    The grid over the window of `_root_window` is scanned in chunks (bounded memory) and the
+    scan stops once every word has its first root.
+    """
     x1, y1, psi1 = goal
     taus = np.full(6, np.inf)
     tpqs = np.full((6, 3), np.nan)
@@ -423,31 +446,34 @@ def _first_roots(
         tpq = _word_tpq(k, x1, y1, psi1)
         if tpq is not None and sum(tpq) <= 1e-12:
             taus[k], tpqs[k] = 0.0, (0.0, 0.0, 0.0)
-    # F_LSL(tau) <= 0 once tau >= (|goal| + 2 + 4 pi) / (1 - w): an upper bound on T*.
-    tau_max = (math.hypot(x1, y1) + 2.0 + 2.0 * TWO_PI) / (1.0 - wmag)
-    grid = np.linspace(0.0, tau_max, max(3, math.ceil(tau_max / _GRID_STEP) + 1))
-    targets = np.stack(
-        [x1 - wind[0] * grid, y1 - wind[1] * grid, np.full_like(grid, psi1)], axis=-1
-    )
-    f = dubins_word_lengths(np.zeros(3), targets, 1.0) - grid[:, None]  # (n, 6)
-    fa, fb = f[:-1], f[1:]
-    with np.errstate(invalid="ignore"):
-        # L_W jumps by multiples of 2 pi where an arc wraps through a full turn; within a cell
-        # the branch through the cell's left end is F unwrapped relative to F(a).
-        jumps = np.round((fb - fa) / TWO_PI)
-        cand = (fa > 0.0) & ((fb - TWO_PI * jumps <= 0.0) | (fb <= 0.0) | np.isnan(fb))
-        cand |= np.isnan(fa) & (fb <= 0.0)
-    for k in range(6):
-        if taus[k] == 0.0:
-            continue
-        for i in np.nonzero(cand[:, k])[0]:
-            root = _polish(k, float(grid[i]), float(grid[i + 1]), goal, wind)
-            if root is not None:
-                tpq = _word_tpq(k, x1 - wind[0] * root, y1 - wind[1] * root, psi1)
-                assert tpq is not None
-                taus[k] = root
-                tpqs[k] = tpq
-                break
+    lo, hi, count = _root_window(goal, wind)
+    open_words = [k for k in range(6) if taus[k] != 0.0]
+    for first in range(0, count - 1, _CHUNK):
+        idx = np.arange(first, min(count, first + _CHUNK + 1))
+        grid = lo + (hi - lo) * idx / (count - 1)
+        targets = np.stack(
+            [x1 - wind[0] * grid, y1 - wind[1] * grid, np.full_like(grid, psi1)], axis=-1
+        )
+        f = dubins_word_lengths(np.zeros(3), targets, 1.0) - grid[:, None]  # (n, 6)
+        fa, fb = f[:-1], f[1:]
+        with np.errstate(invalid="ignore"):
+            # L_W jumps by multiples of 2 pi where an arc wraps through a full turn; within a
+            # cell the branch through the cell's left end is F unwrapped relative to F(a).
+            jumps = np.round((fb - fa) / TWO_PI)
+            cand = (fa > 0.0) & ((fb - TWO_PI * jumps <= 0.0) | (fb <= 0.0) | np.isnan(fb))
+            cand |= np.isnan(fa) & (fb <= 0.0)
+        for k in list(open_words):
+            for i in np.nonzero(cand[:, k])[0]:
+                root = _polish(k, float(grid[i]), float(grid[i + 1]), goal, wind)
+                if root is not None:
+                    tpq = _word_tpq(k, x1 - wind[0] * root, y1 - wind[1] * root, psi1)
+                    assert tpq is not None
+                    taus[k] = root
+                    tpqs[k] = tpq
+                    open_words.remove(k)
+                    break
+        if not open_words:
+            break
     return taus, tpqs
 
 

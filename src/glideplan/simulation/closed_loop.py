@@ -13,8 +13,9 @@ own turn rate at the path point, kappa_p varpi', as a feedforward, the sum satur
 +-u_max. The feedforward removes the boundary layer's steady course lag on arcs; where a path
 needs the full u_max (R_plan = R0) it leaves no authority for the feedback, which is exactly
 the effect the feasible radius R0' addresses. Each step holds u and delta constant and moves
-the vehicle exactly (circular arc plus drift); dt = 0.05 s is converged to within 1% in the
-mean final error (tests/simulation/test_following.py::test_time_step_converged).
+the vehicle exactly (circular arc plus drift); dt = 0.05 s is converged to within 3% in the
+mean final error (tests/simulation/test_following.py::test_time_step_converged;
+benchmarks/validate_time_step.py against dt = 0.0125 s and 0.00625 s).
 
 The final cross-track error (REFERENCE_NOTES §1.5) is the distance from the path's end to the
 point where the vehicle crosses the finish line — the line through the end orthogonal to

@@ -14,6 +14,11 @@ a = exp(-V dt / L) (REFERENCE_NOTES §2.3), which has the exact variance and cor
 any dt (no sqrt(pi / dt) noise-normalisation pitfall). sigma is the RMS of the gust
 magnitude, so each component has sigma_c = sigma / sqrt(2) (unless `per_component`). The
 vector is saturated at |delta| <= saturation (the dissertation's eps v) after the filter.
+
+`gust_scale` f (default 1) is a sensitivity option, not part of the dissertation's model: the
+RMS becomes f sigma while the saturation stays as given. The literal reading of §3.4
+(sigma = eps v) is f = 1; f = 1/sqrt(pi) is the slip of unit-intensity white noise, and
+f = 0.3-0.4 brings the Fig 3.4(b) curves under the dissertation's axis (issue 10).
 """
 
 from __future__ import annotations
@@ -140,7 +145,8 @@ class DrydenTurbulence:
     sigma: RMS of the gust magnitude (m/s), before saturation; scale_length: L (m), default
     263 m (MIL-F-8785C low altitude at h = 100 m, REFERENCE_NOTES §2.2); airspeed: V (m/s);
     saturation: bound on |delta| (m/s), None for none; per_component: sigma is the RMS of each
-    component instead of the magnitude.
+    component instead of the magnitude; gust_scale: sensitivity factor f > 0 on the RMS (the
+    gusts have RMS f sigma; the saturation is unchanged), 1 for the model as stated.
     """
 
     sigma: float
@@ -148,18 +154,21 @@ class DrydenTurbulence:
     airspeed: float = 20.0
     saturation: float | None = None
     per_component: bool = False
+    gust_scale: float = 1.0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "sigma", check_nonnegative("sigma", self.sigma))
         object.__setattr__(self, "scale_length", check_positive("scale_length", self.scale_length))
         object.__setattr__(self, "airspeed", check_positive("airspeed", self.airspeed))
+        object.__setattr__(self, "gust_scale", check_positive("gust_scale", self.gust_scale))
         if self.saturation is not None:
             object.__setattr__(self, "saturation", check_nonnegative("saturation", self.saturation))
 
     @property
     def component_sigma(self) -> float:
-        """RMS of each inertial component (m/s)."""
-        return self.sigma if self.per_component else self.sigma / math.sqrt(2.0)
+        """RMS of each inertial component (m/s), the gust scale included."""
+        rms = self.gust_scale * self.sigma
+        return rms if self.per_component else rms / math.sqrt(2.0)
 
     @property
     def correlation_time(self) -> float:

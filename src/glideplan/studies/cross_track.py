@@ -6,7 +6,8 @@ random goals (uniform in a square of side 8 R0 centred on the start, final headi
 {0, 2 pi/3, pi}) and flown in closed loop (`glideplan.simulation`) under
 
 - the steady case: a constant wind of magnitude eps v towards a uniformly random direction;
-- the unsteady case: Dryden gusts with RMS magnitude eps v, saturated at eps v.
+- the unsteady case: Dryden gusts with RMS magnitude eps v, saturated at eps v (times the
+  sensitivity factor `gust_scale` f on the RMS, default 1: the literal reading).
 
 The planner knows nothing of the disturbance. Each (case, eps, R_plan) point is the mean final
 cross-track error / R0 over its samples; runs that never cross the finish line are failures,
@@ -41,6 +42,7 @@ from glideplan.validation import check_in_range, check_positive
 
 __all__ = [
     "CASES",
+    "MAX_DT_FRACTION",
     "CrossTrackConfig",
     "CrossTrackResult",
     "knee",
@@ -53,6 +55,9 @@ CASES = ("steady", "unsteady")
 DEFAULT_EPS = (0.25, 0.5, 0.75, 0.95)
 DEFAULT_R_PLAN = tuple(round(1.0 + 0.1 * i, 10) for i in range(31))
 DEFAULT_PSI1 = (0.0, 2.0 * math.pi / 3.0, math.pi)
+# Largest simulation step as a fraction of 1/u_max, the time to turn one radian: the
+# bang-bang turn-rate control must switch many times within a turn.
+MAX_DT_FRACTION = 0.1
 STORE_NAME = "samples.sqlite"
 SUMMARY_NAME = "summary.json"
 _COLUMNS = (
@@ -103,7 +108,9 @@ class CrossTrackConfig:
     is the dissertation's range (> 0 allowed); samples: goals per point; cases: "steady",
     "unsteady" or both; seed: master seed; speed v (m/s) and max_turn_rate u_max (rad/s);
     square: side of the goal square / R0; psi1: final headings (rad); chunk: samples per
-    work unit; dryden_scale_length: L (m); follower: guidance and integration settings.
+    work unit; dryden_scale_length: L (m); gust_scale: sensitivity factor f on the Dryden RMS
+    (f eps v; saturation stays eps v; 1 = the dissertation's model as stated); follower:
+    guidance and integration settings (their dt must be at most `MAX_DT_FRACTION / u_max`).
     """
 
     eps: tuple[float, ...] = DEFAULT_EPS
@@ -117,6 +124,7 @@ class CrossTrackConfig:
     psi1: tuple[float, ...] = DEFAULT_PSI1
     chunk: int = 100
     dryden_scale_length: float = 263.0
+    gust_scale: float = 1.0
     follower: dict[str, float] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -144,7 +152,7 @@ class CrossTrackConfig:
         object.__setattr__(self, "chunk", int(self.chunk))
         object.__setattr__(self, "seed", int(self.seed))
         object.__setattr__(self, "speed", check_positive("speed", self.speed))
-        object.__setattr__(self, "max_turn_rate", check_positive("umax", self.max_turn_rate))
+        object.__setattr__(self, "max_turn_rate", check_positive("u_max", self.max_turn_rate))
         object.__setattr__(self, "square", check_positive("square", self.square))
         object.__setattr__(self, "psi1", _floats("psi1", self.psi1))
         object.__setattr__(
@@ -152,8 +160,17 @@ class CrossTrackConfig:
             "dryden_scale_length",
             check_positive("dryden_scale_length", self.dryden_scale_length),
         )
+        object.__setattr__(self, "gust_scale", check_positive("gust_scale", self.gust_scale))
         follower = {k: _setting(k, v) for k, v in dict(self.follower).items()}
-        self.follower_settings_for(follower)  # validates the names and values
+        settings = self.follower_settings_for(follower)  # validates the names and values
+        dt_max = MAX_DT_FRACTION / self.max_turn_rate
+        if settings.dt > dt_max:
+            raise InvalidParameterError(
+                "dt",
+                settings.dt,
+                f"must be <= {MAX_DT_FRACTION:g} / u_max = {dt_max:.3g} s, a tenth of the time "
+                f"1/u_max = {1 / self.max_turn_rate:.3g} s to turn one radian",
+            )
         object.__setattr__(self, "follower", follower)
 
     def follower_settings_for(self, follower: dict[str, float] | None = None) -> FollowerSettings:
@@ -178,6 +195,8 @@ class CrossTrackConfig:
         out = asdict(self)
         fs = asdict(self.follower_settings)
         out["follower"] = fs
+        if out["gust_scale"] == 1.0:  # files written before the option existed still resume
+            del out["gust_scale"]
         for k in ("eps", "r_plan", "cases", "psi1"):
             out[k] = list(out[k])
         return out
@@ -239,6 +258,7 @@ def simulate_unit(unit: Unit) -> dict[str, np.ndarray]:
             scale_length=cfg.dryden_scale_length,
             airspeed=cfg.speed,
             saturation=bound,
+            gust_scale=cfg.gust_scale,
         )
         stream = model.stream(n, settings.dt, rng)
     res = follow_paths(paths, stream, rows=rows, settings=settings, disturbance_bound=bound)

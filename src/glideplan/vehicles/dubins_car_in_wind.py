@@ -7,8 +7,8 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from glideplan.errors import InvalidParameterError
-from glideplan.validation import check_finite, check_nonnegative, check_positive
-from glideplan.vehicles.base import Vehicle
+from glideplan.validation import check_finite, check_nonnegative
+from glideplan.vehicles.base import Vehicle, check_length, check_speed, check_turn_rate
 
 __all__ = ["DubinsCarInWind"]
 
@@ -20,6 +20,9 @@ class DubinsCarInWind(Vehicle):
     (rad, counter-clockwise from +x). Kinematics (A.4) with no unknown part:
     x' = v cos psi + w cos psi_w, y' = v sin psi + w sin psi_w, psi' = u, |u| <= v / R0.
     The wind must be slower than the vehicle (w < v).
+
+    Supported range (`glideplan.vehicles.base`): speed in [1e-6, 1e6] m/s, turn radius in
+    [1e-6, 1e7] m, u_max = v / R in [1e-6, 1e6] rad/s; anything else is refused.
     """
 
     speed: float = 1.0
@@ -31,8 +34,9 @@ class DubinsCarInWind(Vehicle):
     default_objective: ClassVar[str] = "time"
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "speed", check_positive("speed", self.speed))
-        object.__setattr__(self, "turn_radius", check_positive("turn_radius", self.turn_radius))
+        object.__setattr__(self, "speed", check_speed("speed", self.speed))
+        object.__setattr__(self, "turn_radius", check_length("turn_radius", self.turn_radius))
+        check_turn_rate("speed/turn_radius", self.speed / self.turn_radius)
         object.__setattr__(self, "wind_speed", check_nonnegative("wind_speed", self.wind_speed))
         object.__setattr__(
             self, "wind_direction", check_finite("wind_direction", self.wind_direction)

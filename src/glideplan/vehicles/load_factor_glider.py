@@ -27,7 +27,15 @@ from glideplan.units import G0
 from glideplan.validation import check_less, check_positive
 from glideplan.vehicles.base import Vehicle
 
-__all__ = ["GliderScales", "LoadFactorGlider"]
+__all__ = ["LOAD_FACTOR_LIMITS", "GliderScales", "LoadFactorGlider"]
+
+# Supported nondimensional parameter ranges of `LoadFactorGlider` (inclusive).
+LOAD_FACTOR_LIMITS: dict[str, tuple[float, float]] = {
+    "l_over_d_max": (1.0, 1000.0),
+    "v_min": (1e-3, 1e3),
+    "v_max": (1e-3, 1e3),
+    "n_max": (1.0, 100.0),
+}
 
 
 @dataclass(frozen=True)
@@ -78,6 +86,10 @@ class LoadFactorGlider(Vehicle):
 
     Control set (6.20): 1 <= n <= n_max, n <= p2 v^2 (stall), v <= v_max, where
     p2 = 1 / v_min^2. Defaults are the dissertation's example (6.21).
+
+    Supported range (nondimensional, see `LOAD_FACTOR_LIMITS`): (L/D)max in [1, 1000],
+    v_min and v_max in [1e-3, 1e3] (units of V_ref) with v_min < v_max, n_max in (1, 100].
+    Outside it the direct method's scaling (and any real glider) is left behind.
     """
 
     l_over_d_max: float = 30.0
@@ -95,6 +107,12 @@ class LoadFactorGlider(Vehicle):
             raise InvalidParameterError(
                 "n_max", self.n_max, "must be > 1 (n = 1 is wings-level flight)"
             )
+        for name, (low, high) in LOAD_FACTOR_LIMITS.items():
+            value = getattr(self, name)
+            if not low <= value <= high:
+                raise InvalidParameterError(
+                    name, value, f"must lie in [{low:g}, {high:g}] (the supported range)"
+                )
         check_less("v_min", self.v_min, "v_max", self.v_max)
 
     # ----- parameters (6.13-6.22) ----------------------------------------------------------

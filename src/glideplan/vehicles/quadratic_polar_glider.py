@@ -17,7 +17,13 @@ from numpy.typing import ArrayLike
 from glideplan.errors import InvalidParameterError
 from glideplan.units import kmh_to_ms
 from glideplan.validation import check_finite, check_positive
-from glideplan.vehicles.base import Vehicle
+from glideplan.vehicles.base import (
+    Vehicle,
+    check_length,
+    check_speed,
+    check_speed_ratio,
+    check_turn_rate,
+)
 
 __all__ = ["QuadraticPolarGlider", "dg1001m"]
 
@@ -29,7 +35,9 @@ class QuadraticPolarGlider(Vehicle):
     Validated against Assumptions 5.2.1-5.2.4: a > 0 and w(v) > 0 on [v_stall, v_max]
     (5.2.1); the minimum-sink speed v_ms = -b / 2a inside (v_stall, v_max) (5.2.2); the
     speed to fly v_stf = sqrt(c / a) inside (v_stall, v_max) (5.2.3); and
-    v_ms > (v_stall + v_stf) / 2 (5.2.4).
+    v_ms > (v_stall + v_stf) / 2 (5.2.4). Supported range (`glideplan.vehicles.base`):
+    speeds in [1e-6, 1e6] m/s with v_max / v_stall <= 1e6, u_max in [1e-6, 1e6] rad/s and the
+    turn radii v_stall / u_max, v_max / u_max in [1e-6, 1e7] m.
 
     Args:
         a: quadratic coefficient (s/m).
@@ -53,8 +61,9 @@ class QuadraticPolarGlider(Vehicle):
     def __post_init__(self) -> None:
         for name in ("a", "b", "c"):
             object.__setattr__(self, name, check_finite(name, getattr(self, name)))
-        for name in ("v_stall", "v_max", "u_max"):
-            object.__setattr__(self, name, check_positive(name, getattr(self, name)))
+        for name in ("v_stall", "v_max"):
+            object.__setattr__(self, name, check_speed(name, getattr(self, name)))
+        object.__setattr__(self, "u_max", check_turn_rate("u_max", self.u_max))
         a, b, c, lo, hi = self.a, self.b, self.c, self.v_stall, self.v_max
         if a <= 0.0:
             raise InvalidParameterError("a", a, "Assumption 5.2.1 (convex polar) needs a > 0 (s/m)")
@@ -62,6 +71,9 @@ class QuadraticPolarGlider(Vehicle):
             raise InvalidParameterError(
                 "v_max", hi, f"Assumption 5.2.1 needs v_max > v_stall = {lo:.6g} m/s"
             )
+        check_speed_ratio("v_max", hi, "v_stall", lo)
+        check_length("v_stall/u_max", lo / self.u_max)
+        check_length("v_max/u_max", hi / self.u_max)
         v_ms = -b / (2.0 * a)
         w_min = float(self.sink_rate(min(max(v_ms, lo), hi), 0.0))
         if w_min <= 0.0:

@@ -1,7 +1,8 @@
 """Collocation schemes and the NLP they transcribe (built once per mesh size, then reused).
 
 The problem, in normalised time tau = t / T in [0, 1] with free final time T:
-minimise J = integral_0^T L(c) dt subject to z' = (v cos psi, v sin psi, u)(z, c),
+minimise J = integral_0^T L(c) dt subject to z' = (v cos psi + wx, v sin psi + wy, u)(z, c)
+(wx, wy: the system's drift, zero unless given),
 z(0) = 0, z(1) = goal (heading on a chosen 2 pi branch), c in the box, g(c) in [lo, hi].
 Positions are scaled by `length_scale` and time by `time_scale` inside the NLP.
 
@@ -22,12 +23,15 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-import casadi as ca
 import numpy as np
 
 from glideplan.errors import InvalidParameterError
 from glideplan.planners.direct.system import ControlSystem
+
+if TYPE_CHECKING:
+    import casadi as ca
 
 __all__ = ["SCHEMES", "Transcription", "build_transcription"]
 
@@ -176,6 +180,8 @@ def _build(
     degree: int,
     ipopt_options: tuple[tuple[str, object], ...] = (),
 ) -> Transcription:
+    import casadi as ca  # heavy: imported when a direct solve is built
+
     m = system.n_controls
     N = n_intervals
     c = ca.SX.sym("c", m)
@@ -188,13 +194,14 @@ def _build(
             raise InvalidParameterError(
                 "system", system.name, f"its {what} must be one scalar CasADi expression"
             )
+    wx, wy = system.drift  # steady uniform wind or current (m/s), zero by default
     rhs = ca.Function(
         "rhs",
         [zs, c, Ls_sym, Ts_sym],
         [
             ca.vertcat(
-                Ts_sym / Ls_sym * speed * ca.cos(zs[2]),
-                Ts_sym / Ls_sym * speed * ca.sin(zs[2]),
+                Ts_sym / Ls_sym * (speed * ca.cos(zs[2]) + wx),
+                Ts_sym / Ls_sym * (speed * ca.sin(zs[2]) + wy),
                 Ts_sym * turn,
             )
         ],

@@ -69,6 +69,8 @@ class DirectResult:
     starts: tuple[StartResult, ...]
     controls: Mapping[str, np.ndarray] = field(default_factory=dict)
     message: str = ""
+    # things the caller must pass on to the user (e.g. a failed re-timing), one sentence each
+    warnings: tuple[str, ...] = ()
 
     @property
     def ok(self) -> bool:
@@ -87,9 +89,14 @@ class _Solve:
 
 
 def fly_controls(
-    t: np.ndarray, speed: np.ndarray, turn_rate: np.ndarray, start: Pose = Pose()
+    t: np.ndarray,
+    speed: np.ndarray,
+    turn_rate: np.ndarray,
+    start: Pose = Pose(),
+    drift: tuple[float, float] = (0.0, 0.0),
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Integrate x' = v cos psi, y' = v sin psi, psi' = u for piecewise-linear controls.
+    """Integrate x' = v cos psi + wx, y' = v sin psi + wy, psi' = u (drift (wx, wy) in m/s,
+    zero by default) for piecewise-linear controls.
 
     The heading is exact (piecewise quadratic); positions use 6-point Gauss-Legendre per
     piece. Returns x, y, heading at the nodes `t`.
@@ -105,8 +112,8 @@ def fly_controls(
     vs = v0[:, None] + (v1 - v0)[:, None] * s
     dx = dt * ((vs * np.cos(ps)) @ wq)
     dy = dt * ((vs * np.sin(ps)) @ wq)
-    x = start.x + np.concatenate([[0.0], np.cumsum(dx)])
-    y = start.y + np.concatenate([[0.0], np.cumsum(dy)])
+    x = start.x + np.concatenate([[0.0], np.cumsum(dx)]) + drift[0] * (t - t[0])
+    y = start.y + np.concatenate([[0.0], np.cumsum(dy)]) + drift[1] * (t - t[0])
     return x, y, psi
 
 
@@ -120,6 +127,7 @@ def retime(
     pieces: int = 8,
     max_stretch: float = 0.05,
     tol: float = 1e-12,
+    drift: tuple[float, float] = (0.0, 0.0),
 ) -> tuple[np.ndarray, float, bool]:
     """Re-time a control history so that, flown exactly, it ends at `target` (x, y, psi).
 
@@ -137,7 +145,7 @@ def retime(
 
     def end(r: np.ndarray) -> np.ndarray:
         tt = np.concatenate([[0.0], np.cumsum(dt * r[group])])
-        x, y, psi = fly_controls(tt, speed, turn_rate)
+        x, y, psi = fly_controls(tt, speed, turn_rate, drift=drift)
         return (np.array([x[-1], y[-1], psi[-1]]) - target) / scale
 
     r = np.ones(K)
@@ -175,7 +183,9 @@ class _Problem:
         ipopt_options: tuple[tuple[str, Any], ...],
         smoothing: float,
         retime: bool,
+        clock: _Deadline,
     ) -> None:
+        self.clock = clock
         self.smoothing = smoothing
         self.retime = retime
         self.goal = goal
@@ -189,7 +199,12 @@ class _Problem:
         self.upper = np.array(system.upper)
 
     def transcription(self, n: int) -> Transcription:
-        return build_transcription(self.system, self.scheme, n, self.degree, self.ipopt_options)
+        """The NLP on n intervals; with a time limit, IPOPT's `max_wall_time` is the budget."""
+        opts = self.ipopt_options
+        budget = self.clock.budget()
+        if budget is not None:
+            opts = tuple(sorted({**dict(opts), "max_wall_time": budget}.items()))
+        return build_transcription(self.system, self.scheme, n, self.degree, opts)
 
     def params(self, k: int, fractions: np.ndarray, cost_scale: float) -> np.ndarray:
         g = self.goal
@@ -290,12 +305,24 @@ class _Problem:
         info: dict[str, Any] = {"raw_endpoint_error": self._error(t, speed, turn)}
         if self.retime:
             target = np.array([g.x, g.y, g.heading + TWO_PI * k])
-            t_new, stretch, ok = retime(t, speed, turn, target, length_scale=self.Ls)
+            t_new, stretch, ok = retime(
+                t, speed, turn, target, length_scale=self.Ls, drift=self.system.drift
+            )
             info["retime_stretch"] = stretch
             if ok:
                 t = t_new
+            else:
+                raw = info["raw_endpoint_error"]
+                info["retime_failed"] = (
+                    "re-timing the controls to end exactly at the goal failed (stretch "
+                    f"{stretch:.3g}, limit 0.05); the path keeps the collocation timing, "
+                    f"whose controls miss the goal by {raw['position']:.3g} m and "
+                    f"{raw['heading']:.3g} rad"
+                )
         info["endpoint_error"] = self._error(t, speed, turn)
-        x, y, psi = fly_controls(t, speed, turn)
+        # with a drift, the nodes are ground positions; the segment's own interpolation
+        # ignores drift, so drifting callers rebuild the path from `controls`
+        x, y, psi = fly_controls(t, speed, turn, drift=self.system.drift)
         seg = Sampled(t, x, y, psi, speed, turn, label="D", info={"system": self.system.name})
         controls = {"t": t, "speed": speed, "turn_rate": turn}
         controls.update({n: U[i] for i, n in enumerate(self.system.control_names)})
@@ -349,12 +376,56 @@ class _Problem:
         return np.max(np.maximum(lo[:, None] - G, 0.0) + np.maximum(G - hi[:, None], 0.0), axis=0)
 
     def _error(self, t: np.ndarray, speed: np.ndarray, turn: np.ndarray) -> dict[str, float]:
-        x, y, psi = fly_controls(t, speed, turn)
+        x, y, psi = fly_controls(t, speed, turn, drift=self.system.drift)
         g = self.goal
         return {
             "position": math.hypot(x[-1] - g.x, y[-1] - g.y),
             "heading": abs(float(wrap_to_pi(psi[-1] - g.heading))),
         }
+
+
+class _Deadline:
+    """The wall-clock limit of one `solve_direct` call (None: no limit)."""
+
+    def __init__(self, t_start: float, limit: float | None) -> None:
+        if limit is not None:
+            limit = check_positive("time_limit", limit)
+        self.t_start = t_start
+        self.limit = limit
+
+    def expired(self) -> bool:
+        return self.limit is not None and time.perf_counter() - self.t_start >= self.limit
+
+    def budget(self) -> float | None:
+        """IPOPT wall time (s) for the next solve: the largest limit / 2^j within the time left.
+
+        Powers of two keep the number of distinct (cached) solvers small; the whole call
+        then ends within the limit plus the time to build a solver.
+        """
+        if self.limit is None:
+            return None
+        left = self.limit - (time.perf_counter() - self.t_start)
+        if left <= 0.0:
+            return self.limit * 2.0**-20
+        return self.limit * 2.0 ** -min(20, math.ceil(math.log2(self.limit / left)))
+
+    def failure(
+        self, stats: dict[str, Any], iterations: int, starts: list[StartResult], total: int
+    ) -> DirectResult:
+        """The failed result of a call stopped by the limit."""
+        stats.update(iterations=iterations, seconds=time.perf_counter() - self.t_start)
+        stats["time_limit_reached"] = True
+        return DirectResult(
+            "failed",
+            None,
+            math.inf,
+            stats,
+            tuple(starts),
+            message=(
+                f"time limit of {self.limit:g} s reached "
+                f"({len(starts)} of {total} start(s) solved before it)"
+            ),
+        )
 
 
 def _check_options(
@@ -402,6 +473,7 @@ def solve_direct(
     output_density: int = 4,
     smoothing: float = 1e-6,
     retime: bool = True,
+    time_limit: float | None = None,
 ) -> DirectResult:
     """Minimise integral L(c) dt from the origin (0, 0, 0) to `goal`, free final time.
 
@@ -433,6 +505,10 @@ def solve_direct(
             goal; collocation alone leaves an endpoint error of about 1e-3 to 1e-6 (stats
             "raw_endpoint_error"); re-timing brings it to about 1e-12 without moving any
             control value.
+        time_limit: wall-clock seconds (s) for the whole call, over all starts and meshes,
+            or None for no limit. Each IPOPT solve gets the remaining time as
+            `max_wall_time`; once the limit is reached the call stops and fails with the
+            message "time limit of N s reached" (never a partial result).
 
     Returns:
         A `DirectResult`; failures are reported in `status`, never returned as paths.
@@ -442,8 +518,9 @@ def solve_direct(
     Ts = check_positive("time_scale", time_scale)
     opts = tuple(sorted((ipopt_options or {}).items()))
     eps = check_nonnegative("smoothing", smoothing)
-    prob = _Problem(goal, system, scheme, int(degree), Ls, Ts, opts, eps, bool(retime))
     t_start = time.perf_counter()
+    clock = _Deadline(t_start, time_limit)
+    prob = _Problem(goal, system, scheme, int(degree), Ls, Ts, opts, eps, bool(retime), clock)
     N = int(n_intervals)
     tr = prob.transcription(N)
     t_build = time.perf_counter() - t_start
@@ -453,6 +530,7 @@ def solve_direct(
     starts: list[StartResult] = []
     iterations = 0
     for i, guess in enumerate(guesses):
+        tr = prob.transcription(N)  # the same NLP; a smaller IPOPT wall-time budget late on
         w0, k = prob.from_path(tr, fr, guess)
         js = max(prob.guess_cost(tr, fr, w0), 1e-12)
         res = prob.solve(tr, w0, k, fr, js)
@@ -463,13 +541,17 @@ def solve_direct(
         )
         if res.ok:
             first.append((res, k, js, i))
+        if clock.expired():
+            break
 
     stats: dict[str, Any] = {
         "scheme": scheme,
-        "starts_tried": len(guesses),
+        "starts_tried": len(starts),
         "starts_succeeded": len(first),
         "build_seconds": t_build,
     }
+    if clock.expired():
+        return clock.failure(stats, iterations, starts, len(guesses))
     if not first:
         stats.update(iterations=iterations, seconds=time.perf_counter() - t_start)
         statuses = sorted({s.status for s in starts})
@@ -495,6 +577,8 @@ def solve_direct(
         for _ in range(int(max_refinements)):
             nxt = prob.refine(cur, k, js)
             iterations += max(nxt.iterations, 0)
+            if clock.expired():
+                return clock.failure(stats, iterations, starts, len(guesses))
             if not nxt.ok:
                 break
             change = abs(nxt.cost - cur.cost) / max(abs(nxt.cost), 1e-12)
@@ -529,4 +613,7 @@ def solve_direct(
             f"(costs {', '.join(f'{c:.6g}' for c in costs)})"
         )
     )
-    return DirectResult("solved", path, best.cost, stats, tuple(starts), controls, message)
+    warnings = (out_info["retime_failed"],) if "retime_failed" in out_info else ()
+    return DirectResult(
+        "solved", path, best.cost, stats, tuple(starts), controls, message, warnings
+    )

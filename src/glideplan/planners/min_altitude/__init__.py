@@ -159,22 +159,41 @@ def plan_min_altitude(problem: Problem) -> PlannerOutput:
     "multi-started from the synthesis candidates and Dubins paths at v_stf",
 )
 def plan_min_altitude_direct(
-    problem: Problem, *, seeds: str = "all", max_starts: int = 6, n_intervals: int = 60
+    problem: Problem,
+    *,
+    seeds: str = "all",
+    max_starts: int = 6,
+    n_intervals: int = 60,
+    time_limit: float | None = None,
 ) -> PlannerOutput:
     """Direct method (see `direct.solve_min_altitude_direct`); the candidate's cost is the
-    altitude loss of the returned (piecewise-linear control) path."""
+    altitude loss of the returned (piecewise-linear control) path. `time_limit`: wall-clock
+    seconds for the direct solve (all starts), or None for no limit."""
     glider = problem.vehicle
+    assert isinstance(glider, QuadraticPolarGlider)
     res = solve_min_altitude_direct(
-        problem.goal, glider, seeds=seeds, max_starts=max_starts, n_intervals=n_intervals
+        problem.goal,
+        glider,
+        seeds=seeds,
+        max_starts=max_starts,
+        n_intervals=n_intervals,
+        time_limit=time_limit,
     )
     stats = {k: v for k, v in res.stats.items() if isinstance(v, (int, float, str, bool))}
     stats["starts"] = [s.to_dict() for s in res.starts]
     extras = _reference_extras(problem)
     if not res.ok or res.path is None:
-        return PlannerOutput((), stats, res.message or "IPOPT failed", extras, solver_failed=True)
+        return PlannerOutput(
+            (),
+            stats,
+            res.message or "IPOPT failed",
+            extras,
+            solver_failed=True,
+            warnings=res.warnings,
+        )
     path = res.path.with_vehicle(glider)
     seg = path.segments[0]
     word = seg.turn_word(0.05 * glider.u_max) if hasattr(seg, "turn_word") else path.word
     info = {"collocation_cost": res.cost}
     cand = Candidate(word, "direct", path.cost("altitude"), path, "feasible", info)
-    return PlannerOutput((cand,), stats, "", extras)
+    return PlannerOutput((cand,), stats, "", extras, warnings=res.warnings)

@@ -72,6 +72,7 @@ def solve_min_altitude_direct(
     n_intervals: int = 60,
     mesh_tol: float = 1e-5,
     guesses: Sequence[Path] | None = None,
+    time_limit: float | None = None,
 ) -> DirectResult:
     """Minimum altitude loss from the origin to `goal` by direct collocation (multi-start).
 
@@ -83,6 +84,7 @@ def solve_min_altitude_direct(
         n_intervals: collocation intervals of the first mesh (refined by bisection).
         mesh_tol: relative cost change that stops the mesh refinement.
         guesses: explicit initial-guess paths (overrides `seeds`).
+        time_limit: wall-clock seconds for the direct solve (all starts), or None for no limit.
     """
     starts = (
         list(guesses)
@@ -97,4 +99,5 @@ def solve_min_altitude_direct(
         mesh_tol=mesh_tol,
         length_scale=glider.radius_stf,
         time_scale=glider.time_scale,
+        time_limit=time_limit,
     )

@@ -85,8 +85,12 @@ def solve_time_optimal_direct(
     mesh_tol: float = 1e-5,
     max_refinements: int = 4,
     max_iterations: int = 500,
+    time_limit: float | None = None,
 ) -> DirectResult:
-    """Direct collocation solve from the origin to `goal` (a `DirectResult`)."""
+    """Direct collocation solve from the origin to `goal` (a `DirectResult`).
+
+    `time_limit`: wall-clock seconds for the direct solve (all starts), or None for no limit.
+    """
     gs = (
         guesses
         if guesses is not None
@@ -102,6 +106,7 @@ def solve_time_optimal_direct(
         length_scale=vehicle.bang_radius,
         time_scale=1.0 / vehicle.u_max,
         ipopt_options={"max_iter": int(max_iterations)},
+        time_limit=time_limit,
     )
 
 
@@ -161,8 +166,12 @@ def plan_time_optimal_direct(
     mesh_tol: float = 1e-5,
     max_refinements: int = 4,
     max_iterations: int = 500,
+    time_limit: float | None = None,
 ) -> PlannerOutput:
-    """Multi-start direct collocation; the best start after mesh refinement is the answer."""
+    """Multi-start direct collocation; the best start after mesh refinement is the answer.
+
+    `time_limit`: wall-clock seconds for the direct solve (all starts), or None for no limit.
+    """
     vehicle = problem.vehicle
     assert isinstance(vehicle, VariableSpeedCar)
     for name, value, low in (
@@ -187,6 +196,7 @@ def plan_time_optimal_direct(
         mesh_tol=mesh_tol,
         max_refinements=int(max_refinements),
         max_iterations=int(max_iterations),
+        time_limit=time_limit,
     )
     stats: dict[str, Any] = {
         k: v
@@ -195,10 +205,12 @@ def plan_time_optimal_direct(
     }
     stats["starts"] = [s.to_dict() for s in res.starts]
     if not res.ok or res.path is None:
-        return PlannerOutput((), stats, message=res.message, solver_failed=True)
+        return PlannerOutput(
+            (), stats, message=res.message, solver_failed=True, warnings=res.warnings
+        )
     path = res.path.with_vehicle(vehicle)
     seg = path.segments[0]
     family, word = classify_controls(vehicle, seg.t, seg.speed, seg.turn_rate)
     info = {"collocation_cost": res.cost, "classified_family": family}
     cand = Candidate(word, family, path.duration, path, "feasible", info)
-    return PlannerOutput((cand,), stats)
+    return PlannerOutput((cand,), stats, warnings=res.warnings)

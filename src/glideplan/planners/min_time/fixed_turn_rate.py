@@ -25,7 +25,6 @@ import itertools
 import math
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from glideplan.planners.min_time.geometry import compose
 
@@ -66,6 +65,7 @@ def _support_point(omega: float, delta: float) -> tuple[np.ndarray, list[tuple[f
 
 def reach_distance(gp: np.ndarray, delta: float) -> tuple[float, float]:
     """max over omega of (w . g' - h(omega)) (= dist(g', S) when > 0) and the maximiser."""
+    from scipy.optimize import minimize_scalar  # SciPy is imported where used (start-up time)
     om = np.arange(_SAMPLES) * (TWO_PI / _SAMPLES)
     phi = gp[0] * np.cos(om) + gp[1] * np.sin(om) - support(om, delta)
     i = int(np.argmax(phi))

@@ -1,0 +1,237 @@
+"""`glideplan glide polar|ardusoar|final`: sailplane polars, ArduSoar parameters, final glide."""
+
+from __future__ import annotations
+
+import math
+import pathlib
+from typing import Annotated, Any
+
+import typer
+
+from glideplan.cli.app import glide_app
+from glideplan.errors import InvalidParameterError, PlanningError
+
+MC_TABLE = tuple(0.5 * k for k in range(11))  # 0, 0.5, ..., 5 m/s
+
+MassOpt = Annotated[
+    float | None,
+    typer.Option("--mass", help="All-up mass without water (kg); default the file's reference."),
+]
+BallastOpt = Annotated[float, typer.Option("--ballast", help="Water ballast (litres, 1 kg/L).")]
+BugsOpt = Annotated[
+    float, typer.Option("--bugs", help="Bugs: percent less glide ratio at every speed (0-50).")
+]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON object.")]
+
+
+def _polar(file: pathlib.Path, mass: float | None, ballast: float, bugs: float) -> Any:
+    from glideplan.sailplane import polar_from_file, read_plr
+    from glideplan.validation import check_finite
+
+    for name, value in (("--mass", mass), ("--ballast", ballast), ("--bugs", bugs)):
+        if value is not None:
+            check_finite(name, value)
+    return polar_from_file(read_plr(file), mass_kg=mass, ballast_l=ballast, bugs_pct=bugs)
+
+
+def _print(data: dict[str, Any]) -> None:
+    from glideplan.cli.common import print_json
+
+    print_json(data)
+
+
+@glide_app.command("polar")
+def glide_polar(
+    file: Annotated[pathlib.Path, typer.Argument(help="Polar file (.plr).", show_default=False)],
+    mass: MassOpt = None,
+    ballast: BallastOpt = 0.0,
+    bugs: BugsOpt = 0.0,
+    json_out: JsonOpt = False,
+) -> None:
+    """Quadratic polar of a .plr file: best glide, minimum sink, MacCready table (MC 0-5 m/s)."""
+    from glideplan.sailplane import maccready_table, read_plr
+
+    pf = read_plr(file)
+    p = _polar(file, mass, ballast, bugs)
+    data = {
+        "name": p.name,
+        "file": str(file),
+        "a": p.a,
+        "b": p.b,
+        "c": p.c,
+        "units": "w = a v^2 + b v + c; w (sink, positive down) and v in m/s",
+        "best_glide_ratio": p.best_glide_ratio,
+        "best_glide_speed_kmh": p.v_best_glide * 3.6,
+        "min_sink_ms": p.w_ms,
+        "min_sink_speed_kmh": p.v_ms * 3.6,
+        "speed_range_kmh": [p.v_min * 3.6, p.v_max * 3.6],
+        "reference_mass_kg": p.reference_mass_kg,
+        "mass_kg": p.mass_kg,
+        "ballast_l": ballast,
+        "max_ballast_l": pf.max_ballast_l,
+        "bugs_pct": p.bugs_pct,
+        "wing_area_m2": p.wing_area_m2,
+        "stated_best_glide_ratio": pf.best_ld,
+        "maccready": maccready_table(p, MC_TABLE),
+    }
+    if json_out:
+        _print(data)
+        return
+    typer.echo(
+        f"{p.name}: w = {p.a:.6g} v^2 + {p.b:.6g} v + {p.c:.6g} (m/s) at {p.mass_kg:g} kg\n"
+        f"best glide {p.best_glide_ratio:.1f} at {p.v_best_glide * 3.6:.1f} km/h; "
+        f"min sink {p.w_ms:.2f} m/s at {p.v_ms * 3.6:.1f} km/h"
+    )
+    typer.echo(f"{'MC m/s':>7} {'STF km/h':>9} {'L/D':>6} {'XC km/h':>8}")
+    for row in data["maccready"]:
+        typer.echo(
+            f"{row['mc']:7.1f} {row['speed_to_fly_kmh']:9.1f} {row['glide_ratio']:6.1f} "
+            f"{row['cross_country_kmh']:8.1f}"
+        )
+
+
+@glide_app.command("ardusoar")
+def glide_ardusoar(
+    file: Annotated[pathlib.Path, typer.Argument(help="Polar file (.plr).", show_default=False)],
+    out: Annotated[
+        pathlib.Path,
+        typer.Option(
+            "--out", help="Parameter file to write (NAME value lines).", show_default=False
+        ),
+    ],
+    wing_area: Annotated[
+        float | None, typer.Option("--wing-area", help="Wing area S (m^2); default the file's.")
+    ] = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """Fit ArduPilot's SOAR_POLAR_CD0/B/K to the polar (least squares) and write a .parm file."""
+    from glideplan.sailplane import fit_ardusoar, write_parm
+
+    p = _polar(file, None, 0.0, 0.0)
+    fit = fit_ardusoar(p, wing_area)
+    write_parm(
+        fit,
+        out,
+        comment=f"ArduSoar polar for {p.name} at {p.mass_kg:g} kg, fitted by glideplan "
+        f"(worst sink error {fit.max_sink_error:.3f} m/s over "
+        f"{fit.speed_range[0] * 3.6:.0f}-{fit.speed_range[1] * 3.6:.0f} km/h)",
+    )
+    data = {
+        **fit.params(),
+        "max_sink_error_ms": fit.max_sink_error,
+        "rms_sink_error_ms": fit.rms_sink_error,
+        "speed_range_kmh": [fit.speed_range[0] * 3.6, fit.speed_range[1] * 3.6],
+        "mass_kg": p.mass_kg,
+        "wing_area_m2": wing_area if wing_area is not None else p.wing_area_m2,
+        "out": str(out),
+    }
+    if json_out:
+        _print(data)
+        return
+    for name, value in fit.params().items():
+        typer.echo(f"{name} {value:.6g}")
+    typer.echo(f"worst sink error {fit.max_sink_error:.3f} m/s; wrote {out}")
+
+
+@glide_app.command("final")
+def glide_final(
+    polar_file: Annotated[
+        pathlib.Path, typer.Option("--polar", help="Polar file (.plr).", show_default=False)
+    ],
+    start: Annotated[
+        tuple[float, float, float],
+        typer.Option(
+            "--from", help="Start LAT LON ALT_M (WGS84 degrees, metres).", show_default=False
+        ),
+    ],
+    goal: Annotated[
+        tuple[float, float, float],
+        typer.Option(
+            "--to", help="Goal LAT LON ELEV_M (WGS84 degrees, metres).", show_default=False
+        ),
+    ],
+    mass: MassOpt = None,
+    ballast: BallastOpt = 0.0,
+    bugs: BugsOpt = 0.0,
+    mc: Annotated[float, typer.Option("--mc", help="MacCready setting (m/s).")] = 0.0,
+    wind: Annotated[
+        tuple[float, float] | None,
+        typer.Option("--wind", help="Wind SPEED_MS FROM_DEG (compass, where it blows from)."),
+    ] = None,
+    safety_height: Annotated[
+        float, typer.Option("--safety-height", help="Arrival height above the goal (m).")
+    ] = 300.0,
+    arrival_heading: Annotated[
+        float | None,
+        typer.Option("--arrival-heading", help="Heading at the goal (compass degrees)."),
+    ] = None,
+    start_heading: Annotated[
+        float | None,
+        typer.Option("--start-heading", help="Heading now (compass degrees); default free."),
+    ] = None,
+    bank_max: Annotated[
+        float, typer.Option("--bank-max", help="Bank limit in turns (degrees).")
+    ] = 45.0,
+    json_out: JsonOpt = False,
+    plot: Annotated[
+        pathlib.Path | None,
+        typer.Option("--plot", help="Draw the ground track and altitude profile to FILE."),
+    ] = None,
+    cup: Annotated[
+        pathlib.Path | None, typer.Option("--cup", help="Also write a SeeYou .cup task.")
+    ] = None,
+    tsk: Annotated[
+        pathlib.Path | None, typer.Option("--tsk", help="Also write an XCSoar .tsk task.")
+    ] = None,
+) -> None:
+    """Altitude needed to reach a goal: straight final glide, or to an arrival heading."""
+    from glideplan.sailplane.request import run_final
+
+    p = _polar(polar_file, mass, ballast, bugs)
+    if start_heading is not None and arrival_heading is None:
+        raise InvalidParameterError(
+            "--start-heading", start_heading, "is only used with --arrival-heading"
+        )
+    data, drawing = run_final(
+        p,
+        start,
+        goal,
+        mc=mc,
+        wind=wind,
+        safety_height=safety_height,
+        arrival_heading=arrival_heading,
+        start_heading=start_heading,
+        bank_max=bank_max,
+    )
+    if plot is not None:
+        from glideplan.sailplane.plot import draw_final_glide
+
+        draw_final_glide(drawing, plot)
+    if cup is not None or tsk is not None:
+        from glideplan.sailplane import TaskPoint, write_cup_task, write_tsk_task
+
+        a = TaskPoint("START", start[0], start[1], start[2])
+        b = TaskPoint("GOAL", goal[0], goal[1], goal[2])
+        if cup is not None:
+            write_cup_task(cup, a, b, description=f"final glide {p.name}")
+        if tsk is not None:
+            write_tsk_task(tsk, a, b)
+    if json_out:
+        _print(data)
+    else:
+        typer.echo(
+            f"{data['status']}: distance {data['distance_m'] / 1000:.2f} km, loss "
+            f"{_fmt(data['altitude_loss_m'])} m, required {_fmt(data['altitude_required_m'])} m, "
+            f"margin {_fmt(data['arrival_margin_m'])} m, glide ratio needed "
+            f"{_fmt(data['glide_ratio_required'], 1)}, speed to fly "
+            f"{_fmt(data['speed_to_fly_kmh'])} km/h"
+            + (f", path {data['word']}" if "word" in data else "")
+        )
+    if data.get("error"):
+        raise PlanningError(data["error"])
+
+
+def _fmt(value: Any, digits: int = 0) -> str:
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "-"
+    return f"{value:.{digits}f}"

@@ -1,0 +1,31 @@
+"""Flow fields (ocean currents, winds) for routing: uniform, analytic, gridded from files.
+
+`FlowField.velocity(t, lat, lon) -> (u_east, v_north)` (m/s), vectorised; t in seconds since
+the field's `epoch` (or datetime64). `open_field(paths, depth_range)` reads NetCDF (CF) and
+GRIB; `from_xarray(ds)` converts a dataset; `double_gyre()` is the built-in example.
+NaN = land/missing = obstacle. Queries outside the extent or time span raise naming the bound.
+"""
+
+from glideplan.fields.examples import double_gyre
+from glideplan.fields.field import (
+    AnalyticField,
+    Extent,
+    FlowField,
+    GriddedField,
+    UniformField,
+    to_seconds,
+)
+from glideplan.fields.io import depth_average, from_xarray, open_field
+
+__all__ = [
+    "AnalyticField",
+    "Extent",
+    "FlowField",
+    "GriddedField",
+    "UniformField",
+    "depth_average",
+    "double_gyre",
+    "from_xarray",
+    "open_field",
+    "to_seconds",
+]

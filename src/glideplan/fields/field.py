@@ -1,0 +1,279 @@
+"""Flow fields (currents or winds): vectorised velocity(t, lat, lon) -> (u_east, v_north) in m/s.
+
+Three kinds share one interface (`FlowField`):
+
+- `UniformField(u, v)`: the same velocity everywhere, always.
+- `AnalyticField(fn, ...)`: a callable fn(t, lat, lon) -> (u, v), with an optional extent and
+  time span.
+- `GriddedField(...)`: values on a (time, latitude, longitude) grid, linearly interpolated in
+  space and time (trilinear). NaN means land or missing data: any query whose interpolation
+  stencil touches a NaN returns NaN, which the router treats as an obstacle, never as zero.
+
+Time `t` is seconds since the field's `epoch` (a `numpy.datetime64`, or None for a field with
+no calendar); `datetime64` values are accepted too. A query outside the field's extent or
+time span raises `InvalidParameterError` naming the bound; nothing is extrapolated.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from glideplan.errors import InvalidParameterError
+
+__all__ = [
+    "AnalyticField",
+    "Extent",
+    "FlowField",
+    "GriddedField",
+    "UniformField",
+    "to_seconds",
+]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Extent:
+    """Latitude/longitude box (degrees). Longitudes may run past 180 (a 0..360 field)."""
+
+    lat_min: float
+    lat_max: float
+    lon_min: float
+    lon_max: float
+
+    def to_dict(self) -> dict[str, float]:
+        return {
+            "lat_min": self.lat_min,
+            "lat_max": self.lat_max,
+            "lon_min": self.lon_min,
+            "lon_max": self.lon_max,
+        }
+
+
+def to_seconds(t: Any, epoch: np.datetime64 | None) -> FloatArray:
+    """Seconds since `epoch` of `t` (seconds already, or datetime64 values)."""
+    a = np.asarray(t)
+    if np.issubdtype(a.dtype, np.datetime64):
+        if epoch is None:
+            raise InvalidParameterError("time", t, "this field has no calendar: give seconds")
+        return (a - epoch) / np.timedelta64(1, "s")  # type: ignore[no-any-return]
+    try:
+        out = np.asarray(a, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidParameterError("time", t, "must be seconds or datetime64") from None
+    if not np.all(np.isfinite(out)):
+        raise InvalidParameterError("time", t, "must be finite")
+    return out
+
+
+class FlowField:
+    """Base of every field: `velocity(t, lat, lon)` plus extent, time span and a description."""
+
+    epoch: np.datetime64 | None = None
+    extent: Extent | None = None
+    #: (t_first, t_last) seconds since epoch, or None for a steady field.
+    time_span: tuple[float, float] | None = None
+    info: Mapping[str, Any] = {}
+
+    def velocity(self, t: Any, lat: ArrayLike, lon: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """(u_east, v_north) in m/s at times t (s since epoch) and WGS84 lat/lon (deg)."""
+        raise NotImplementedError
+
+    @property
+    def time_levels(self) -> FloatArray | None:
+        """The field's own time levels (s since epoch), None when it has none (steady/analytic)."""
+        return None
+
+    def check_time(self, t: Any) -> FloatArray:
+        """Times as seconds; raise naming the bound when outside the time span."""
+        ts = to_seconds(t, self.epoch)
+        if self.time_span is not None and ts.size:
+            lo, hi = self.time_span
+            tol = 1e-6 * max(1.0, hi - lo)
+            if np.min(ts) < lo - tol:
+                raise InvalidParameterError(
+                    "time", self.format_time(float(np.min(ts))),
+                    f"before the field's first time {self.format_time(lo)}",
+                )
+            if np.max(ts) > hi + tol:
+                raise InvalidParameterError(
+                    "time", self.format_time(float(np.max(ts))),
+                    f"after the field's last time {self.format_time(hi)}",
+                )
+        return ts
+
+    def check_position(self, lat: ArrayLike, lon: ArrayLike, name: str = "position") -> tuple[
+        FloatArray, FloatArray
+    ]:
+        """(lat, lon) arrays with lon shifted into the field's longitude frame; raise outside."""
+        la = np.asarray(lat, dtype=float)
+        lo = np.asarray(lon, dtype=float)
+        if not (np.all(np.isfinite(la)) and np.all(np.isfinite(lo))):
+            raise InvalidParameterError(name, (lat, lon), "latitude/longitude must be finite")
+        ext = self.extent
+        if ext is None:
+            return la, lo
+        lo = ext.lon_min + np.mod(lo - ext.lon_min, 360.0)
+        tol = 1e-9
+        for arr, low, high, axis, unit in (
+            (la, ext.lat_min, ext.lat_max, "latitude", "south"),
+            (lo, ext.lon_min, ext.lon_max, "longitude", "west"),
+        ):
+            if arr.size and np.min(arr) < low - tol:
+                raise InvalidParameterError(
+                    f"{name} {axis}", float(np.min(arr)),
+                    f"outside the field: {unit} bound {low:g}",
+                )
+            if arr.size and np.max(arr) > high + tol:
+                other = "north" if axis == "latitude" else "east"
+                raise InvalidParameterError(
+                    f"{name} {axis}", float(np.max(arr)),
+                    f"outside the field: {other} bound {high:g}",
+                )
+        return la, lo
+
+    def format_time(self, t: float) -> str:
+        """ISO 8601 of t seconds since epoch (or 't=...s' without a calendar)."""
+        if self.epoch is None:
+            return f"t={t:g}s"
+        return str(self.epoch + np.timedelta64(int(round(t * 1e3)), "ms"))[:19] + "Z"
+
+    def describe(self) -> dict[str, Any]:
+        """JSON-ready description: kind, variables, extent, time span."""
+        out: dict[str, Any] = dict(self.info)
+        out["extent"] = None if self.extent is None else self.extent.to_dict()
+        if self.time_span is not None:
+            out["time_span"] = [self.format_time(self.time_span[0]),
+                                self.format_time(self.time_span[1])]
+        return out
+
+
+@dataclass(frozen=True)
+class UniformField(FlowField):
+    """The same velocity (u east, v north; m/s) everywhere and always."""
+
+    u: float = 0.0
+    v: float = 0.0
+    epoch: np.datetime64 | None = None  # type: ignore[assignment]
+
+    def __post_init__(self) -> None:
+        for name in ("u", "v"):
+            val = getattr(self, name)
+            if not np.isfinite(val):
+                raise InvalidParameterError(name, val, "must be finite (m/s)")
+
+    @property
+    def info(self) -> Mapping[str, Any]:  # type: ignore[override]
+        return {"kind": "uniform", "u": self.u, "v": self.v}
+
+    def velocity(self, t: Any, lat: ArrayLike, lon: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        la, lo = self.check_position(lat, lon)
+        shape = np.broadcast_shapes(np.shape(to_seconds(t, self.epoch)), la.shape, lo.shape)
+        return np.full(shape, float(self.u)), np.full(shape, float(self.v))
+
+
+@dataclass(frozen=True)
+class AnalyticField(FlowField):
+    """A field given by fn(t, lat, lon) -> (u, v), t in seconds since `epoch`."""
+
+    fn: Callable[[FloatArray, FloatArray, FloatArray], tuple[ArrayLike, ArrayLike]]
+    extent: Extent | None = None  # type: ignore[assignment]
+    time_span: tuple[float, float] | None = None  # type: ignore[assignment]
+    epoch: np.datetime64 | None = None  # type: ignore[assignment]
+    name: str = "analytic"
+    extra: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def info(self) -> Mapping[str, Any]:  # type: ignore[override]
+        return {"kind": "analytic", "name": self.name, **self.extra}
+
+    def velocity(self, t: Any, lat: ArrayLike, lon: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        ts = self.check_time(t)
+        la, lo = self.check_position(lat, lon)
+        ts, la, lo = np.broadcast_arrays(ts, la, lo)
+        u, v = self.fn(ts, la, lo)
+        return np.asarray(u, dtype=float), np.asarray(v, dtype=float)
+
+
+def _axis_weights(coords: FloatArray, q: FloatArray) -> tuple[NDArray[np.intp], FloatArray]:
+    """Lower index i and weight w of q in ascending coords: q = (1-w) c[i] + w c[i+1]."""
+    if coords.size == 1:
+        return np.zeros(q.shape, dtype=np.intp), np.zeros(q.shape)
+    i = np.clip(np.searchsorted(coords, q, side="right") - 1, 0, coords.size - 2)
+    w = (q - coords[i]) / (coords[i + 1] - coords[i])
+    return i, np.clip(w, 0.0, 1.0)
+
+
+@dataclass(frozen=True, eq=False)
+class GriddedField(FlowField):
+    """Velocity on a (time, lat, lon) grid; trilinear interpolation; NaN = land.
+
+    times: (nt,) seconds since `epoch` (ascending; nt = 1 is a steady field); lat: (ny,)
+    ascending degrees; lon: (nx,) ascending degrees (may exceed 180); u, v: (nt, ny, nx) m/s.
+    """
+
+    times: FloatArray
+    lat: FloatArray
+    lon: FloatArray
+    u: FloatArray
+    v: FloatArray
+    epoch: np.datetime64 | None = None  # type: ignore[assignment]
+    info: Mapping[str, Any] = field(default_factory=dict)  # type: ignore[assignment]
+
+    def __post_init__(self) -> None:
+        shape = (self.times.size, self.lat.size, self.lon.size)
+        if self.u.shape != shape or self.v.shape != shape:
+            raise InvalidParameterError(
+                "field", (self.u.shape, self.v.shape), f"u and v must have shape {shape}"
+            )
+        for name, axis in (("time", self.times), ("latitude", self.lat), ("longitude", self.lon)):
+            if not np.all(np.isfinite(axis)):
+                raise InvalidParameterError(f"field {name}", "non-finite", "must be finite")
+            if axis.size > 1 and np.any(np.diff(axis) <= 0):
+                raise InvalidParameterError(f"field {name}", "unsorted", "must be increasing")
+        if self.lat.size < 2 or self.lon.size < 2:
+            raise InvalidParameterError(
+                "field", (self.lat.size, self.lon.size), "needs at least 2 latitudes and longitudes"
+            )
+
+    @property
+    def extent(self) -> Extent:  # type: ignore[override]
+        return Extent(float(self.lat[0]), float(self.lat[-1]), float(self.lon[0]),
+                      float(self.lon[-1]))
+
+    @property
+    def time_span(self) -> tuple[float, float] | None:  # type: ignore[override]
+        if self.times.size < 2:
+            return None
+        return float(self.times[0]), float(self.times[-1])
+
+    @property
+    def time_levels(self) -> FloatArray | None:
+        return self.times if self.times.size > 1 else None
+
+    def velocity(self, t: Any, lat: ArrayLike, lon: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        ts = self.check_time(t)
+        la, lo = self.check_position(lat, lon)
+        ts, la, lo = np.broadcast_arrays(ts, la, lo)
+        it, wt = _axis_weights(self.times, ts)
+        iy, wy = _axis_weights(self.lat, la)
+        ix, wx = _axis_weights(self.lon, lo)
+        nt = self.times.size
+        out = []
+        for arr in (self.u, self.v):
+            acc = np.zeros(la.shape)
+            for dt_, ft in ((0, 1.0 - wt), (1, wt)):
+                if nt == 1 and dt_ == 1:
+                    continue
+                tt = it + dt_
+                for dy, fy in ((0, 1.0 - wy), (1, wy)):
+                    for dx, fx in ((0, 1.0 - wx), (1, wx)):
+                        # NaN * 0 stays NaN: a stencil that touches land is land.
+                        acc = acc + ft * fy * fx * arr[tt, iy + dy, ix + dx]
+            out.append(acc)
+        return out[0], out[1]

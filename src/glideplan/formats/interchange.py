@@ -1,0 +1,159 @@
+"""Interchange files of a planned mission: GeoJSON, KML, GPX (track + waypoints) and CSV.
+
+GeoJSON (RFC 7946) and KML put longitude first. Each file carries the mission waypoints
+(points with name and compass heading), the straight-leg waypoint list (a route) and the
+dense planned track.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import pathlib
+from typing import Any
+from xml.sax.saxutils import escape
+
+import numpy as np
+
+from glideplan.missions.plan import MissionPlan, Track
+from glideplan.missions.straight_legs import StraightLegList
+
+__all__ = ["write_csv", "write_geojson", "write_gpx", "write_kml"]
+
+
+def _track_latlon(plan: MissionPlan, track: Track) -> tuple[np.ndarray, np.ndarray]:
+    assert plan.route.projection is not None
+    return plan.route.projection.to_geographic(track.x, track.y)
+
+
+def write_geojson(
+    plan: MissionPlan, legs: StraightLegList, track: Track, path: pathlib.Path
+) -> pathlib.Path:
+    """A FeatureCollection: mission waypoints (Points), straight legs and track (LineStrings)."""
+    r = plan.route
+    assert r.lat is not None and r.lon is not None and legs.lat is not None
+    lat, lon = _track_latlon(plan, track)
+    hd = plan.headings_deg
+    feats: list[dict[str, Any]] = [
+        {
+            "type": "Feature",
+            "geometry": {"type": "Point", "coordinates": [float(r.lon[i]), float(r.lat[i])]},
+            "properties": {"name": r.names[i], "kind": "waypoint", "heading_deg": hd[i],
+                           "heading_given": not bool(r.free[i])},
+        }
+        for i in range(r.n)
+    ]
+    feats.append({
+        "type": "Feature",
+        "geometry": {"type": "LineString",
+                     "coordinates": [[float(a), float(b)] for a, b in zip(legs.lon, legs.lat,
+                                                                          strict=True)]},
+        "properties": {"name": "straight legs", "kind": "straight_legs",
+                       "max_deviation_m": legs.max_deviation_m},
+    })
+    feats.append({
+        "type": "Feature",
+        "geometry": {"type": "LineString",
+                     "coordinates": [[float(a), float(b)] for a, b in zip(lon, lat, strict=True)]},
+        "properties": {"name": "track", "kind": "track",
+                       "length_m": plan.total_length_m, "duration_s": plan.total_duration_s},
+    })
+    path.write_text(json.dumps({"type": "FeatureCollection", "features": feats}, indent=1))
+    return path
+
+
+def _kml_coords(lon: np.ndarray, lat: np.ndarray) -> str:
+    return " ".join(f"{a:.9f},{b:.9f},0" for a, b in zip(lon, lat, strict=True))
+
+
+def write_kml(
+    plan: MissionPlan, legs: StraightLegList, track: Track, path: pathlib.Path
+) -> pathlib.Path:
+    """KML 2.2: a Document with waypoint Placemarks, the straight legs and the track."""
+    r = plan.route
+    assert r.lat is not None and r.lon is not None and legs.lat is not None
+    assert legs.lon is not None
+    lat, lon = _track_latlon(plan, track)
+    hd = plan.headings_deg
+    parts = [
+        '<?xml version="1.0" encoding="UTF-8"?>',
+        '<kml xmlns="http://www.opengis.net/kml/2.2">',
+        "<Document>",
+        "<name>glideplan mission</name>",
+        '<Style id="track"><LineStyle><color>ff0000ff</color><width>2</width></LineStyle>'
+        "</Style>",
+        '<Style id="legs"><LineStyle><color>ffff0000</color><width>1</width></LineStyle>'
+        "</Style>",
+    ]
+    for i in range(r.n):
+        parts.append(
+            f"<Placemark><name>{escape(r.names[i])}</name>"
+            f"<description>heading {hd[i]:.1f} deg</description>"
+            f"<Point><coordinates>{r.lon[i]:.9f},{r.lat[i]:.9f},0</coordinates></Point>"
+            "</Placemark>"
+        )
+    parts.append(
+        "<Placemark><name>straight legs</name><styleUrl>#legs</styleUrl><LineString>"
+        f"<tessellate>1</tessellate><coordinates>{_kml_coords(legs.lon, legs.lat)}"
+        "</coordinates></LineString></Placemark>"
+    )
+    parts.append(
+        "<Placemark><name>track</name><styleUrl>#track</styleUrl><LineString>"
+        f"<tessellate>1</tessellate><coordinates>{_kml_coords(lon, lat)}</coordinates>"
+        "</LineString></Placemark>"
+    )
+    parts += ["</Document>", "</kml>", ""]
+    path.write_text("\n".join(parts), encoding="utf-8")
+    return path
+
+
+def write_gpx(
+    plan: MissionPlan, legs: StraightLegList, track: Track, path: pathlib.Path
+) -> pathlib.Path:
+    """GPX 1.1: waypoints (wpt), the straight-leg route (rte) and the track (trk)."""
+    import gpxpy.gpx
+
+    r = plan.route
+    assert r.lat is not None and r.lon is not None and legs.lat is not None
+    assert legs.lon is not None
+    lat, lon = _track_latlon(plan, track)
+    gpx = gpxpy.gpx.GPX()
+    gpx.creator = "glideplan"
+    hd = plan.headings_deg
+    for i in range(r.n):
+        gpx.waypoints.append(gpxpy.gpx.GPXWaypoint(
+            float(r.lat[i]), float(r.lon[i]), name=r.names[i],
+            comment=f"heading {hd[i]:.1f} deg"))
+    rte = gpxpy.gpx.GPXRoute(name="straight legs")
+    for name, a, b in zip(legs.names, legs.lat, legs.lon, strict=True):
+        rte.points.append(gpxpy.gpx.GPXRoutePoint(float(a), float(b), name=name))
+    gpx.routes.append(rte)
+    trk = gpxpy.gpx.GPXTrack(name="track")
+    seg = gpxpy.gpx.GPXTrackSegment()
+    for a, b in zip(lat, lon, strict=True):
+        seg.points.append(gpxpy.gpx.GPXTrackPoint(float(a), float(b)))
+    trk.segments.append(seg)
+    gpx.tracks.append(trk)
+    path.write_text(gpx.to_xml(version="1.1"), encoding="utf-8")
+    return path
+
+
+def write_csv(plan: MissionPlan, legs: StraightLegList, path: pathlib.Path) -> pathlib.Path:
+    """The straight-leg list as CSV: name,lat,lon,heading_deg,mission (or name,x,y,... local).
+
+    Geographic headings are compass bearings; local ones degrees CCW from +x (as read).
+    """
+    with path.open("w", newline="", encoding="utf-8") as fh:
+        w = csv.writer(fh)
+        if legs.lat is not None and legs.lon is not None:
+            w.writerow(["name", "lat", "lon", "heading_deg", "mission"])
+            for i, name in enumerate(legs.names):
+                w.writerow([name, f"{legs.lat[i]:.9f}", f"{legs.lon[i]:.9f}",
+                            f"{legs.bearing_deg[i]:.4f}", int(legs.mission[i])])
+        else:
+            w.writerow(["name", "x", "y", "heading_deg", "mission"])
+            ccw = np.mod(90.0 - legs.bearing_deg, 360.0)
+            for i, name in enumerate(legs.names):
+                w.writerow([name, f"{legs.x[i]:.4f}", f"{legs.y[i]:.4f}", f"{ccw[i]:.4f}",
+                            int(legs.mission[i])])
+    return path

@@ -1,0 +1,244 @@
+"""Plan a multi-leg mission: optimal headings, one verified path per leg, the dense track.
+
+`plan_mission(route, speed=..., radius=...)` chooses the free headings (`headings.py`: DP over
+K candidates, then refinement), then plans every leg with `glideplan.plan()` — the Dubins
+planner in still air, the convected-Dubins planner with a wind — so each leg's path is
+verified by integrating the vehicle's equations of motion and carries its endpoint error.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from glideplan.errors import InvalidParameterError
+from glideplan.geodesy import heading_to_compass, wind_from_to_vector
+from glideplan.missions.headings import (
+    HeadingPlan,
+    LegCost,
+    StillAirCost,
+    WindCost,
+    optimise_headings,
+)
+from glideplan.missions.route import Route
+from glideplan.path import Path
+from glideplan.solution import Solution
+from glideplan.validation import check_positive
+
+__all__ = ["MissionLeg", "MissionPlan", "Track", "plan_mission"]
+
+OBJECTIVES = ("length", "time")
+
+
+@dataclass(frozen=True, eq=False)
+class MissionLeg:
+    """One leg: waypoint indices, the verified `Solution`, ground length (m), duration (s)."""
+
+    index: int
+    start: int
+    end: int
+    solution: Solution
+    length_m: float
+    duration_s: float
+
+    @property
+    def path(self) -> Path:
+        assert self.solution.path is not None
+        return self.solution.path
+
+
+@dataclass(frozen=True, eq=False)
+class Track:
+    """Dense samples of the planned track: local x, y (m), heading (rad), leg index, time (s)."""
+
+    x: NDArray[np.float64]
+    y: NDArray[np.float64]
+    heading: NDArray[np.float64]
+    leg: NDArray[np.intp]
+    t: NDArray[np.float64]
+
+
+@dataclass(frozen=True, eq=False)
+class MissionPlan:
+    """A planned mission: the route, chosen headings (rad), verified legs and statistics."""
+
+    route: Route
+    headings: NDArray[np.float64]
+    legs: tuple[MissionLeg, ...]
+    objective: str
+    speed: float
+    radius: float
+    wind: tuple[float, float] | None  # (speed m/s, compass direction it blows FROM, deg)
+    heading_plan: HeadingPlan
+    stats: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        return all(leg.solution.ok for leg in self.legs)
+
+    @property
+    def total_length_m(self) -> float:
+        return float(sum(leg.length_m for leg in self.legs))
+
+    @property
+    def total_duration_s(self) -> float:
+        return float(sum(leg.duration_s for leg in self.legs))
+
+    @property
+    def headings_deg(self) -> list[float]:
+        """Compass bearing (deg) at each waypoint, chosen or given."""
+        return [float(b) for b in np.atleast_1d(heading_to_compass(self.headings))]
+
+    def track(self, spacing: float | None = None) -> Track:
+        """Samples of the whole track every `spacing` metres of flight (default R / 10)."""
+        step = spacing if spacing is not None else self.radius / 10.0
+        xs, ys, hs, legs, ts = [], [], [], [], []
+        t0 = 0.0
+        for leg in self.legs:
+            path = leg.path
+            n = max(2, math.ceil(path.duration * self.speed / step) + 1)
+            s = path.sample(n=n)
+            first = 0 if leg.index == 0 else 1  # legs share their end points
+            xs.append(s.x[first:])
+            ys.append(s.y[first:])
+            hs.append(s.heading[first:])
+            legs.append(np.full(n - first, leg.index))
+            ts.append(t0 + s.t[first:])
+            t0 += path.duration
+        return Track(
+            np.concatenate(xs), np.concatenate(ys), np.concatenate(hs),
+            np.concatenate(legs).astype(np.intp), np.concatenate(ts),
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """The mission as JSON data (without the track or files: the CLI adds those)."""
+        r = self.route
+        return {
+            "status": "solved" if self.ok else "failed",
+            "objective": self.objective,
+            "speed": self.speed,
+            "radius": self.radius,
+            "wind": None if self.wind is None else
+            {"speed": self.wind[0], "from_deg": self.wind[1]},
+            "total_length_m": self.total_length_m,
+            "total_duration_s": self.total_duration_s,
+            "headings_deg": self.headings_deg,
+            "headings_given": [not f for f in r.free.tolist()],
+            "waypoints": [
+                {"name": r.names[i], **(
+                    {"lat": float(r.lat[i]), "lon": float(r.lon[i])}
+                    if r.lat is not None and r.lon is not None else {}
+                ), "x": float(r.x[i]), "y": float(r.y[i])}
+                for i in range(r.n)
+            ],
+            "legs": [
+                {
+                    "from": r.names[leg.start],
+                    "to": r.names[leg.end],
+                    "word": leg.solution.word,
+                    "length_m": leg.length_m,
+                    "duration_s": leg.duration_s,
+                    "status": leg.solution.status.value,
+                    "endpoint_error": (
+                        leg.solution.endpoint_error.to_dict()
+                        if leg.solution.endpoint_error else None
+                    ),
+                }
+                for leg in self.legs
+            ],
+            "stats": self.stats,
+        }
+
+
+def _ground_length(path: Path) -> float:
+    return float(sum(getattr(seg, "ground_length", seg.length) for seg in path.segments))
+
+
+def plan_mission(
+    route: Route,
+    *,
+    speed: float,
+    radius: float,
+    objective: str = "length",
+    wind: tuple[float, float] | None = None,
+    headings: int | None = None,
+    precision: str = "single",
+    refine: bool = True,
+) -> MissionPlan:
+    """Plan `route` for a vehicle of `speed` (m/s) and minimum turn `radius` (m).
+
+    `objective` "length" (m) or "time" (s); `wind` = (speed m/s, compass direction it blows
+    FROM, deg) plans time-optimal convected Dubins legs (the objective must be "time").
+    `headings` = K candidates per free waypoint (default 360 in still air, 36 in a wind).
+    """
+    from glideplan.planning import plan
+    from glideplan.pose import Pose
+    from glideplan.vehicles.dubins_car import DubinsCar
+    from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
+
+    speed = check_positive("speed", speed)
+    radius = check_positive("radius", radius)
+    if objective not in OBJECTIVES:
+        raise InvalidParameterError("objective", objective, "must be length or time")
+    k = headings if headings is not None else (36 if wind else 360)
+    if not isinstance(k, int) or not 4 <= k <= 3600:
+        raise InvalidParameterError("headings", k, "must be an integer in [4, 3600]")
+    pts = route.points
+    cost: LegCost
+    vehicle: Any
+    if wind is not None:
+        if objective != "time":
+            raise InvalidParameterError(
+                "objective", objective, "with --wind the planner minimises time: use time"
+            )
+        u, v = wind_from_to_vector(float(wind[0]), float(wind[1]))
+        w = math.hypot(u, v)
+        vehicle = DubinsCarInWind(speed, radius, w, math.atan2(v, u) if w > 0 else 0.0)
+        cost = WindCost(pts, radius, speed, (u, v))
+    else:
+        vehicle = DubinsCar(speed=speed, turn_radius=radius)
+        cost = StillAirCost(pts, radius, 1.0 if objective == "length" else 1.0 / speed,
+                            precision)
+    hp = optimise_headings(cost, pts, route.headings, k, refine=refine)
+    h = hp.headings
+    t0 = time.perf_counter()
+    legs = []
+    for i in range(route.n - 1):
+        sol = plan(
+            Pose(float(pts[i, 0]), float(pts[i, 1]), float(h[i])),
+            Pose(float(pts[i + 1, 0]), float(pts[i + 1, 1]), float(h[i + 1])),
+            vehicle,
+            objective if wind is None else "time",
+        )
+        if sol.path is None:
+            legs.append(MissionLeg(i, i, i + 1, sol, math.nan, math.nan))
+            continue
+        legs.append(
+            MissionLeg(i, i, i + 1, sol, _ground_length(sol.path), float(sol.path.duration))
+        )
+    errors = [leg.solution.endpoint_error.max for leg in legs if leg.solution.endpoint_error]
+    stats: dict[str, Any] = dict(hp.stats)
+    stats.update(
+        {
+            "legs_seconds": time.perf_counter() - t0,
+            "max_endpoint_error": max(errors) if errors else None,
+            "projection": (
+                {
+                    "kind": "aeqd",
+                    "lat0": route.projection.lat0,
+                    "lon0": route.projection.lon0,
+                    "scale_distortion": route.distortion,
+                    "roundtrip_error_deg": route.roundtrip_error_deg,
+                }
+                if route.projection is not None else None
+            ),
+            "planned_cost": hp.total,
+        }
+    )
+    return MissionPlan(route, h, tuple(legs), objective, speed, radius,
+                       None if wind is None else (float(wind[0]), float(wind[1])), hp, stats)
