@@ -15,12 +15,14 @@ import pathlib
 import tempfile
 import time
 
+from _peers import count, report_peers
+
 from glideplan.studies.cross_track import CrossTrackConfig, run_cross_track_study
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--samples", type=int, default=900)
+    ap.add_argument("--samples", type=count(1), default=900)
     ap.add_argument("--out", type=pathlib.Path, default=None)
     ap.add_argument("--json", type=pathlib.Path, default=None)
     args = ap.parse_args()
@@ -59,6 +61,7 @@ def main() -> None:
             json.dumps({"wall_seconds": wall, "runs": cfg.runs, "curves": rows}, indent=2)
         )
     assert all(math.isfinite(r["mean_at_1"]) for r in rows)
+    report_peers([], [])  # the budget only: no peer study is timed
 
 
 if __name__ == "__main__":

@@ -15,10 +15,12 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ[_var] = "1"
 
 import argparse  # noqa: E402
+import importlib.metadata  # noqa: E402
 import math  # noqa: E402
 import time  # noqa: E402
 
 import numpy as np  # noqa: E402
+from _peers import count, report_peers  # noqa: E402
 
 from glideplan.planners.dubins import (  # noqa: E402
     TWO_PI,
@@ -116,8 +118,8 @@ def explain(start: np.ndarray, goal: np.ndarray, radius: float, ours: float, omp
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--n", type=int, default=1_000_000, help="number of queries")
-    parser.add_argument("--repeat", type=int, default=3, help="timing repeats (best of)")
+    parser.add_argument("--n", type=count(1), default=1_000_000, help="number of queries")
+    parser.add_argument("--repeat", type=count(1), default=3, help="timing repeats (best of)")
     parser.add_argument("--radius", type=float, default=1.0, help="turn radius")
     args = parser.parse_args()
     n, radius = args.n, args.radius
@@ -133,6 +135,7 @@ def main() -> None:
         ref, t_ompl = ompl_lengths(starts, goals, radius, args.repeat)
     except ImportError:
         print("OMPL not installed (pip install ompl): skipping the comparison")
+        report_peers([], [])
         return
     print(f"OMPL distance() loop      : {t_ompl:8.3f} s  {n / t_ompl / 1e6:6.2f} M lengths/s")
     t_set = ompl_set_and_distance_seconds(starts, goals, radius)
@@ -151,6 +154,13 @@ def main() -> None:
         ok = np.ones(n, bool)
         ok[bad] = False
         print(f"max difference on the other queries: {diff[ok].max():.3e}")
+    report_peers(
+        [
+            f"OMPL {importlib.metadata.version('ompl')} DubinsStateSpace.distance loop and "
+            "set+distance loop, same queries, same process"
+        ],
+        [],
+    )
 
 
 if __name__ == "__main__":

@@ -20,6 +20,7 @@ import math  # noqa: E402
 import time  # noqa: E402
 
 import numpy as np  # noqa: E402
+from _peers import count, report_peers  # noqa: E402
 
 from glideplan.planners.min_altitude import synthesize  # noqa: E402
 from glideplan.pose import Pose  # noqa: E402
@@ -38,7 +39,7 @@ def random_goals(n: int, seed: int, radius: float) -> list[Pose]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--n", type=int, default=200)
+    parser.add_argument("--n", type=count(1), default=200)
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
     if hasattr(os, "sched_setaffinity"):
@@ -60,6 +61,7 @@ def main() -> None:
     print(f"  targets: median <= 50 ms {'PASS' if median <= 50 else 'FAIL'}, "
           f"p99 <= 500 ms {'PASS' if p99 <= 500 else 'FAIL'}")  # fmt: skip
     print("  best family and word:", ", ".join(f"{k} {v}" for k, v in best.most_common()))
+    report_peers([], [])  # targets only: no peer timing exists for this planner
 
 
 if __name__ == "__main__":

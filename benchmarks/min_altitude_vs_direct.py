@@ -41,9 +41,13 @@ LONG_CHAINS = (
 )
 
 
-# goals (units of R_stf) that tests/min_altitude/test_min_altitude_direct.py checked before
-# the suite was trimmed: always run before the random ones
+# goals (units of R_stf) that tests/min_altitude/test_min_altitude_direct.py and
+# tests/direct/test_direct_cross_checks.py checked before the suite was trimmed: always run
+# before the random ones
 FIXED_GOALS = [
+    (0.0, 1.0, 2 * math.pi / 3),  # the dissertation's examples, Figs 5.5-5.7
+    (-3.0, 4.0, 0.0),
+    (0.0, 2.0, 7 * math.pi / 4),
     (1.0, 1.0, 0.0),
     (-1.0, 0.5, math.pi),
     (0.5, -0.2, -2.5),

@@ -1,8 +1,9 @@
 """Run the benchmark scripts in this folder one after the other, in separate processes.
 
 `python benchmarks/run_all.py` runs the speed benchmarks (a few minutes);
-`python benchmarks/run_all.py --validate` runs the `*_vs_direct.py` validation scripts
-(synthesis against the direct method on hundreds of random goals; tens of minutes).
+`python benchmarks/run_all.py --validate` runs the validation scripts, `*_vs_direct.py`
+(synthesis against the direct method on hundreds of random goals; tens of minutes) and
+`validate_*.py` (long cross-checks moved out of the test suite).
 """
 
 import pathlib
@@ -16,7 +17,9 @@ if __name__ == "__main__":
     scripts = [
         p
         for p in sorted(HERE.glob("*.py"))
-        if p.name != "run_all.py" and p.name.endswith("_vs_direct.py") == validate
+        if p.name != "run_all.py"
+        and not p.name.startswith("_")
+        and (p.name.endswith("_vs_direct.py") or p.name.startswith("validate_")) == validate
     ]
     failed = []
     for script in scripts:

@@ -4,7 +4,9 @@ Strict numerics, a non-interactive Matplotlib backend, and helpers that run the 
 entry point (`glideplan.cli.app.main`) and check its one-line errors.
 """
 
+import collections
 import os
+import time
 
 import numpy as np
 import pytest
@@ -64,3 +66,32 @@ def cli_error(run_cli):
         return _error_line(err)
 
     return run
+
+
+# GLIDEPLAN_CPU_DURATIONS=1 pytest ... -p no:xdist: per-test CPU seconds of this process
+# (setup + call + teardown), summed per directory, at the end of the run. On a machine
+# shared with other jobs the wall-clock `--durations` inflate; CPU time much less. Work done
+# in subprocesses or worker processes (examples, the batch runner) is not counted.
+_CPU_SECONDS: dict[str, float] = {}
+
+
+if os.environ.get("GLIDEPLAN_CPU_DURATIONS"):
+
+    @pytest.hookimpl(hookwrapper=True)
+    def pytest_runtest_protocol(item, nextitem):
+        t0 = time.process_time()
+        yield
+        _CPU_SECONDS[item.nodeid] = time.process_time() - t0
+
+    def pytest_terminal_summary(terminalreporter):
+        by_dir: collections.Counter[str] = collections.Counter()
+        for nodeid, sec in _CPU_SECONDS.items():
+            parts = nodeid.split("::")[0].split("/")
+            by_dir["/".join(parts[:2]) if len(parts) > 2 else parts[0]] += sec
+        write = terminalreporter.write_line
+        write(f"CPU seconds in this process: {sum(by_dir.values()):.1f}")
+        for name, sec in by_dir.most_common():
+            write(f"  {sec:7.2f}  {name}")
+        write("slowest tests (CPU seconds):")
+        for nodeid, sec in sorted(_CPU_SECONDS.items(), key=lambda kv: -kv[1])[:25]:
+            write(f"  {sec:7.2f}  {nodeid}")

@@ -180,6 +180,19 @@ def test_solution_is_verified_by_an_independent_integration(solved):
     assert abs(cost - sol.cost) <= bound[3] + 1e-9 * abs(sol.cost)
 
 
+@pytest.mark.parametrize("spec", SPECS, ids=_spec_id)
+def test_goal_equal_to_start_is_one_behaviour_for_all(spec):
+    """Start equal to goal: solved, a zero-length path costing 0, for every planner."""
+    case = CASES.get(spec.name)
+    if case is None:
+        pytest.fail(f"no test case for planner {spec.name}: add it to CASES")
+    start = Pose(3.0, -2.0, 0.4)
+    sol = plan(start, start, case.vehicle(), spec.objective, spec.method)
+    assert sol.ok and sol.cost == 0.0
+    assert sol.path.length == 0.0 and sol.path.duration == 0.0
+    assert sol.path.start.distance_to(start) == 0.0
+
+
 def test_failures_are_clear():
     """A planner that cannot find a path says so: the status and a message, no path."""
     sol = plan(

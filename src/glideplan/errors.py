@@ -26,5 +26,13 @@ class ResultsFileError(ValueError):
 
 
 def _short(value: Any) -> str:
+    """The value as the message shows it: text (often a file name) whole up to 240 characters,
+    else with its middle elided so that both ends stay readable; other values up to 80."""
     text = repr(value)
-    return text if len(text) <= 80 else text[:77] + "..."
+    limit = 240 if isinstance(value, str) else 80
+    if len(text) <= limit:
+        return text
+    if isinstance(value, str):
+        half = (limit - 3) // 2
+        return text[:half] + "..." + text[-half:]
+    return text[: limit - 3] + "..."

@@ -13,6 +13,7 @@ from glideplan.objectives import get_objective
 from glideplan.pose import Pose, wrap_to_pi
 from glideplan.segments import Segment
 from glideplan.vehicles.base import Vehicle
+from glideplan.words import run_word
 
 __all__ = ["Path", "PathSamples"]
 
@@ -80,14 +81,12 @@ class Path:
     def word(self) -> str:
         """Turn-direction word: consecutive equal turns merged, zero-length segments dropped."""
         letters: list[str] = []
+        weights: list[float] = []
         for seg in self.segments:
-            if seg.length <= 0.0:
-                continue
-            w = seg.turn_word() if hasattr(seg, "turn_word") else seg.letter
-            for c in w:
-                if not letters or letters[-1] != c:
-                    letters.append(c)
-        return "".join(letters)
+            w = seg.turn_word()
+            letters += list(w)
+            weights += [seg.length] * len(w)
+        return run_word(letters, weights, min_weight=0.0, strict=True)
 
     @property
     def family(self) -> str:

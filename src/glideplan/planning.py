@@ -173,10 +173,10 @@ def _as_pose(name: str, value: Pose | tuple[float, float, float] | Any) -> Pose:
         except (InvalidParameterError, TypeError, ValueError) as err:
             rule = getattr(err, "rule", "must be a Pose or three numbers (x, y, heading)")
             raise InvalidParameterError(name, value, rule) from None
-    for coord in (pose.x, pose.y):
+    for axis, coord in (("x", pose.x), ("y", pose.y)):
         if abs(coord) > POSITION_LIMIT_M:
             raise InvalidParameterError(
-                name, value, f"coordinates must lie within +-{POSITION_LIMIT_M:g} m"
+                f"{name} {axis}", coord, f"must lie within +-{POSITION_LIMIT_M:g} m of the origin"
             )
     return pose
 
@@ -190,6 +190,19 @@ def _verification_scale(vehicle: Vehicle) -> float:
     from glideplan.vehicles.base import LENGTH_LIMITS_M
 
     return min(max(1.0, vehicle.length_scale), LENGTH_LIMITS_M[1])
+
+
+def _path_word(best: Candidate) -> str:
+    """The returned path's word: zero-length segments dropped, equal turns merged.
+
+    A candidate's word names its type in the sufficient set ("LSL" even when both arcs are
+    empty, e.g. a straight downwind path); the solution reports what is flown. Paths of
+    sampled controls (direct methods) keep the planner's classification of their controls.
+    """
+    path = best.path
+    if path is None or any(seg.kind == "sampled" for seg in path.segments):
+        return best.word
+    return path.word
 
 
 def _same_pose_solution(
@@ -362,7 +375,7 @@ def plan(
         vehicle,
         best.path,
         best.cost,
-        best.word,
+        _path_word(best),
         best.family,
         tuple(candidates),
         err,

@@ -1,25 +1,112 @@
-"""Matplotlib drawing of paths and solutions (Matplotlib is imported inside functions)."""
+"""Matplotlib drawing of paths and solutions (Matplotlib is imported inside functions).
+
+A solution figure reads as an engineering figure on its own: the title states the problem
+(planner, vehicle, start and goal) and the answer (word, family, cost with its unit); axes are
+in metres (or in the model's reference length, e.g. `l_ref = V_ref^2 / g`, for the
+nondimensional load-factor glider); the aspect is equal; start and goal are marked with their
+headings; the legend, placed outside the axes so that it never covers the paths, names the
+optimal word and family and every candidate drawn.
+"""
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 if TYPE_CHECKING:
     from glideplan.path import Path
+    from glideplan.pose import Pose
     from glideplan.solution import Solution
+    from glideplan.vehicles.base import Vehicle
 
-__all__ = ["plot_path", "plot_solution", "save_figure"]
+__all__ = [
+    "cost_unit",
+    "describe_vehicle",
+    "length_unit",
+    "plot_path",
+    "plot_solution",
+    "save_figure",
+]
+
+# Candidates drawn one by one in the legend; the rest share one grey entry.
+_MAX_LABELLED_CANDIDATES = 8
+_CANDIDATE_STYLES = ("--", "-.", ":", (0, (5, 1, 1, 1)))
 
 
-def _axes(ax: Any) -> Any:
+def _axes(ax: Any, figsize: tuple[float, float] = (6.0, 6.0)) -> Any:
     if ax is not None:
         return ax
     import matplotlib.pyplot as plt
 
-    _, ax = plt.subplots(figsize=(6, 6))
+    _, ax = plt.subplots(figsize=figsize)
     return ax
+
+
+def length_unit(vehicle: Vehicle | None) -> str:
+    """The unit of lengths for this vehicle model: "m", or "l_ref" (nondimensional ch. 6)."""
+    return "l_ref" if vehicle is not None and vehicle.model == "load_factor_glider" else "m"
+
+
+def cost_unit(objective: str, vehicle: Vehicle | None) -> str:
+    """The unit of a cost: m (length, altitude) or s (time); l_ref / t_ref when nondimensional."""
+    nondim = length_unit(vehicle) != "m"
+    if objective == "time":
+        return "t_ref" if nondim else "s"
+    return "l_ref" if nondim else "m"
+
+
+def describe_vehicle(vehicle: Vehicle) -> str:
+    """A short description of a vehicle and its parameters with units, for titles."""
+    d = vehicle.to_dict()
+    m = vehicle.model
+    if m == "dubins_car":
+        return f"Dubins car, v = {d['speed']:g} m/s, R0 = {d['turn_radius']:g} m"
+    if m == "dubins_car_in_wind":
+        return (
+            f"Dubins car in wind, v = {d['speed']:g} m/s, R0 = {d['turn_radius']:g} m, "
+            f"wind {d['wind_speed']:g} m/s towards {math.degrees(d['wind_direction']):g} deg"
+        )
+    if m == "variable_speed_car":
+        return (
+            f"variable-speed car, v in [{d['v_min']:g}, {d['v_max']:g}] m/s, "
+            f"u_max = {d['u_max']:g} rad/s"
+        )
+    if m == "quadratic_polar_glider":
+        return (
+            f"glider (quadratic polar), v in [{d['v_stall']:.3g}, {d['v_max']:.3g}] m/s, "
+            f"R_stf = {d['radius_stf']:.3g} m"
+        )
+    if m == "load_factor_glider":
+        return (
+            f"load-factor glider, (L/D)max = {d['l_over_d_max']:g}, v in "
+            f"[{d['v_min']:g}, {d['v_max']:g}] V_ref, n_max = {d['n_max']:g}"
+        )
+    return m.replace("_", " ")
+
+
+def _pose_text(pose: Pose, unit: str) -> str:
+    return f"({pose.x:.4g}, {pose.y:.4g}) {unit}, {math.degrees(pose.heading):.4g} deg"
+
+
+def _mark_pose(ax: Any, pose: Pose, size: float, *, colour: str, marker: str, label: str) -> None:
+    """A marker at the pose and an arrow of length `size` along its heading."""
+    ax.plot(pose.x, pose.y, marker, color=colour, ms=8, zorder=5, label=label, ls="none")
+    ax.annotate(
+        "",
+        xy=(pose.x + size * math.cos(pose.heading), pose.y + size * math.sin(pose.heading)),
+        xytext=(pose.x, pose.y),
+        arrowprops={"arrowstyle": "-|>", "color": colour, "lw": 1.6, "mutation_scale": 14},
+        zorder=6,
+    )
+
+
+def _label_axes(ax: Any, unit: str) -> None:
+    if not ax.get_xlabel():
+        ax.set_xlabel(f"x ({unit})" if unit == "m" else f"x / {unit}")
+    if not ax.get_ylabel():
+        ax.set_ylabel(f"y ({unit})" if unit == "m" else f"y / {unit}")
 
 
 def plot_path(
@@ -29,53 +116,133 @@ def plot_path(
     switch_markers: bool = True,
     pose_markers: bool = True,
     n: int = 400,
+    unit: str | None = None,
     **line_kwargs: Any,
 ) -> Any:
-    """Draw a path: the track, switching points (open circles) and boundary poses (filled)."""
+    """Draw a path: the track, switching points (open circles) and boundary poses (arrows).
+
+    `unit` names the length unit of the axis labels (default: the path's vehicle's, or m);
+    labels already set on `ax` are kept.
+    """
     ax = _axes(ax)
     smp = path.sample(n=max(n, 50 * len(path.segments)))
     (line,) = ax.plot(smp.x, smp.y, **({"lw": 1.8} | line_kwargs))
     colour = line.get_color()
     if switch_markers and len(path.segments) > 1:
         pts = np.array([[s.start.x, s.start.y] for s in path.segments[1:]])
-        ax.plot(pts[:, 0], pts[:, 1], "o", mfc="none", mec=colour, ms=6)
+        ax.plot(pts[:, 0], pts[:, 1], "o", mfc="white", mec=colour, ms=5, zorder=4)
     if pose_markers:
+        span = float(max(np.ptp(smp.x), np.ptp(smp.y), 1e-9))
         for p in (path.start, path.end):
-            ax.plot(p.x, p.y, "o", color=colour, ms=6)
-            scale = 0.15 * max(1e-9, path.length / max(1, len(path.segments)))
             ax.annotate(
                 "",
-                xy=(p.x + scale * np.cos(p.heading), p.y + scale * np.sin(p.heading)),
+                xy=(p.x + 0.08 * span * np.cos(p.heading), p.y + 0.08 * span * np.sin(p.heading)),
                 xytext=(p.x, p.y),
-                arrowprops={"arrowstyle": "->", "color": colour},
+                arrowprops={"arrowstyle": "-|>", "color": colour},
             )
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
+    _label_axes(ax, unit or length_unit(path.vehicle))
     return ax
 
 
-def plot_solution(solution: Solution, ax: Any = None, *, candidates: bool = False) -> Any:
-    """Draw the best path of a solution (and optionally the other feasible candidates)."""
-    ax = _axes(ax)
-    if candidates:
-        for c in solution.candidates[1:]:
-            if c.path is not None:
-                plot_path(c.path, ax, switch_markers=False, pose_markers=False, lw=0.8, alpha=0.5)
-    if solution.path is not None:
-        plot_path(
-            solution.path, ax, label=f"{solution.family or solution.word} {solution.cost:.4g}"
+def _title(solution: Solution, unit: str) -> str:
+    head = f"{solution.planner} ({solution.objective}): {describe_vehicle(solution.vehicle)}"
+    problem = f"start {_pose_text(solution.start, unit)} -> goal {_pose_text(solution.goal, unit)}"
+    if solution.ok:
+        word = solution.word or "(none: start = goal)"
+        result = (
+            f"optimal word {word}, family {solution.family or '-'}, "
+            f"{solution.objective} cost {solution.cost:.5g} "
+            f"{cost_unit(solution.objective, solution.vehicle)}"
         )
-        ax.legend(loc="best", fontsize=8)
-    ax.set_title(f"{solution.planner}: {solution.status.value}")
+    else:
+        result = f"status {solution.status.value}: {solution.message}"
+    return f"{head}\n{problem}\n{result}"
+
+
+def plot_solution(solution: Solution, ax: Any = None, *, candidates: bool = False) -> Any:
+    """Draw a solution: the optimal path, optionally the other feasible candidates, the start
+    and goal with their headings, a title stating problem and answer, and a legend outside
+    the axes."""
+    ax = _axes(ax, figsize=(9.0, 6.0))
+    unit = length_unit(solution.vehicle)
+    cost_u = cost_unit(solution.objective, solution.vehicle)
+    drawn: list[Any] = []
+    if candidates:
+        others = [
+            c
+            for c in solution.candidates
+            if c.path is not None and c.feasible and c.path is not solution.path
+        ]
+        for i, c in enumerate(others):
+            assert c.path is not None
+            labelled = i < _MAX_LABELLED_CANDIDATES
+            if labelled:
+                label = f"candidate {c.word or '-'} ({c.family or '-'}), {c.cost:.4g} {cost_u}"
+            elif i == _MAX_LABELLED_CANDIDATES:
+                label = f"{len(others) - i} more candidates"
+            else:
+                label = "_nolegend_"
+            plot_path(
+                c.path,
+                ax,
+                switch_markers=False,
+                pose_markers=False,
+                unit=unit,
+                lw=1.0,
+                alpha=0.8 if labelled else 0.35,
+                ls=_CANDIDATE_STYLES[i % len(_CANDIDATE_STYLES)] if labelled else "-",
+                color=None if labelled else "0.6",
+                label=label,
+            )
+            drawn.append(c.path)
+    if solution.path is not None:
+        word = solution.word or "-"
+        plot_path(
+            solution.path,
+            ax,
+            pose_markers=False,
+            unit=unit,
+            lw=2.4,
+            color="black",
+            zorder=3,
+            label=f"optimal {word} ({solution.family or '-'}), {solution.cost:.5g} {cost_u}",
+        )
+        drawn.append(solution.path)
+    switches = solution.path is not None and len(solution.path.segments) > 1
+    xs = [solution.start.x, solution.goal.x]
+    ys = [solution.start.y, solution.goal.y]
+    for p in drawn:
+        smp = p.sample(n=200)
+        xs += [float(np.min(smp.x)), float(np.max(smp.x))]
+        ys += [float(np.min(smp.y)), float(np.max(smp.y))]
+    # The frame: the data with a margin for the heading arrows, never narrower than 0.6 of
+    # its length (a thin strip reads badly) nor smaller than the vehicle's length scale.
+    floor = max(solution.vehicle.length_scale, 1e-6)
+    span = max(max(xs) - min(xs), max(ys) - min(ys), floor)
+    arrow = 0.08 * span
+    _mark_pose(ax, solution.start, arrow, colour="tab:green", marker="o", label="start (heading)")
+    _mark_pose(ax, solution.goal, arrow, colour="tab:red", marker="s", label="goal (heading)")
+    if switches:
+        ax.plot([], [], "o", mfc="white", mec="black", ms=5, ls="none", label="switch point")
+    half = 0.5 * span + 0.12 * span
+    for lim, vals in ((ax.set_xlim, xs), (ax.set_ylim, ys)):
+        mid = 0.5 * (min(vals) + max(vals))
+        half_k = max(0.5 * (max(vals) - min(vals)) + 0.12 * span, 0.6 * half)
+        lim(mid - half_k, mid + half_k)
+    ax.set_aspect("equal", adjustable="box")
+    _label_axes(ax, unit)
+    ax.grid(True, lw=0.4, alpha=0.5)
+    ax.set_title(_title(solution, unit), fontsize=9, loc="left")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=8)
     return ax
 
 
 def save_figure(ax_or_fig: Any, filename: str) -> None:
-    """Save the figure owning `ax_or_fig` and close it."""
+    """Save the figure owning `ax_or_fig` (legend outside the axes included) and close it."""
     import matplotlib.pyplot as plt
 
     fig = ax_or_fig.get_figure() if hasattr(ax_or_fig, "get_figure") else ax_or_fig
     fig.tight_layout()
-    fig.savefig(filename, dpi=130)
+    fig.savefig(filename, dpi=130, bbox_inches="tight")
     plt.close(fig)

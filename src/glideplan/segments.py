@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike
 from glideplan.errors import InvalidParameterError
 from glideplan.pose import Pose, to_world
 from glideplan.validation import check_finite, check_nonnegative, check_positive
+from glideplan.words import run_word, turn_letters
 
 __all__ = [
     "Arc",
@@ -102,6 +103,10 @@ class Segment(ABC):
     def letter(self) -> str:
         """Turn-direction letter: L, R or S."""
         return direction_letter(self.direction)
+
+    def turn_word(self) -> str:
+        """Turn-direction letters flown along the segment (one letter unless sampled)."""
+        return self.letter
 
     def integrate_rate(self, rate: RateFunction, t: ArrayLike | None = None) -> np.ndarray:
         """Integral over [0, t] of rate(speed, turn_rate) (composite Gauss-Legendre, 24 nodes).
@@ -489,14 +494,7 @@ class Sampled(Segment):
 
     def turn_word(self, turn_rate_tol: float = 1e-3) -> str:
         """Turn-direction letters of the runs of the turn rate (S where |u| <= tol)."""
-        letters = np.where(
-            self.turn_rate > turn_rate_tol, "L", np.where(self.turn_rate < -turn_rate_tol, "R", "S")
-        )
-        word = [str(letters[0])]
-        for c in letters[1:]:
-            if c != word[-1]:
-                word.append(str(c))
-        return "".join(word)
+        return run_word(turn_letters(self.turn_rate, turn_rate_tol))
 
     def transformed(self, frame: Pose, reflect: bool = False) -> Sampled:
         poses = to_world(

@@ -115,7 +115,10 @@ def _solve_ch5(goal_units, system=CH5, mesh_tol=1e-5):
     return goal, res
 
 
-@pytest.mark.parametrize(("goal_units", "reference"), CASES)
+# CASES[0] (Fig 5.5, the stall-saturated optimum, the slowest solve) is solved by the same
+# engine through the planner in tests/min_altitude/test_min_altitude_direct.py and with the
+# other two by benchmarks/min_altitude_vs_direct.py (`make validate`)
+@pytest.mark.parametrize(("goal_units", "reference"), CASES[1:])
 def test_chapter_5_examples(goal_units, reference):
     goal, res = _solve_ch5(goal_units)
     assert res.ok

@@ -25,13 +25,17 @@ def test_figures_written(reports):
 def test_fig3_1_regions_match_the_dissertation(reports):
     rows = reports[1]["fig3.1"].rows
     assert len(rows) == 3
-    assert all(r.note == "same regions" for r in rows), [r.ours for r in rows]
+    assert all(r.verdict == "agrees" for r in rows), [r.ours for r in rows]
 
 
 def test_fig2_2_candidates(reports):
     rows = {r.quantity: r for r in reports[1]["fig2.2"].rows}
-    assert rows["(a) optimal word, length / R0"].ours == "LSL 6.9485"  # sqrt 5 + 3pi/2
-    assert rows["(b) optimal word, length / R0"].ours == "RLR 5.7778"  # 3pi - 2 acos(-1/4)
+    assert rows["(a) optimal word"].ours == "LSL"
+    assert rows["(a) optimal length"].ours == pytest.approx(math.sqrt(5) + 1.5 * math.pi, abs=1e-9)
+    assert rows["(b) optimal word"].ours == "RLR"
+    assert rows["(b) optimal length"].ours == pytest.approx(
+        3 * math.pi - 2 * math.acos(-0.25), abs=1e-9
+    )
     assert "RLR" in rows["(b) feasible candidates"].ours
 
 
@@ -39,13 +43,13 @@ def test_fig3_2_spot_values(reports):
     rows = [r for r in reports[1]["fig3.2"].rows if r.quantity.startswith("T(")]
     assert len(rows) == 5
     for r in rows:
-        assert abs(float(r.ours) - float(r.dissertation.split()[0])) < 0.006
+        assert abs(r.ours - r.reference) < 0.006  # REFERENCE_NOTES 4.4, two decimals
 
 
 def test_reproduce_cli_writes_index(tmp_path, capsys):
     assert main(["reproduce", "--only", "fig2.2", "--out", str(tmp_path)]) == 0
     index = (tmp_path / "index.md").read_text()
-    assert "fig2.2" in index and "LSL 6.9485" in index
+    assert "fig2.2" in index and "6.94846" in index  # sqrt 5 + 3pi/2
 
 
 def test_chapter_2_demo_cases_match_hand_values():

@@ -3,6 +3,10 @@
 Reference costs: an independent multi-start collocation found 0.36138 (one 315 deg left
 turn), 0.26256 (L-R-L) and 0.20926 (L-R, 84% at the corner); we must match them within
 1e-4 or find lower (then verified by integration, as every `plan()` result is).
+
+Tolerances: the references are printed to 5 decimals (+-5e-6) from collocations converged to
+about 1e-4 in cost, hence "within 1e-4"; our own collocation costs are accurate to about the
+change between the last two meshes (`mesh_error`, the engine's estimate).
 """
 
 from __future__ import annotations
@@ -19,6 +23,14 @@ from glideplan.planners.load_factor import control_system, initial_guesses, solv
 from glideplan.verify import integrate_path
 
 G = LoadFactorGlider()
+
+
+def mesh_error(stats) -> float:
+    """The engine's error estimate: |cost on the last mesh - cost on the one before|."""
+    costs = stats["mesh_costs"]
+    assert len(costs) >= 2, costs
+    return abs(costs[-1] - costs[-2])
+
 EXAMPLES = {
     "fig6.11": ((-2.0, 4.0, 7 * math.pi / 4), 0.36138, "L", False),
     "fig6.12": ((0.0, -0.5, math.pi), 0.26256, "LRL", False),
@@ -42,7 +54,9 @@ def test_examples_solve_and_match_the_independent_costs(solutions, key):
     assert sol.word == word
     # verified by integration with plan()'s default tolerance (1e-6); typically ~1e-8
     assert sol.endpoint_error.max < 1e-6
-    # the cost is the altitude loss of the returned path, integrated independently
+    # the cost is the altitude loss of the returned path, integrated independently: the
+    # core's DOP853 at rtol 1e-11 across the sampled controls' kinks (<= ~10^4 steps) is
+    # accurate to ~2e-7 relative, 1e-6 allowed
     integ = integrate_path(sol.path, "altitude")
     assert integ.cost == pytest.approx(sol.cost, rel=1e-6)
     assert integ.end.distance_to(Pose(*goal)) < 1e-6
@@ -67,9 +81,12 @@ def test_only_the_third_example_reaches_the_corner(solutions):
     assert corner == pytest.approx(0.84, abs=0.02)
 
 
-@pytest.mark.parametrize("key", list(EXAMPLES))
-def test_cost_is_mesh_converged(solutions, key):
-    """The cost changes by < 1e-4 (relative) between the final mesh and one twice as fine."""
+def test_cost_is_mesh_converged(solutions):
+    """The cost changes by < 1e-5 (relative) between the final mesh and one twice as fine.
+
+    Checked here for the example that reaches the corner (the hardest to resolve);
+    benchmarks/validate_load_factor_mesh.py (`make validate`) checks all three."""
+    key = "fig6.13"
     sol = solutions[key]
     sizes = sol.stats["mesh_sizes"]
     goal = Pose(*EXAMPLES[key][0])
@@ -82,7 +99,9 @@ def test_cost_is_mesh_converged(solutions, key):
     )
     assert fine.ok
     final = sol.extras["collocation_cost"]
-    assert abs(fine.cost - final) / final < 1e-4
+    # refinement stopped at a change < mesh_tol = 1e-5: one more doubling stays below it
+    # (measured 1.5e-6 here, 1e-7 and 9.5e-7 for the other two examples)
+    assert abs(fine.cost - final) / final < 1e-5
 
 
 def test_independent_formulation_agrees():
@@ -90,7 +109,8 @@ def test_independent_formulation_agrees():
     goal = Pose(*EXAMPLES["fig6.12"][0])
     res = solve_load_factor(G, goal, formulation="load-factor", scheme="radau")
     assert res.ok
-    assert res.cost == pytest.approx(0.26256, abs=1e-4)
+    # the reference (5 decimals, converged to ~1e-4) within our collocation's own accuracy
+    assert abs(res.cost - 0.26256) <= 1e-4 + mesh_error(res.stats)
 
 
 def test_guesses_come_cheapest_first_and_are_deterministic():
@@ -109,9 +129,10 @@ def test_failed_solve_is_reported():
     assert sol.path is None and "direct method failed" in sol.message
 
 
-def test_goal_at_start_has_no_path():
+def test_goal_at_start_is_the_zero_length_path():
+    """plan()'s one behaviour for every planner (tests/test_all_planners.py)."""
     sol = plan(Pose(), Pose(), G)
-    assert sol.status is Status.NO_PATH
+    assert sol.status is Status.SOLVED and sol.cost == 0.0 and sol.path.length == 0.0
 
 
 def test_bad_options():

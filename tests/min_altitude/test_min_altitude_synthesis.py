@@ -281,7 +281,7 @@ def test_goal_just_behind_the_start_is_one_loop():
     best = synthesize(g, G)[0]
     assert best.family == "B" and best.word in {"L", "R"}
     assert abs(best.info["angles"][0]) == pytest.approx(2 * math.pi)
-    assert best.cost == pytest.approx(17.4217, abs=1e-3)
+    assert best.cost == pytest.approx(17.4217, abs=direct_accuracy(17.4217))
     assert best.cost < dubins_reference(Pose(), g, G).cost
 
 

@@ -27,8 +27,9 @@ def test_table_4_3_best_path(table_4_3):
     sol = table_4_3
     assert sol.ok
     assert (sol.family, sol.word) == ("CBSB", "LSR")
-    # two independent solvers (this closed form and SLSQP on the 4-parameter problem) agree
-    assert sol.cost == pytest.approx(2.874650, abs=1e-5)
+    # two independent solvers (this closed form and SLSQP on the 4-parameter problem) agree;
+    # the SLSQP value is printed to 10 decimals (+-5e-11) and converged to ~1e-10
+    assert sol.cost == pytest.approx(2.874650, abs=5e-7)  # 6 decimals
     assert sol.cost == pytest.approx(2.8746504152, abs=1e-9)
     assert sol.endpoint_error.max < 1e-9
     integrated = integrate_path(sol.path, "time")
@@ -57,7 +58,7 @@ FOUND = [
 @pytest.mark.parametrize(("name", "value"), FOUND)
 def test_table_4_3_rows_found(table_4_3, name, value):
     costs = {c.info["type"]: c.cost for c in table_4_3.candidates if c.feasible}
-    assert costs[name] == pytest.approx(value, abs=5e-4)
+    assert costs[name] == pytest.approx(value, abs=5e-4)  # printed to 3 decimals
 
 
 def test_table_4_3_non_extremal_rows_absent(table_4_3):
@@ -169,7 +170,9 @@ def _random_goals(n, seed):
 @pytest.mark.parametrize("rho", [0.3, 0.5])
 def test_random_goals_bounds_mirror_and_endpoint(rho):
     car = VariableSpeedCar(rho, 1.0, 1.0)
-    for x, y, h in _random_goals(40, seed=int(10 * rho)):
+    # 20 goals per ratio here; benchmarks/min_time_vs_direct.py checks the same bounds, the
+    # mirror and the endpoint on 200 per ratio (`make validate`)
+    for x, y, h in _random_goals(20, seed=int(10 * rho)):
         goal = Pose(x, y, h)
         sol = plan(Pose(), goal, car)
         assert sol.ok

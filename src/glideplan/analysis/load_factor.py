@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike
 from glideplan.errors import InvalidParameterError
 from glideplan.validation import check_positive
 from glideplan.vehicles.load_factor_glider import LoadFactorGlider
+from glideplan.words import run_word
 
 __all__ = [
     "ARC_CLASSES",
@@ -408,19 +409,6 @@ def classify_controls(
 
 def _turn_word(s: np.ndarray, d: np.ndarray, n: np.ndarray, min_len: float) -> str:
     """Turn letters of runs of the turn direction (banked samples only), short runs dropped."""
-    banked = n > 1.0 + 1e-6
-    runs: list[list[Any]] = []
-    for i in range(s.size - 1):
-        if not banked[i]:
-            continue
-        letter = "L" if d[i] > 0 else "R"
-        ds = s[i + 1] - s[i]
-        if runs and runs[-1][0] == letter:
-            runs[-1][1] += ds
-        else:
-            runs.append([letter, ds])
-    word: list[str] = []
-    for letter, length in runs:
-        if length >= min_len and (not word or word[-1] != letter):
-            word.append(letter)
-    return "-".join(word)
+    banked = (n > 1.0 + 1e-6)[:-1]
+    letters = np.where(d[:-1] > 0, "L", "R")[banked]
+    return "-".join(run_word(letters, np.diff(s)[banked], min_weight=min_len))

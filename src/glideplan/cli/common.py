@@ -44,8 +44,11 @@ def flag_names(**names: str) -> Iterator[None]:
     try:
         yield
     except InvalidParameterError as exc:
+        head, _, rest = str(exc.name).partition(" ")
         if exc.name in names:
             raise InvalidParameterError(names[exc.name], exc.value, exc.rule) from None
+        if rest and head in names:  # "goal x" -> "--goal x"
+            raise InvalidParameterError(f"{names[head]} {rest}", exc.value, exc.rule) from None
         raise
 
 
@@ -104,10 +107,11 @@ def time_limit_option(
     seconds = check_positive("--time-limit", time_limit)
     spec = find_planner(vehicle, objective, method)
     if "time_limit" not in spec.options:
+        hint = "; use --method direct" if spec.method != "direct" else ""
         raise InvalidParameterError(
             "--time-limit",
             time_limit,
-            f"planner {spec.name!r} ({spec.method}) takes no time limit; use --method direct",
+            f"planner {spec.name!r} ({spec.method}) takes no time limit{hint}",
         )
     return {"time_limit": seconds}
 

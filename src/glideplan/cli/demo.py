@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pathlib
 import re
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -57,6 +57,15 @@ def demo(
             f"| {case.name} | {case.source} | {sol.planner} | {sol.word} | {cost} | {ref} "
             f"| {err} | {res.seconds:.3f} |"
         )
+    row = _mission_example(out / "mission", plots)
+    failures += not row["ok"]
+    table.add_row(row["name"], row["planner"], row["word"], row["cost"], row["reference"],
+                  row["error"], row["seconds"])
+    lines.append(
+        f"| {row['name']} | {row['source']} | {row['planner']} | {row['word']} | {row['cost']} "
+        f"| {row['reference']} | {row['error']} | {row['seconds']} |"
+    )
+    lines += ["", f"Mission files (Slocum, Seaglider, QGC, GIS): {', '.join(row['files'])}"]
     (out / "report.md").write_text("\n".join(lines) + "\n")
     console = Console()
     if not console.is_terminal:  # piped or logged: do not squeeze the table into 80 columns
@@ -65,3 +74,57 @@ def demo(
     typer.echo(f"wrote {out / 'report.md'}")
     if failures:
         raise typer.Exit(1)
+
+
+def _mission_example(out: pathlib.Path, plots: bool) -> dict[str, Any]:
+    """Plan the shipped GPX survey route for a glider and export every vehicle/GIS file.
+
+    The reference column is the best of the two heuristics (point at the next waypoint,
+    bisector headings) with the same legs: the optimised headings must not be longer.
+    """
+    import time
+
+    import numpy as np
+
+    from glideplan.formats import ExportOptions, export_mission, parse_formats, read_route
+    from glideplan.missions import (
+        StillAirCost,
+        bisector_headings,
+        headings_cost,
+        plan_mission,
+        point_at_next_headings,
+    )
+
+    t0 = time.perf_counter()
+    route_file = pathlib.Path(__file__).parents[1] / "missions" / "data" / "buzzards_bay.gpx"
+    route = read_route(route_file)
+    mission = plan_mission(route, speed=0.3, radius=300.0)
+    files, legs = export_mission(mission, out, parse_formats(None),
+                                 ExportOptions(acceptance_radius=100.0, name="buzzards_bay"))
+    if plots:
+        from glideplan.missions.plot import plot_mission
+        from glideplan.plotting import save_figure
+
+        save_figure(plot_mission(mission, legs), str(out / "mission.png"))
+        files["plot"] = str(out / "mission.png")
+    cost = StillAirCost(route.points, 300.0)
+    best = min(headings_cost(cost, f(route.points, route.headings))[0]
+               for f in (point_at_next_headings, bisector_headings))
+    data = mission.to_dict() | {"files": files, "heuristic_best_m": best}
+    write_json(data, out / "mission.json")
+    errors = [leg.solution.endpoint_error.max for leg in mission.legs
+              if leg.solution.endpoint_error is not None]
+    paths = [p for v in files.values() for p in ([v] if isinstance(v, str) else v)]
+    return {
+        "name": "mission: GPX lawn-mower survey, 8 waypoints",
+        "source": "issue 13",
+        "planner": "mission (dubins DP)",
+        "word": " ".join(leg.solution.word for leg in mission.legs),
+        "cost": f"{mission.total_length_m:.1f}",
+        "reference": f"{best:.1f} heuristic",
+        "error": f"{max(errors):.1e}" if errors else "-",
+        "seconds": f"{time.perf_counter() - t0:.3f}",
+        "ok": bool(mission.ok and mission.total_length_m <= best * (1 + 1e-9)
+                   and np.isfinite(mission.total_length_m)),
+        "files": [pathlib.Path(p).name for p in paths],
+    }

@@ -39,8 +39,9 @@ def _params(path: pathlib.Path | None) -> Any:
 
     if path is None:
         return DesignParameters()
-    text = read_parameter_text(path)
-    params = loads_parameters(text, source=str(path))
+    with flag_names(params="--params"):
+        text = read_parameter_text(path)
+        params = loads_parameters(text, source=str(path))
     missing = defaulted_fields(tomllib.loads(text))
     total = len(defaulted_fields({}))
     if len(missing) == total:

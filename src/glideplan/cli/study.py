@@ -48,8 +48,8 @@ TABLE_COLUMNS = (
     ("R0'/R0", "feasible turn radius over R0, (1 + eps)^2 (3.3)"),
     ("E(R)", "mean final cross-track error / R0 at the smallest and largest R_plan simulated "
              "(the header shows that R_plan)"),
-    ("R near R0'", "the simulated R_plan nearest R0'/R0"),
-    ("E(R near R0')", "mean final cross-track error / R0 at that R_plan"),
+    ("R~R0'", "the simulated R_plan nearest R0'/R0"),
+    ("E(R~R0')", "mean final cross-track error / R0 at that R_plan"),
     ("knee", "smallest R_plan whose mean error lies within 10% of the curve's drop above its "
              "minimum (where the curve flattens)"),
     ("failures", "runs that never crossed the finish line (left out of the means)"),
@@ -163,7 +163,7 @@ def cross_track_command(
         title += f", gust scale {gust_scale:g} (sensitivity)"
     table = Table(title=title)
     r_first, r_last = min(config.r_plan), max(config.r_plan)
-    headers = ("case", "eps", "R0'/R0", f"E({r_first:g})", "R near R0'", "E(R near R0')",
+    headers = ("case", "eps", "R0'/R0", f"E({r_first:g})", "R~R0'", "E(R~R0')",
                f"E({r_last:g})", "knee", "failures")  # fmt: skip
     for col in headers:
         table.add_column(col, justify="right")

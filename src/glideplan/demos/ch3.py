@@ -38,7 +38,7 @@ register_demo_case(
         goal=Pose(10.0, 0.0, 0.0),
         vehicle=DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=0.0),
         reference_cost=10.0 / 1.3,
-        reference_word="LSL",
+        reference_word="S",  # LSL with zero-length turns: the word drops them
     )
 )
 register_demo_case(
@@ -49,7 +49,7 @@ register_demo_case(
         goal=Pose(10.0, 0.0, 0.0),
         vehicle=DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=math.pi),
         reference_cost=10.0 / 0.7,
-        reference_word="LSL",
+        reference_word="S",  # LSL with zero-length turns: the word drops them
     )
 )
 register_demo_case(

@@ -22,11 +22,10 @@ import panel as pn
 from bokeh.models import (
     Arrow,
     ColumnDataSource,
-    DataTable,
+    CustomJS,
     HoverTool,
     PointDrawTool,
     Range1d,
-    TableColumn,
     VeeHead,
 )
 from bokeh.plotting import figure
@@ -67,6 +66,11 @@ PAGE_CSS = """
   margin-right: 6px; border: 2px solid #1f5fa8; border-right-color: transparent;
   border-radius: 50%; animation: gp-spin .8s linear infinite; vertical-align: -1px; }
 @keyframes gp-spin { to { transform: rotate(360deg); } }
+.gp-table-wrap { max-height: 260px; overflow-y: auto; border: 1px solid #d6e0ec; border-radius: 6px; }
+.gp-table { border-collapse: collapse; width: 100%; font-size: 13px; font-variant-numeric: tabular-nums; }
+.gp-table th { position: sticky; top: 0; background: #eef3f9; text-align: left; padding: 4px 8px; color: #3b4a59; }
+.gp-table td { padding: 3px 8px; border-top: 1px solid #edf1f6; }
+.gp-table tr.gp-opt td { background: #e4efff; font-weight: 600; color: #1f5fa8; }
 .gp-help { font-size: 12px; color: #5b6b7b; line-height: 1.35; }
 .gp-title { font-size: 20px; font-weight: 650; color: #fff; }
 .gp-sub { font-size: 12.5px; color: #d8e4f2; }
@@ -100,12 +104,12 @@ class Explorer:
         self.view: View | None = None
         self.sync = sync
         self._doc = pn.state.curdoc if not sync else None
-        self._location = pn.state.location if not sync else None
         self._lock = threading.Lock()
         self._pending: ExploreState | None = None
         self._running = False
         self._syncing = False
         self._errors: dict[str, str] = {}
+        self._drawn: dict[tuple[str, str], tuple[float, float]] = {}
         self._build_figures()
         self._build_widgets()
         self._set_planner_inputs()
@@ -137,21 +141,37 @@ class Explorer:
         self.path_src = ColumnDataSource({"x": [], "y": []})
         self.air_src = ColumnDataSource({"x": [], "y": []})
         self.heading_src = ColumnDataSource({"x0": [], "y0": [], "x1": [], "y1": [], "c": []})
-        self.poses_src = ColumnDataSource({"x": [], "y": [], "name": [], "c": []})
-        self.handles_src = ColumnDataSource({"x": [], "y": [], "name": [], "c": []})
+        # start, goal and their heading handles: one source, so one drag is one change
+        self.points_src = ColumnDataSource(_empty_points())
+        self.labels_src = ColumnDataSource({"x": [], "y": [], "name": [], "c": []})
         self.wind_src = ColumnDataSource({"x_start": [], "y_start": [], "x_end": [], "y_end": []})
         self.wind_label = ColumnDataSource({"x": [], "y": [], "text": []})
         self.part_renderer = fig.image_rgba(
             "image", x="x", y="y", dw="dw", dh="dh", source=self.part_src
         )
         self.part_text = fig.text(
-            "x", "y", "text", source=self.part_labels, text_align="center",
-            text_baseline="middle", text_font_size="12px", text_color="#2c3e50", text_alpha=0.8,
+            "x",
+            "y",
+            "text",
+            source=self.part_labels,
+            text_align="center",
+            text_baseline="middle",
+            text_font_size="12px",
+            text_color="#2c3e50",
+            text_alpha=0.8,
         )
         self.cand_renderer = fig.multi_line(
-            "xs", "ys", source=self.cand_src, line_color=GREY, line_alpha=0.45, line_width=1.3,
-            selection_line_color="#e67e22", selection_line_alpha=1.0, selection_line_width=3,
-            nonselection_line_color=GREY, nonselection_line_alpha=0.3,
+            "xs",
+            "ys",
+            source=self.cand_src,
+            line_color=GREY,
+            line_alpha=0.45,
+            line_width=1.3,
+            selection_line_color="#e67e22",
+            selection_line_alpha=1.0,
+            selection_line_width=3,
+            nonselection_line_color=GREY,
+            nonselection_line_alpha=0.3,
             legend_label="candidates",
         )
         fig.add_tools(
@@ -161,37 +181,64 @@ class Explorer:
             )
         )
         self.air_renderer = fig.line(
-            "x", "y", source=self.air_src, line_color=BLUE, line_dash="dashed", line_width=2,
-            line_alpha=0.7, legend_label="air-relative path",
+            "x",
+            "y",
+            source=self.air_src,
+            line_color=BLUE,
+            line_dash="dashed",
+            line_width=2,
+            line_alpha=0.7,
+            legend_label="air-relative path",
         )
         self.path_renderer = fig.line(
-            "x", "y", source=self.path_src, line_color=BLUE, line_width=3.5,
+            "x",
+            "y",
+            source=self.path_src,
+            line_color=BLUE,
+            line_width=3.5,
             legend_label="optimal path",
         )
         fig.segment("x0", "y0", "x1", "y1", source=self.heading_src, line_color="c", line_width=2)
         wind = Arrow(
-            end=VeeHead(size=14, fill_color=WIND, line_color=WIND), line_color=WIND,
-            line_width=3, source=self.wind_src, x_start="x_start", y_start="y_start",
-            x_end="x_end", y_end="y_end",
+            end=VeeHead(size=14, fill_color=WIND, line_color=WIND),
+            line_color=WIND,
+            line_width=3,
+            source=self.wind_src,
+            x_start="x_start",
+            y_start="y_start",
+            x_end="x_end",
+            y_end="y_end",
         )
         fig.add_layout(wind)
         fig.text(
-            "x", "y", "text", source=self.wind_label, text_color=WIND, text_font_size="12px",
+            "x",
+            "y",
+            "text",
+            source=self.wind_label,
+            text_color=WIND,
+            text_font_size="12px",
             text_baseline="bottom",
         )
-        poses = fig.scatter(
-            "x", "y", source=self.poses_src, size=15, fill_color="c", line_color="white",
-            line_width=2,
-        )
-        handles = fig.scatter(
-            "x", "y", source=self.handles_src, size=11, marker="circle", fill_color="white",
-            line_color="c", line_width=2.5,
+        points = fig.scatter(
+            "x",
+            "y",
+            source=self.points_src,
+            size="size",
+            fill_color="fill",
+            line_color="c",
+            line_width=2.5,
         )
         fig.text(
-            "x", "y", "name", source=self.poses_src, x_offset=10, y_offset=-8,
-            text_font_size="12px", text_color="c",
+            "x",
+            "y",
+            "name",
+            source=self.labels_src,
+            x_offset=10,
+            y_offset=-8,
+            text_font_size="12px",
+            text_color="c",
         )
-        draw = PointDrawTool(renderers=[poses, handles], add=False, drag=True)
+        draw = PointDrawTool(renderers=[points], add=False, drag=True)
         fig.add_tools(draw)
         fig.toolbar.active_drag = draw
         fig.legend.location = "top_left"
@@ -199,41 +246,52 @@ class Explorer:
         fig.legend.label_text_font_size = "11px"
         fig.legend.click_policy = "hide"
         self.fig = fig
-        self.poses_src.on_change("data", self._on_poses)
-        self.handles_src.on_change("data", self._on_handles)
+        # The page's URL follows the state: the server sets the figure's tag, the browser
+        # replaces the address (Panel's Location pushes history entries on every drag).
+        fig.js_on_change(
+            "tags",
+            CustomJS(
+                code="const q = cb_obj.tags[0]; if (q && window.location.search !== q) "
+                "{ window.history.replaceState(null, '', window.location.pathname + q); }"
+            ),
+        )
+        self.points_src.on_change("data", self._on_points)
 
         self.prof_src = ColumnDataSource({"t": [], "speed": [], "second": [], "third": []})
         self.speed_fig = figure(
-            height=170, width=430, x_axis_label="time", y_axis_label="speed", tools="save,reset",
+            height=170,
+            width=430,
+            x_axis_label="time",
+            y_axis_label="speed",
+            tools="save,reset",
             toolbar_location=None,
         )
         self.speed_fig.line("t", "speed", source=self.prof_src, line_color=BLUE, line_width=2)
         self.second_fig = figure(
-            height=170, width=430, x_range=self.speed_fig.x_range, x_axis_label="time",
-            y_axis_label="turn rate", tools="save,reset", toolbar_location=None,
+            height=170,
+            width=430,
+            x_range=self.speed_fig.x_range,
+            x_axis_label="time",
+            y_axis_label="turn rate",
+            tools="save,reset",
+            toolbar_location=None,
         )
-        self.second_fig.line("t", "second", source=self.prof_src, line_color="#8e44ad", line_width=2)
+        self.second_fig.line(
+            "t", "second", source=self.prof_src, line_color="#8e44ad", line_width=2
+        )
         self.third_fig = figure(
-            height=170, width=430, x_range=self.speed_fig.x_range, x_axis_label="time",
-            y_axis_label="load factor", tools="save,reset", toolbar_location=None,
+            height=170,
+            width=430,
+            x_range=self.speed_fig.x_range,
+            x_axis_label="time",
+            y_axis_label="load factor",
+            tools="save,reset",
+            toolbar_location=None,
         )
         self.third_fig.line("t", "third", source=self.prof_src, line_color="#d35400", line_width=2)
         for f in (self.speed_fig, self.second_fig, self.third_fig):
             f.background_fill_color = "#fbfcfe"
             f.grid.grid_line_color = "#e3e9f0"
-        self.table = DataTable(
-            source=self.cand_src,
-            columns=[
-                TableColumn(field="rank", title="#", width=30),
-                TableColumn(field="word", title="word", width=70),
-                TableColumn(field="family", title="family", width=90),
-                TableColumn(field="cost_text", title="cost", width=110),
-                TableColumn(field="status", title="status", width=100),
-            ],
-            width=430,
-            height=230,
-            index_position=None,
-        )
 
     # ----- widgets ----------------------------------------------------------------------------
     def _build_widgets(self) -> None:
@@ -247,7 +305,9 @@ class Explorer:
         self.error_panes: dict[str, pn.pane.HTML] = {}
         for name in ("start", "goal"):
             w = pn.widgets.TextInput(
-                name=f"{name} (x, y, heading deg)", value=getattr(self.state, name), width=290,
+                name=f"{name} (x, y, heading deg)",
+                value=getattr(self.state, name),
+                width=290,
                 css_classes=[f"gp-input-{name}"],
             )
             w.param.watch(self._make_pose_watcher(name), "value")
@@ -267,20 +327,33 @@ class Explorer:
         )
         self.partition_toggle.param.watch(self._on_flags, "value")
         self.general_error = _html(width=290)
+        self.table = _html(width=440)
         self.strip = _html(sizing_mode="stretch_width")
         self.busy = _html(width=200, height=24)
         self.downloads = pn.Row(
             pn.widgets.FileDownload(
-                callback=self._json_file, filename="glideplan-solution.json",
-                label="Solution JSON", button_type="primary", width=118, embed=False,
+                callback=self._json_file,
+                filename="glideplan-solution.json",
+                label="Solution JSON",
+                button_type="primary",
+                width=118,
+                embed=False,
             ),
             pn.widgets.FileDownload(
-                callback=self._csv_file, filename="glideplan-path.csv", label="Path CSV",
-                button_type="primary", width=90, embed=False,
+                callback=self._csv_file,
+                filename="glideplan-path.csv",
+                label="Path CSV",
+                button_type="primary",
+                width=90,
+                embed=False,
             ),
             pn.widgets.FileDownload(
-                callback=self._png_file, filename="glideplan-figure.png", label="Figure PNG",
-                button_type="primary", width=100, embed=False,
+                callback=self._png_file,
+                filename="glideplan-figure.png",
+                label="Figure PNG",
+                button_type="primary",
+                width=100,
+                embed=False,
             ),
             margin=(5, 0),
         )
@@ -295,7 +368,11 @@ class Explorer:
         vehicle, option = [], []
         for p in entry.parameters:
             unit = " (x, y, deg)" if p.kind == "group" and "deg" in p.units else ""
-            hint = f" ({', '.join(f.rpartition('.')[2] for f in p.fields)})" if p.kind == "group" else ""
+            hint = (
+                f" ({', '.join(f.rpartition('.')[2] for f in p.fields)})"
+                if p.kind == "group"
+                else ""
+            )
             w = pn.widgets.TextInput(
                 name=f"{p.label}{hint or unit}",
                 value=self.state.values.get(p.name, p.default),
@@ -308,9 +385,9 @@ class Explorer:
             (vehicle if p.target == "vehicle" else option).extend([w, self.error_panes[p.name]])
         self.vehicle_box.objects = vehicle
         self.option_box.objects = option or [_html('<span class="gp-help">none</span>')]
-        self.partition_toggle.visible = hasattr(entry.default_vehicle, "turn_radius") and not hasattr(
-            entry.default_vehicle, "wind"
-        )
+        self.partition_toggle.visible = hasattr(
+            entry.default_vehicle, "turn_radius"
+        ) and not hasattr(entry.default_vehicle, "wind")
 
     def _layout(self) -> pn.viewable.Viewable:
         header = pn.Row(
@@ -339,19 +416,19 @@ class Explorer:
             self.downloads,
             width=320,
         )
-        self.profile_col = pn.Column(
-            _html('<div class="gp-help"><b>Controls along the path</b></div>'),
-            pn.pane.Bokeh(self.speed_fig),
-            pn.pane.Bokeh(self.second_fig),
-            pn.pane.Bokeh(self.third_fig),
-        )
-        right = pn.Column(
-            _html('<div class="gp-help"><b>Candidates</b> (select a row to highlight it)</div>'),
-            pn.pane.Bokeh(self.table),
-            self.profile_col,
+        from bokeh.layouts import column
+        from bokeh.models import Div
+
+        self.profile_title = Div(text="<b>Controls along the path</b>", styles={"color": "#3b4a59"})
+        self.profile_col = column(
+            self.profile_title, self.speed_fig, self.second_fig, self.third_fig
         )
         self.plot_pane = pn.pane.Bokeh(self.fig)
-        main = pn.Column(pn.Row(self.strip, self.busy, sizing_mode="stretch_width"), pn.Row(self.plot_pane, right))
+        right = pn.Column(self.table, pn.pane.Bokeh(self.profile_col), width=450)
+        main = pn.Column(
+            pn.Row(self.strip, self.busy, sizing_mode="stretch_width"),
+            pn.Row(self.plot_pane, right),
+        )
         return pn.Column(header, pn.Row(sidebar, main), sizing_mode="stretch_width")
 
     # ----- state ------------------------------------------------------------------------------
@@ -371,8 +448,8 @@ class Explorer:
         self._move_pose("goal", x, y, heading_deg)
 
     def _push_url(self) -> None:
-        if self._location is not None:
-            self._location.search = "?" + state_to_query(self.catalog, self.state)
+        """Put the state's query in the browser's address (history.replaceState, no reload)."""
+        self.fig.tags = ["?" + state_to_query(self.catalog, self.state)]
 
     def _on_planner(self, event: Any) -> None:
         if event.new == self.state.planner:
@@ -432,25 +509,34 @@ class Explorer:
     def _draw_poses(self) -> None:
         poses = self._poses()
         h = self._handle_length()
-        cols: dict[str, list[Any]] = {"x": [], "y": [], "name": [], "c": []}
-        hcols: dict[str, list[Any]] = {"x": [], "y": [], "name": [], "c": []}
+        pts = _empty_points()
+        labels: dict[str, list[Any]] = {"x": [], "y": [], "name": [], "c": []}
         seg: dict[str, list[Any]] = {"x0": [], "y0": [], "x1": [], "y1": [], "c": []}
         for name, colour in (("start", START), ("goal", GOAL)):
             p = poses[name]
             if p is None:
                 continue
             hx, hy = p[0] + h * math.cos(p[2]), p[1] + h * math.sin(p[2])
-            for d, v in ((cols, (p[0], p[1])), (hcols, (hx, hy))):
-                d["x"].append(v[0])
-                d["y"].append(v[1])
-                d["name"].append(name)
-                d["c"].append(colour)
-            for k, v in zip(("x0", "y0", "x1", "y1", "c"), (p[0], p[1], hx, hy, colour), strict=True):
+            for row in (
+                (p[0], p[1], name, "pose", colour, colour, 15),
+                (hx, hy, name, "handle", colour, "white", 11),
+            ):
+                for k, v in zip(_POINT_COLUMNS, row, strict=True):
+                    pts[k].append(v)
+            for k, v in zip(("x", "y", "name", "c"), (p[0], p[1], name, colour), strict=True):
+                labels[k].append(v)
+            for k, v in zip(
+                ("x0", "y0", "x1", "y1", "c"), (p[0], p[1], hx, hy, colour), strict=True
+            ):
                 seg[k].append(v)
+        self._drawn = {
+            (n, r): (x, y)
+            for x, y, n, r in zip(pts["x"], pts["y"], pts["name"], pts["role"], strict=True)
+        }
         self._syncing = True
         try:
-            self.poses_src.data = cols
-            self.handles_src.data = hcols
+            self.points_src.data = pts
+            self.labels_src.data = labels
             self.heading_src.data = seg
         finally:
             self._syncing = False
@@ -471,33 +557,32 @@ class Explorer:
             self._syncing = False
         self.set_state(replace(self.state, **{name: text}))
 
-    def _on_poses(self, attr: str, old: Any, new: Any) -> None:
+    def _on_points(self, attr: str, old: Any, new: Any) -> None:
+        """A drag ended: a moved pose keeps its heading, a moved handle turns its pose."""
         if self._syncing:
             return
+        rows = zip(
+            new.get("x", []),
+            new.get("y", []),
+            new.get("name", []),
+            new.get("role", []),
+            strict=False,
+        )
+        moved = [
+            (n, r, float(x), float(y))
+            for x, y, n, r in rows
+            if (n, r) in self._drawn and math.dist((x, y), self._drawn[(n, r)]) > 1e-12
+        ]
         poses = self._poses()
-        moved = None
-        for x, y, name in zip(new.get("x", []), new.get("y", []), new.get("name", []), strict=False):
-            p = poses.get(name)
-            if p is not None and (abs(x - p[0]) > 1e-12 or abs(y - p[1]) > 1e-12):
-                moved = (name, float(x), float(y))
-        if moved is None or len(new.get("x", [])) != 2:
+        if len(new.get("x", [])) != len(self._drawn) or not moved:
             self._draw_poses()  # a deleted point comes back
             return
-        self._move_pose(moved[0], moved[1], moved[2], None)
-
-    def _on_handles(self, attr: str, old: Any, new: Any) -> None:
-        if self._syncing:
-            return
-        poses = self._poses()
-        for x, y, name in zip(new.get("x", []), new.get("y", []), new.get("name", []), strict=False):
-            p = poses.get(name)
-            if p is None:
-                continue
-            heading = math.degrees(math.atan2(y - p[1], x - p[0]))
-            if abs((heading - math.degrees(p[2]) + 180.0) % 360.0 - 180.0) > 1e-6:
-                self._move_pose(name, p[0], p[1], heading)
-                return
-        self._draw_poses()
+        name, role, x, y = next((m for m in moved if m[1] == "pose"), moved[0])
+        p = poses[name]
+        if role == "pose" or p is None:
+            self._move_pose(name, x, y, None)
+        else:
+            self._move_pose(name, p[0], p[1], math.degrees(math.atan2(y - p[1], x - p[0])))
 
     # ----- solving ----------------------------------------------------------------------------
     def solve(self) -> None:
@@ -572,6 +657,7 @@ class Explorer:
         self.cand_src.data = {k: v for k, v in cands.items() if k != "cost"} | {
             "cost": np.asarray(cands["cost"], dtype=float)
         }
+        self.table.object = _table_html(cands)
         self.cand_renderer.visible = self.state.candidates
         self._apply_profile(view)
         self._apply_wind(view)
@@ -624,7 +710,11 @@ class Explorer:
         }
 
     def _strip_html(self, view: View) -> str:
-        unit = {"length": "m", "time": "s", "altitude": "m"}.get(view.entry.objective, "") if view.entry else ""
+        unit = (
+            {"length": "m", "time": "s", "altitude": "m"}.get(view.entry.objective, "")
+            if view.entry
+            else ""
+        )
         if not view.units and view.entry is not None and view.entry.objective != "time":
             unit = "(nondim.)"
         objective = view.entry.objective if view.entry else ""
@@ -671,8 +761,10 @@ class Explorer:
         lo = np.array([min(xs.min(), self.x_range.start), min(ys.min(), self.y_range.start)])
         hi = np.array([max(xs.max(), self.x_range.end), max(ys.max(), self.y_range.end)])
         inside = (
-            xs.min() >= self.x_range.start and xs.max() <= self.x_range.end
-            and ys.min() >= self.y_range.start and ys.max() <= self.y_range.end
+            xs.min() >= self.x_range.start
+            and xs.max() <= self.x_range.end
+            and ys.min() >= self.y_range.start
+            and ys.max() <= self.y_range.end
         )
         if not inside:
             pad = 0.08 * float(np.max(hi - lo))
@@ -690,6 +782,38 @@ class Explorer:
         return io.BytesIO(solution_png(self.view.solution if self.view else None))
 
 
+def _table_html(cands: dict[str, list[Any]]) -> str:
+    """The candidates table: rank, word, family, cost and status (optimal first)."""
+    rows = []
+    for i in range(len(cands["word"])):
+        cls = ' class="gp-opt"' if cands["status"][i] == "optimal" else ""
+        cells = (
+            cands["rank"][i],
+            cands["word"][i],
+            cands["family"][i],
+            cands["cost_text"][i] or "&ndash;",
+            cands["status"][i],
+        )
+        rows.append(
+            f"<tr{cls}>"
+            + "".join(f"<td>{html.escape(str(c)) if c != '&ndash;' else c}</td>" for c in cells)
+            + "</tr>"
+        )
+    head = "".join(f"<th>{h}</th>" for h in ("#", "word", "family", "cost", "status"))
+    return (
+        '<div class="gp-help"><b>Candidates</b> (hover a grey path for its word and cost)</div>'
+        f'<div class="gp-table-wrap"><table class="gp-table"><thead><tr>{head}</tr></thead>'
+        f"<tbody>{''.join(rows)}</tbody></table></div>"
+    )
+
+
+_POINT_COLUMNS = ("x", "y", "name", "role", "c", "fill", "size")
+
+
+def _empty_points() -> dict[str, list[Any]]:
+    return {k: [] for k in _POINT_COLUMNS}
+
+
 def _empty_candidates() -> dict[str, list[Any]]:
     return {k: [] for k in ("xs", "ys", "word", "family", "cost", "cost_text", "status", "rank")}
 
@@ -697,7 +821,9 @@ def _empty_candidates() -> dict[str, list[Any]]:
 def create_page(catalog: Catalog | None = None) -> pn.viewable.Viewable:
     """The page of one session, its state read from the URL query."""
     args = pn.state.session_args or {}
-    query = {k: v[0].decode() if isinstance(v[0], bytes) else str(v[0]) for k, v in args.items() if v}
+    query = {
+        k: v[0].decode() if isinstance(v[0], bytes) else str(v[0]) for k, v in args.items() if v
+    }
     explorer = Explorer(catalog, query)
-    explorer._push_url()
+    pn.state.onload(explorer._push_url)
     return explorer.layout

@@ -24,10 +24,10 @@ from glideplan.validation import check_finite
 
 __all__ = [
     "Catalog",
-    "parse_number",
     "Parameter",
     "PlannerEntry",
     "build_catalog",
+    "parse_number",
     "planner_key",
 ]
 
@@ -280,7 +280,10 @@ def _vehicle_parameters(cls: type, obj: Any, prefix: str = "") -> list[Parameter
             default = ",".join(values) if obj is not None else ""
             paths = tuple(f"{dotted}.{m}" if dotted else m for m in members)
             out.append(
-                (order[members[0]], Parameter(opt_name(option), paths, default, "group", "vehicle", units))
+                (
+                    order[members[0]],
+                    Parameter(opt_name(option), paths, default, "group", "vehicle", units),
+                )
             )
             grouped.update(members)
     for f in fields:
@@ -301,7 +304,10 @@ def _vehicle_parameters(cls: type, obj: Any, prefix: str = "") -> list[Parameter
             value = f.default
         default = "" if value is None else _fmt(value)
         out.append(
-            (order[f.name], Parameter(opt_name(f.name), (path,), default, kind, "vehicle", (), optional))
+            (
+                order[f.name],
+                Parameter(opt_name(f.name), (path,), default, kind, "vehicle", (), optional),
+            )
         )
     out.sort(key=lambda item: item[0])
     return [p for _, p in out]
@@ -328,7 +334,9 @@ def _label(key: str, spec: Any) -> str:
     return f"{text.strip().rstrip(',')} ({spec.method})"
 
 
-def build_catalog(specs: tuple[Any, ...] | None = None, labels: Callable[..., str] = _label) -> Catalog:
+def build_catalog(
+    specs: tuple[Any, ...] | None = None, labels: Callable[..., str] = _label
+) -> Catalog:
     """One entry per registered planner (and per objective where a name has several)."""
     if specs is None:
         from glideplan import registered_planners
@@ -341,7 +349,9 @@ def build_catalog(specs: tuple[Any, ...] | None = None, labels: Callable[..., st
     for name, group in by_name.items():
         for s in group:
             default_obj = getattr(s.vehicle, "default_objective", s.objective)
-            key = name if (len(group) == 1 or s.objective == default_obj) else f"{name}/{s.objective}"
+            key = (
+                name if (len(group) == 1 or s.objective == default_obj) else f"{name}/{s.objective}"
+            )
             vehicle = default_vehicle(s.vehicle)
             params = _vehicle_parameters(s.vehicle, vehicle) + _option_parameters(s)
             entries.append(PlannerEntry(key, labels(key, s), s, vehicle, tuple(params)))

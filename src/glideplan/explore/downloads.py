@@ -47,20 +47,17 @@ def path_csv(solution: Any) -> str:
 
 def solution_png(solution: Any) -> bytes:
     """The solution drawn by `glideplan.plotting.plot_solution` (with its candidates), as PNG."""
-    from glideplan.figures._common import pyplot
+    from matplotlib.figure import Figure  # no pyplot: thread-safe, no GUI backend
 
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(7, 6))
-    try:
-        if solution is not None and solution.path is not None:
-            from glideplan.plotting import plot_solution
+    fig = Figure(figsize=(7, 6))
+    ax = fig.add_subplot()
+    if solution is not None and solution.path is not None:
+        from glideplan.plotting import plot_solution
 
-            plot_solution(solution, ax, candidates=True)
-        else:
-            ax.text(0.5, 0.5, "no solution", ha="center", va="center", transform=ax.transAxes)
-        buf = io.BytesIO()
-        fig.tight_layout()
-        fig.savefig(buf, format="png", dpi=130)
-        return buf.getvalue()
-    finally:
-        plt.close(fig)
+        plot_solution(solution, ax, candidates=True)
+    else:
+        ax.text(0.5, 0.5, "no solution", ha="center", va="center", transform=ax.transAxes)
+    buf = io.BytesIO()
+    fig.tight_layout()
+    fig.savefig(buf, format="png", dpi=130)
+    return buf.getvalue()

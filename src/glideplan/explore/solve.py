@@ -39,7 +39,9 @@ class View:
     solution: Any = None  # glideplan.Solution
     request: Request | None = None
     seconds: float = 0.0
-    path: dict[str, np.ndarray] = field(default_factory=lambda: {"x": np.zeros(0), "y": np.zeros(0)})
+    path: dict[str, np.ndarray] = field(
+        default_factory=lambda: {"x": np.zeros(0), "y": np.zeros(0)}
+    )
     air_path: dict[str, np.ndarray] | None = None
     candidates: dict[str, list[Any]] = field(default_factory=dict)
     profile: dict[str, np.ndarray] | None = None
@@ -105,7 +107,9 @@ def _profile(path: Any, vehicle: Any) -> tuple[dict[str, np.ndarray], tuple[str,
     total = float(durations.sum())
     eps = 1e-9 * max(total, 1.0)
     times = np.unique(
-        np.concatenate([np.linspace(0.0, total, _PROFILE_SAMPLES), edges, np.maximum(edges - eps, 0)])
+        np.concatenate(
+            [np.linspace(0.0, total, _PROFILE_SAMPLES), edges, np.maximum(edges - eps, 0)]
+        )
     )
     s = path.sample(times=times)
     out = {"t": s.t, "speed": s.speed}

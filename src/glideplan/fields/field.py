@@ -118,7 +118,9 @@ class FlowField:
         ext = self.extent
         if ext is None:
             return la, lo
-        lo = ext.lon_min + np.mod(lo - ext.lon_min, 360.0)
+        # The representative of each longitude nearest the field's centre (0..360 or -180..180).
+        centre = 0.5 * (ext.lon_min + ext.lon_max)
+        lo = centre + np.mod(lo - centre + 180.0, 360.0) - 180.0
         tol = 1e-9
         for arr, low, high, axis, unit in (
             (la, ext.lat_min, ext.lat_max, "latitude", "south"),

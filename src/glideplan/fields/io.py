@@ -219,10 +219,12 @@ def _engine(path: pathlib.Path) -> str:
         head = fh.read(8)
     if head[:4] == b"GRIB":
         return "cfgrib"
-    if head[:3] == b"CDF":
+    if head[:3] == b"CDF" or head[:8] == b"\x89HDF\r\n\x1a\n":
+        try:
+            import netCDF4  # noqa: F401
+        except ImportError:  # pragma: no cover - the fields extra installs netCDF4
+            return "h5netcdf" if head[:3] != b"CDF" else "scipy"
         return "netcdf4"
-    if head[:8] == b"\x89HDF\r\n\x1a\n":
-        return "h5netcdf"
     raise InvalidParameterError("field", str(path), "not a NetCDF or GRIB file")
 
 

@@ -50,6 +50,7 @@ def fig2_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
         feasible = [c for c in sol.candidates if c.feasible]
         for cand in feasible:
             best = cand is sol.candidates[0]
+            assert cand.path is not None
             plot_path(
                 cand.path,
                 ax,
@@ -80,8 +81,7 @@ def fig2_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
             )
         rows.append(
             compare(
-                f"({key}) {name}: a CCC candidate is feasible"
-                + (" (which)" if key == "a" else ""),
+                f"({key}) {name}: a CCC candidate is feasible" + (" (which)" if key == "a" else ""),
                 ours,
                 PRINTED_CCC[key],
                 note=note,
@@ -95,6 +95,7 @@ def fig2_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
             )
         )
         hand_word, hand_length = HAND_LENGTH[key]
+        assert sol.endpoint_error is not None and sol.cost is not None
         rows.append(compare(f"({key}) optimal word", sol.word, reference=hand_word,
                             reference_source="hand derivation"))  # fmt: skip
         rows.append(

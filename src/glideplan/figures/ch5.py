@@ -238,58 +238,6 @@ def table5_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
 # ----- Figs 5.5-5.7 --------------------------------------------------------------------------
 
 
-def dissertation_family_bbb(solution: Solution) -> float | None:
-    """Best BBB path of the dissertation's family for the solution's goal: unclipped speed
-    (lambda <= v_ms - v_stall, Lemma 5.7.6), the middle arc symmetric about theta but its
-    angle free (no H = 0), by SLSQP from the best BBB candidate (C.22). Altitude loss (m)."""
-    from scipy.optimize import minimize
-
-    from glideplan.planners.min_altitude import Kernel
-
-    g = solution.vehicle
-    assert isinstance(g, QuadraticPolarGlider)
-    bbb = [c for c in solution.candidates if c.family == "BBB" and c.path is not None]
-    if not bbb:
-        return None
-    angles = np.abs(np.array(bbb[0].info["angles"], dtype=float))
-    mirror = bbb[0].info["angles"][0] < 0  # solve the first-turn-L mirror image
-    local = solution.goal.relative_to(solution.start)
-    gx, gy, gh = (
-        local.x,
-        (-local.y if mirror else local.y),
-        (-local.heading if mirror else local.heading),
-    )
-    kern, u, lam_max = Kernel.of(g), g.u_max, g.v_ms - g.v_stall
-
-    def evaluate(p: np.ndarray) -> tuple[complex, float]:
-        a1, beta, a3, lam = p
-        phi = np.array([beta / 2, beta / 2 - a1, -beta / 2, -beta / 2 + a3])
-        P, W, _ = kern.primitives(phi, lam)
-        z = np.exp(1j * (a1 - beta / 2)) * ((P[0] - P[1]) + (P[0] - P[2]) + (P[3] - P[2])) / u
-        return z, float(((W[0] - W[1]) + (W[0] - W[2]) + (W[3] - W[2])) / u)
-
-    def bc(p: np.ndarray) -> np.ndarray:
-        z, _ = evaluate(p)
-        d = p[0] - p[1] + p[2] - gh
-        scale = g.radius_stf
-        return np.array(
-            [(z.real - gx) / scale, (z.imag - gy) / scale, math.sin(d), 1 - math.cos(d)]
-        )
-
-    p0 = np.array([*angles, lam_max])
-    res = minimize(
-        lambda p: evaluate(p)[1],
-        p0,
-        method="SLSQP",
-        constraints=[{"type": "eq", "fun": lambda p: bc(p)[:3]}],
-        bounds=[(0, 2 * math.pi)] * 3 + [(0, lam_max)],
-        options={"maxiter": 500, "ftol": 1e-12},
-    )
-    if not res.success or np.max(np.abs(bc(res.x))) > 1e-8:
-        return None
-    return float(res.fun)
-
-
 def _stall_time_per_turn(solution: Solution) -> list[float]:
     """Time (s) at v_stall in each turn of the path (a turn: consecutive segments turning
     the same way, e.g. B, Bsat, B), from 2001 samples."""
@@ -338,7 +286,7 @@ def _example_figure(figure_id: str, out_dir: pathlib.Path) -> FigureReport:
         compare("altitude loss of the Dubins path at v_stf", dubins, unit="m"),
     ]  # fmt: skip
     old = dissertation_family_bbb(sol) if sol.family == "BBB" else None
-    if abs(gain - float(p_gain.value)) > p_gain.tolerance:  # type: ignore[operator]
+    if abs(gain - float(p_gain.value)) > p_gain.tolerance:
         if old is not None:
             gain_note = (
                 f"our optimum has its middle turn clipped at v_stall, outside the dissertation's "
@@ -352,7 +300,7 @@ def _example_figure(figure_id: str, out_dir: pathlib.Path) -> FigureReport:
                 f"to {abs(sol.cost - direct.cost):.0e} m; the printed {p_gain.text} m is "
                 f"{printed_pct:.1f}% of our Dubins loss {dubins:.2f} m"
             )
-    if abs(pct - float(p_pct.value)) > p_pct.tolerance:  # type: ignore[operator]
+    if abs(pct - float(p_pct.value)) > p_pct.tolerance:
         pct_note = (
             f"{p_pct.text}% of our Dubins loss {dubins:.2f} m is "
             f"{float(p_pct.value) * dubins / 100:.2f} m, and {p_gain.text} m is "
@@ -382,7 +330,7 @@ def _example_figure(figure_id: str, out_dir: pathlib.Path) -> FigureReport:
                 old_gain,
                 p_gain,
                 note="" if old_gain is not None and abs(old_gain - float(p_gain.value))
-                <= p_gain.tolerance  # type: ignore[operator]
+                <= p_gain.tolerance
                 else ("the family search (SLSQP from the best BBB candidate) found no path"
                       if old_gain is None else f"{old_gain:.4f} m"),
             )

@@ -1,9 +1,8 @@
 """Chapter 6 figures: control set, hodograph, polars, extremal arcs, three examples (6.3-6.13).
 
-Parameters (6.21): n_max = 2, (L/D)max = 30, v_min = 0.75, v_max = 2. The examples are solved
-by the direct method (`glideplan.planners.load_factor`) and compared with what section 6.8
-states and, as references, with an independent multi-start collocation run by the project
-(costs 0.36138, 0.26256, 0.20926; the dissertation prints no cost).
+Parameters (6.21): n_max = 2, (L/D)max = 30, v_min = 0.75, v_max = 2. The three examples
+(Figs 6.11-6.13) are in `ch6_examples.py`; this module holds the analysis figures, the cached
+example solve and the drawing they share.
 """
 
 from __future__ import annotations
@@ -16,28 +15,15 @@ from typing import Any
 import numpy as np
 
 from glideplan.analysis import load_factor as lf
-from glideplan.errors import PlanningError
 from glideplan.figures._common import pyplot, save_png
 from glideplan.figures.registry import FigureReport, Printed, compare, reproducible, yes_no
 from glideplan.pose import Pose
 from glideplan.studies.load_factor_hodograph import hc_minimiser
 from glideplan.vehicles.load_factor_glider import LoadFactorGlider
 
-__all__ = ["EXAMPLES", "draw_solution", "solve_example"]
+__all__ = ["GLIDER", "draw_solution", "solve_example"]
 
 GLIDER = LoadFactorGlider()  # (6.21)
-# goal; independent cost (project's multi-start collocation); turn word of the drawn path;
-# whether section 6.8 says the corner condition becomes active; s axis of the figure
-EXAMPLES: dict[str, dict[str, Any]] = {
-    "fig6.11": {"goal": (-2.0, 4.0, 7 * math.pi / 4), "cost": 0.36138, "word": "L",
-                "corner": False, "s_axis": 8.0},
-    "fig6.12": {"goal": (0.0, -0.5, math.pi), "cost": 0.26256, "word": "LRL",
-                "corner": False, "s_axis": 5.0},
-    "fig6.13": {"goal": (1.1, 2.0, 0.0), "cost": 0.20926, "word": "LR",
-                "corner": True, "s_axis": 2.5},
-}  # fmt: skip
-INDEPENDENT = "independent multi-start collocation (project record; no cost is printed)"
-CORNER_SOURCE = "section 6.8: only in Figure 6.13(c) does the corner condition become active"
 S67 = "section 6.7"
 _CLASS_STYLE = {
     "corner": ("tab:red", "corner"),
@@ -354,7 +340,7 @@ def fig6_9(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
         rows.append(
             compare(f"p3 = {p3:g}: max |v(6.44) - v from integrating (6.41)|",
                     float(np.max(np.abs(v - vn))), reference=0.0,
-                    reference_source="numerical integration of (6.41) (solve_ivp)")
+                    reference_source="numerical integration of (6.41) (analysis.load_factor)")
         )  # fmt: skip
     rows.append(
         compare("s1 grows as p3 decreases towards 1", yes_no(bool(np.all(np.diff(s1s) < 0))),
@@ -444,69 +430,3 @@ def draw_solution(solution, filename: str | pathlib.Path, title: str = "") -> No
     if title:
         fig.suptitle(title)
     save_png(fig, filename, crop=True)
-
-
-def _example(fig_id: str, out_dir: pathlib.Path) -> FigureReport:
-    ex = EXAMPLES[fig_id]
-    sol = solve_example(ex["goal"])
-    name = f"{fig_id.replace('.', '_')}.png"
-    if not sol.ok or sol.path is None:
-        raise PlanningError(f"the direct method failed for {fig_id}: {sol.message}")
-    draw_solution(sol, out_dir / name, f"{fig_id}: x1 = {tuple(round(c, 4) for c in ex['goal'])}")
-    arcs = sol.extras["arcs"]
-    fr = arcs["fractions"]
-    err = sol.endpoint_error
-    figure = fig_id.replace("fig", "Figure ")
-    rows = (
-        compare("altitude loss (cost)", sol.cost, reference=ex["cost"],
-                reference_source=INDEPENDENT,
-                note=f"ours - reference {sol.cost - ex['cost']:+.1e}"),
-        compare("turn word", arcs["turn_word"], reference="-".join(ex["word"]),
-                reference_source=f"the path drawn in {figure}(b) (read by the project)"),
-        compare("the corner condition becomes active", yes_no(bool(arcs["reaches_corner"])),
-                Printed(yes_no(ex["corner"]), CORNER_SOURCE, word=True),
-                note=f"{100 * fr['corner']:.0f}% of s at the corner"),
-        compare("arc length s1", sol.path.length,
-                note=f"the s axis of {figure}(a) ticks to {ex['s_axis']:g}"),
-        compare("share of s on the extremal locus", fr["locus"]),
-        compare("share of s on the stall boundary", fr["stall"]),
-        compare("share of s at the corner", fr["corner"]),
-        compare("share of s wings level", fr["wings_level"],
-                note="section 6.8: wings level only at isolated points"),
-        compare("endpoint error (integration)", err.max, reference=0.0,
-                reference_source="plan() verification by integrating the controls"),
-        compare("cost on the final mesh", float(sol.stats["mesh_costs"][-1]),
-                note="mesh costs " + ", ".join(f"{c:.6f}" for c in sol.stats["mesh_costs"])
-                + "; sizes " + ", ".join(str(m) for m in sol.stats["mesh_sizes"])),
-    )  # fmt: skip
-    return FigureReport(files=(name,), rows=rows, data={"cost": sol.cost})
-
-
-@reproducible(
-    "fig6.11",
-    title="Locally optimal solution for x1 = (-2, 4, 7 pi/4)",
-    dissertation="Fig 6.11: one long left turn on the extremal locus and stall boundary, wings "
-    "level only at an isolated point; independent cost 0.36138",
-)
-def fig6_11(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    return _example("fig6.11", out_dir)
-
-
-@reproducible(
-    "fig6.12",
-    title="Locally optimal solution for x1 = (0, -0.5, pi)",
-    dissertation="Fig 6.12: L-R-L; the speed along the locus mirrors about (1, 1); independent "
-    "cost 0.26256",
-)
-def fig6_12(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    return _example("fig6.12", out_dir)
-
-
-@reproducible(
-    "fig6.13",
-    title="Locally optimal solution for x1 = (1.1, 2, 0)",
-    dissertation="Fig 6.13: L-R, the only example that reaches the corner; independent cost "
-    "0.20926 with 84% of the path at the corner",
-)
-def fig6_13(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    return _example("fig6.13", out_dir)

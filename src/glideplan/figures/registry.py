@@ -142,9 +142,7 @@ class Comparison:
                 "reference_source", self.reference_source, "a reference needs a source"
             )
         if self.verdict == DIFFERS and not self.note.strip():
-            raise InvalidParameterError(
-                "note", self.quantity, "a row that differs must say why"
-            )
+            raise InvalidParameterError("note", self.quantity, "a row that differs must say why")
 
     @property
     def verdict(self) -> str:

@@ -23,7 +23,8 @@ __all__ = ["write_csv", "write_geojson", "write_gpx", "write_kml"]
 
 def _track_latlon(plan: MissionPlan, track: Track) -> tuple[np.ndarray, np.ndarray]:
     assert plan.route.projection is not None
-    return plan.route.projection.to_geographic(track.x, track.y)
+    lat, lon = plan.route.projection.to_geographic(track.x, track.y)
+    return lat, lon
 
 
 def write_geojson(
@@ -32,6 +33,7 @@ def write_geojson(
     """A FeatureCollection: mission waypoints (Points), straight legs and track (LineStrings)."""
     r = plan.route
     assert r.lat is not None and r.lon is not None and legs.lat is not None
+    assert legs.lon is not None
     lat, lon = _track_latlon(plan, track)
     hd = plan.headings_deg
     feats: list[dict[str, Any]] = [

@@ -150,6 +150,7 @@ def _read_gpx(p: pathlib.Path, data: bytes) -> _Points:
         raise _bad(p, "", "GPX", f"not a readable GPX file: {' '.join(str(exc).split())}"
                    ) from None
     route = next((r for r in gpx.routes if r.points), None)
+    pts: list[Any]
     if route is not None:
         pts, kind = list(route.points), "rtept"
     elif gpx.waypoints:
@@ -174,7 +175,7 @@ def _read_kml(p: pathlib.Path, data: bytes) -> _Points:
     from fastkml import kml
 
     try:
-        doc = kml.KML.from_string(data)
+        doc = kml.KML.from_string(data)  # type: ignore[arg-type]  # lxml takes bytes
     except Exception as exc:  # lxml / fastkml raise many types for a foreign file
         raise _bad(p, "", "KML", f"not a readable KML file: {' '.join(str(exc).split())}"
                    ) from None
@@ -235,7 +236,7 @@ def _read_geojson(p: pathlib.Path, data: bytes) -> _Points:
         if not isinstance(g, dict):
             raise _bad(p, f"feature {k}", f, "has no geometry object")
         geoms.append((k, g, f.get("properties") or {}))
-    for k, g, props in geoms:
+    for k, g, _ in geoms:
         if g.get("type") == "LineString":
             coords = g.get("coordinates")
             if not isinstance(coords, list):

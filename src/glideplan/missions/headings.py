@@ -298,7 +298,10 @@ def optimise_headings(
     n_sweeps = 0
     total, legs = _chain_cost(cost, h)
     if refine and free.size:
-        h, total, legs, n_sweeps = _refine(cost, h, free, TWO_PI / k, sweeps)
+        cheap = isinstance(cost, StillAirCost)  # the wind times cost far more per call
+        h, total, legs, n_sweeps = _refine(
+            cost, h, free, TWO_PI / k, sweeps if cheap else 1,
+            max_iter=200 if cheap else 15, golden_iters=30 if cheap else 12)
     t2 = time.perf_counter()
     stats = {
         "headings_per_waypoint": k,
@@ -312,7 +315,8 @@ def optimise_headings(
 
 
 def _refine(
-    cost: LegCost, h: NDArray[np.float64], free: NDArray[np.intp], width: float, sweeps: int
+    cost: LegCost, h: NDArray[np.float64], free: NDArray[np.intp], width: float, sweeps: int,
+    max_iter: int = 200, golden_iters: int = 30,
 ) -> tuple[NDArray[np.float64], float, NDArray[np.float64], int]:
     """Local continuous refinement of the free headings within `width` of the DP choice.
 
@@ -330,20 +334,20 @@ def _refine(
     def fun(z: NDArray[np.float64]) -> tuple[float, NDArray[np.float64]]:
         hh = h.copy()
         hh[free] = z
-        c = _pairs_many(cost, legs, hh[:-1], hh[1:])
+        a, b = hh[:-1], hh[1:]
+        m = a.size
+        # one vectorised call: the legs, then central differences in each end's heading
+        c = _pairs_many(cost, np.tile(legs, 5), np.concatenate([a, a + eps, a - eps, a, a]),
+                        np.concatenate([b, b, b, b + eps, b - eps])).reshape(5, m)
         grad = np.zeros(n)
-        dp = _pairs_many(cost, legs, hh[:-1] + eps, hh[1:]) - _pairs_many(
-            cost, legs, hh[:-1] - eps, hh[1:])
-        dq = _pairs_many(cost, legs, hh[:-1], hh[1:] + eps) - _pairs_many(
-            cost, legs, hh[:-1], hh[1:] - eps)
-        grad[:-1] += dp / (2 * eps)
-        grad[1:] += dq / (2 * eps)
-        return float(c.sum()), grad[free]
+        grad[:-1] += (c[1] - c[2]) / (2 * eps)
+        grad[1:] += (c[3] - c[4]) / (2 * eps)
+        return float(c[0].sum()), grad[free]
 
     z0 = h[free].copy()
     res = minimize(fun, z0, jac=True, method="L-BFGS-B",
                    bounds=list(zip(z0 - width, z0 + width, strict=True)),
-                   options={"maxiter": 200, "ftol": 1e-13, "gtol": 1e-10})
+                   options={"maxiter": max_iter, "ftol": 1e-13, "gtol": 1e-10})
     trial = h.copy()
     trial[free] = res.x
     t_total, t_legs = _chain_cost(cost, trial)
@@ -356,7 +360,7 @@ def _refine(
             idx = free[free % 2 == parity]
             if idx.size == 0:
                 continue
-            new = _golden(cost, h, idx, width / 4, iters=30)
+            new = _golden(cost, h, idx, width / 4, iters=golden_iters)
             better = _local_costs(cost, h, idx, new) < _local_costs(cost, h, idx, h[idx])
             h[idx[better]] = new[better]
         total, leg_c = _chain_cost(cost, h)

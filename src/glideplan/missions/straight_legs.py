@@ -11,6 +11,7 @@ spaced so that an arc between two samples leaves its chord by at most 1 % of the
 
 from __future__ import annotations
 
+import itertools
 import math
 import re
 from dataclasses import dataclass
@@ -99,7 +100,7 @@ def straight_leg_list(plan: MissionPlan, max_deviation: float) -> StraightLegLis
             sel = np.concatenate([[sel[0] - 1], sel])
         lx, ly, lh = tr.x[sel], tr.y[sel], tr.heading[sel]
         idx = _split(lx, ly, tol)
-        for a, b in zip(idx[:-1], idx[1:], strict=True):
+        for a, b in itertools.pairwise(idx):
             if b - a > 1:
                 d = segment_distances(lx[a + 1 : b], ly[a + 1 : b], lx[a], ly[a], lx[b], ly[b])
                 worst = max(worst, float(d.max()))

@@ -60,7 +60,12 @@ def convected_times(
     wm = float(np.hypot(w[0], w[1]))
     m = s.shape[0]
     dist = np.hypot(g[:, 0] - s[:, 0], g[:, 1] - s[:, 1])
-    lo = dist / (1.0 + wm) * (1.0 - 1e-12)
+    # |goal - start - w tau| = tau: no path arrives earlier (L_W >= the straight distance)
+    dx = g[:, 0] - s[:, 0]
+    dy = g[:, 1] - s[:, 1]
+    dw = dx * w[0] + dy * w[1]
+    lo = (np.sqrt(dw * dw + (1.0 - wm * wm) * dist * dist) - dw) / (1.0 - wm * wm)
+    lo *= 1.0 - 1e-12
     hi = (dist + 2.0 + 2.0 * TWO_PI) / (1.0 - wm)
     out = np.full(m, np.inf)
     active = np.arange(m)
@@ -70,6 +75,11 @@ def convected_times(
     out[done0] = lo[done0]
     keep = ~done0
     active, tau, f_prev = active[keep], tau[keep], f_prev[keep]
+    # the cell [a, b] where each query first crosses zero, bisected all together at the end
+    cell_a = np.full(m, np.nan)
+    cell_b = np.full(m, np.nan)
+    cell_f = np.full((m, 6), np.nan)
+    cell_x = np.zeros((m, 6), dtype=bool)
     while active.size:
         t_next = np.minimum(tau + step, hi[active])
         f_next = _f(s[active], g[active], w, t_next)
@@ -77,15 +87,15 @@ def convected_times(
             jumps = np.round((f_next - f_prev) / TWO_PI)
             cross = (f_prev > 0.0) & ((f_next - TWO_PI * jumps <= 0.0) | (f_next <= 0.0))
         hit = np.any(cross, axis=1)
-        if hit.any():
-            rows = np.nonzero(hit)[0]
-            out[active[rows]] = _bisect(
-                s[active[rows]], g[active[rows]], w, tau[rows], t_next[rows],
-                f_prev[rows], cross[rows],
-            )
-        ended = hit | (t_next >= hi[active])
-        keep = ~ended
+        rows = active[hit]
+        cell_a[rows], cell_b[rows] = tau[hit], t_next[hit]
+        cell_f[rows], cell_x[rows] = f_prev[hit], cross[hit]
+        keep = ~(hit | (t_next >= hi[active]))
         active, tau, f_prev = active[keep], t_next[keep], f_next[keep]
+    found = np.nonzero(np.any(cell_x, axis=1))[0]
+    if found.size:
+        out[found] = _bisect(s[found], g[found], w, cell_a[found], cell_b[found],
+                             cell_f[found], cell_x[found])
     return out * radius / speed
 
 
@@ -97,22 +107,22 @@ def _bisect(
     b: NDArray[np.float64],
     fa: NDArray[np.float64],
     words: NDArray[np.bool_],
-    iterations: int = 48,
+    iterations: int = 36,
 ) -> NDArray[np.float64]:
-    """Smallest root in [a, b] over the crossing words (vectorised bisection on each branch)."""
+    """Smallest root in [a, b] over the crossing words (bisection on each word's branch, all
+    (query, word) pairs in one vectorised evaluation per step)."""
+    rows, ks = np.nonzero(words)
+    lo, hi, f0 = a[rows].copy(), b[rows].copy(), fa[rows, ks]
+    sr, gr = s[rows], g[rows]
+    pick = np.arange(rows.size)
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        f = _f(sr, gr, w, mid)[pick, ks]
+        with np.errstate(invalid="ignore"):
+            branch = f - TWO_PI * np.round((f - f0) / TWO_PI)
+            right = (branch <= 0.0) | ~np.isfinite(f)
+        hi = np.where(right, mid, hi)
+        lo = np.where(right, lo, mid)
     best = np.full(s.shape[0], np.inf)
-    for k in range(6):
-        rows = np.nonzero(words[:, k])[0]
-        if rows.size == 0:
-            continue
-        lo, hi, f0 = a[rows].copy(), b[rows].copy(), fa[rows, k]
-        for _ in range(iterations):
-            mid = 0.5 * (lo + hi)
-            f = _f(s[rows], g[rows], w, mid)[:, k]
-            with np.errstate(invalid="ignore"):
-                branch = f - TWO_PI * np.round((f - f0) / TWO_PI)
-                right = (branch <= 0.0) | ~np.isfinite(f)
-            hi = np.where(right, mid, hi)
-            lo = np.where(right, lo, mid)
-        best[rows] = np.minimum(best[rows], hi)
+    np.minimum.at(best, rows, hi)
     return best

@@ -121,7 +121,8 @@ class CurrentSampler:
     field_: FlowField
     levels: FloatArray
     _cache: dict[int, tuple[FloatArray, FloatArray]] = field(default_factory=dict)
-    _grad: dict[int, tuple[FloatArray, ...]] = field(default_factory=dict)
+    _grad: dict[int, FloatArray] = field(default_factory=dict)
+    _stacked: dict[int, FloatArray] = field(default_factory=dict)
     evaluations: int = 0
     max_cached: int = 128
 
@@ -158,27 +159,33 @@ class CurrentSampler:
             self._cache[k] = self._cache.pop(k)
         return self._cache[k]
 
-    def level_with_gradient(self, k: int) -> tuple[FloatArray, ...]:
-        """(cx, cy, dcx/dx, dcx/dy, dcy/dx, dcy/dy) on the grid at level k (NaN near land)."""
+    def level_with_gradient(self, k: int) -> FloatArray:
+        """(6, ny, nx): cx, cy, dcx/dx, dcx/dy, dcy/dx, dcy/dy at level k (NaN near land)."""
         if k not in self._grad:
             cx, cy = self.level(k)
             h = self.grid.spacing
             dcx_dy, dcx_dx = np.gradient(cx, h)
             dcy_dy, dcy_dx = np.gradient(cy, h)
-            self._grad[k] = (cx, cy, dcx_dx, dcx_dy, dcy_dx, dcy_dy)
+            self._grad[k] = np.stack([cx, cy, dcx_dx, dcx_dy, dcy_dx, dcy_dy])
             if len(self._grad) > self.max_cached:
                 self._grad.pop(next(iter(self._grad)))
         return self._grad[k]
 
+    def level_stacked(self, k: int) -> FloatArray:
+        """(2, ny, nx): cx, cy at level k."""
+        if k not in self._stacked:
+            self._stacked[k] = np.stack(self.level(k))
+            if len(self._stacked) > self.max_cached:
+                self._stacked.pop(next(iter(self._stacked)))
+        return self._stacked[k]
+
     def points(self, t: float, x: FloatArray, y: FloatArray, gradient: bool = False) -> FloatArray:
         """Values at points (x, y) at time t: rows cx, cy (and the 4 derivatives), bilinear."""
         k, w = self.bracket(t)
-        get = self.level_with_gradient if gradient else self.level
-        a = np.stack(get(k))
-        vals = interp_grid(a, self.grid, x, y)
+        get = self.level_with_gradient if gradient else self.level_stacked
+        vals = interp_grid(get(k), self.grid, x, y)
         if w > 0.0 and self.levels.size > 1:
-            b = np.stack(get(k + 1))
-            vals = (1 - w) * vals + w * interp_grid(b, self.grid, x, y)
+            vals = (1 - w) * vals + w * interp_grid(get(k + 1), self.grid, x, y)
         return vals
 
     def bracket(self, t: float) -> tuple[int, float]:
@@ -215,14 +222,20 @@ def interp_grid(a: FloatArray, grid: RouteGrid, x: FloatArray, y: FloatArray) ->
     fx = (xa - grid.x[0]) / h
     fy = (ya - grid.y[0]) / h
     nx, ny = grid.x.size, grid.y.size
-    out_of = (fx < -1e-9) | (fx > nx - 1 + 1e-9) | (fy < -1e-9) | (fy > ny - 1 + 1e-9)
-    j = np.clip(np.floor(fx).astype(np.intp), 0, nx - 2)
-    i = np.clip(np.floor(fy).astype(np.intp), 0, ny - 2)
-    wx = np.clip(fx - j, 0.0, 1.0)
-    wy = np.clip(fy - i, 0.0, 1.0)
-    v = ((1 - wy) * ((1 - wx) * a[:, i, j] + wx * a[:, i, j + 1])
-         + wy * ((1 - wx) * a[:, i + 1, j] + wx * a[:, i + 1, j + 1]))
-    v[:, out_of] = np.nan
+    out_of = ~((fx >= -1e-9) & (fx <= nx - 1 + 1e-9) & (fy >= -1e-9) & (fy <= ny - 1 + 1e-9))
+    if out_of.any():  # NaN or outside: evaluate at node 0, then blank
+        fx = np.where(out_of, 0.0, fx)
+        fy = np.where(out_of, 0.0, fy)
+    j = np.minimum(np.maximum(np.floor(fx), 0), nx - 2).astype(np.intp)
+    i = np.minimum(np.maximum(np.floor(fy), 0), ny - 2).astype(np.intp)
+    wx = np.minimum(np.maximum(fx - j, 0.0), 1.0)
+    wy = np.minimum(np.maximum(fy - i, 0.0), 1.0)
+    flat = a.reshape(a.shape[0], -1)
+    k = i * nx + j
+    v = ((1 - wy) * ((1 - wx) * flat[:, k] + wx * flat[:, k + 1])
+         + wy * ((1 - wx) * flat[:, k + nx] + wx * flat[:, k + nx + 1]))
+    if out_of.any():
+        v[:, out_of] = np.nan
     return v  # type: ignore[no-any-return]
 
 

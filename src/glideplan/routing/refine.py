@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -116,16 +117,18 @@ def zermelo_shooting(
 
 
 def _fly_controls(sampler: CurrentSampler, speed: float, t0: float, nodes: FloatArray,
-                  durations: FloatArray, steps: int) -> tuple[FloatArray, bool, FloatArray]:
+                  durations: FloatArray, steps: int, land_as_zero: bool = False) -> tuple[
+                      FloatArray, bool, FloatArray]:
     """RK4 of (x, y) for m control sets at once: heading linear between equally spaced nodes.
 
     nodes: (m, n) headings; durations: (m,) arrival times (s). Returns the end points (m, 2),
-    whether all stayed on the grid and off land, and the first set's track (steps + 1, 2).
+    whether all stayed on the grid (and off land unless `land_as_zero`: land's NaN current
+    read as 0, the caller constrains the clearance instead) and the tracks (steps + 1, 2, m).
     """
     m, n = nodes.shape
     z = np.zeros((2, m))
     dt = durations / steps
-    track = [z[:, 0].copy()]
+    track = [z.copy()]
 
     def heading(f: float) -> FloatArray:
         k = min(int(f * (n - 1)), n - 2)
@@ -135,6 +138,8 @@ def _fly_controls(sampler: CurrentSampler, speed: float, t0: float, nodes: Float
     def vel(f: float, zz: FloatArray) -> FloatArray:
         th = heading(f)
         c = _points_multi_time(sampler, t0 + f * durations, zz[0], zz[1])
+        if land_as_zero:
+            c = np.where(np.isnan(c) & np.isfinite(zz), 0.0, c)
         return np.stack([speed * np.cos(th) + c[0], speed * np.sin(th) + c[1]])
 
     for k in range(steps):
@@ -147,7 +152,7 @@ def _fly_controls(sampler: CurrentSampler, speed: float, t0: float, nodes: Float
         z = z + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
         if not np.all(np.isfinite(z)):
             return z.T, False, np.array(track)
-        track.append(z[:, 0].copy())
+        track.append(z.copy())
     return z.T, True, np.array(track)
 
 
@@ -171,16 +176,21 @@ def direct_refinement(
     grid_t: FloatArray,
     grid_heading: FloatArray,
     duration: float,
-    nodes: int = 16,
-    steps: int = 160,
+    nodes: int = 12,
+    steps: int = 100,
     tol_m: float = 1.0,
+    clearance: FloatArray | None = None,
+    margin: float = 0.0,
 ) -> ShootingResult:
     """Minimise T over headings at `nodes` equally spaced times (linear between) s.t. x(T)=goal.
 
     Single shooting with SciPy SLSQP; derivatives by forward differences, all perturbed
     control sets flown together. Started from the grid route's headings and arrival time;
-    the unknowns are the headings and T / T_grid.
+    the unknowns are the headings and T / T_grid. With `clearance` (distance to the nearest
+    land node on the grid, m) every other track point keeps clearance >= `margin`.
     """
+    from glideplan.routing.grid import interp_grid
+
     from scipy.optimize import minimize
 
     goal = np.asarray(goal_xy, dtype=float)
@@ -188,35 +198,55 @@ def direct_refinement(
     th0 = np.interp(np.linspace(0, 1, nodes), frac, np.unwrap(grid_heading))
     z0 = np.concatenate([th0, [1.0]])
     eps = 1e-6
-    cache: dict[bytes, tuple[FloatArray, FloatArray]] = {}
+    land = clearance is not None
+    cache: dict[bytes, tuple[FloatArray, ...]] = {}
+    h = sampler.grid.spacing
 
-    def evaluate(z: FloatArray) -> tuple[FloatArray, FloatArray]:
+    def evaluate(z: FloatArray) -> tuple[FloatArray, ...]:
         key = z.tobytes()
         if key not in cache:
             m = z.size
             sets = np.repeat(z[None, :], m + 1, axis=0)
             sets[1:] += eps * np.eye(m)
-            ends, ok, _ = _fly_controls(sampler, speed, t0, sets[:, :-1],
-                                        sets[:, -1] * duration, steps)
+            ends, ok, tracks = _fly_controls(sampler, speed, t0, sets[:, :-1],
+                                             sets[:, -1] * duration, steps, land_as_zero=land)
             ends = np.where(np.isfinite(ends), ends, 1e9)
             res = ends[0] - goal
             jac = ((ends[1:] - ends[0]) / eps).T
+            scale = speed * duration
+            out: tuple[FloatArray, ...] = (res / scale, jac / scale)
+            if land and ok:
+                pts = tracks[1:-1:2]  # (k, 2, m+1)
+                cl = interp_grid(clearance[None], sampler.grid, pts[:, 0].ravel(),
+                                 pts[:, 1].ravel())[0].reshape(pts.shape[0], -1)
+                cl = np.where(np.isfinite(cl), cl, -h) - margin
+                out += (cl[:, 0] / h, ((cl[:, 1:] - cl[:, :1]) / eps) / h)
+            elif land:
+                k = tracks[1:-1:2].shape[0] if tracks.shape[0] > 2 else 1
+                k = max(k, (steps - 1 + 1) // 2)
+                out += (np.full(k, -1.0), np.zeros((k, m)))
             cache.clear()
-            cache[key] = (res / (speed * duration), jac / (speed * duration))
+            cache[key] = out
         return cache[key]
 
+    constraints: list[dict[str, Any]] = [
+        {"type": "eq", "fun": lambda z: evaluate(z)[0], "jac": lambda z: evaluate(z)[1]}]
+    if land:
+        constraints.append({"type": "ineq", "fun": lambda z: evaluate(z)[2],
+                            "jac": lambda z: evaluate(z)[3]})
     sol = minimize(
         lambda z: z[-1], z0, jac=lambda z: np.eye(z.size)[-1], method="SLSQP",
-        constraints=[{"type": "eq", "fun": lambda z: evaluate(z)[0],
-                      "jac": lambda z: evaluate(z)[1]}],
+        constraints=constraints,
         bounds=[(None, None)] * nodes + [(0.2, 3.0)],
-        options={"maxiter": 80, "ftol": 1e-12},
+        options={"maxiter": 40, "ftol": 1e-10},
     )
     z = sol.x
     T = float(z[-1] * duration)
     tt = t0 + np.linspace(0.0, T, steps + 1)
     heading = np.interp(np.linspace(0, 1, steps + 1), np.linspace(0, 1, nodes), z[:-1])
-    ends, ok, track = _fly_controls(sampler, speed, t0, z[None, :-1], np.array([T]), steps)
+    ends, ok, tracks = _fly_controls(sampler, speed, t0, z[None, :-1], np.array([T]), steps,
+                                     land_as_zero=land)
+    track = tracks[:, :, 0]
     if not ok:
         return ShootingResult(False, tt, tt * 0, tt * 0, heading, T, sol.nit,
                               "trajectory reached land or left the grid")
@@ -224,4 +254,9 @@ def direct_refinement(
     if err > tol_m:
         return ShootingResult(False, tt, tt * 0, tt * 0, heading, T, sol.nit,
                               f"direct method missed the goal by {err:.1f} m")
+    if land:
+        cl = interp_grid(clearance[None], sampler.grid, track[:, 0], track[:, 1])[0]
+        if np.any(~np.isfinite(cl) | (cl < 0.5 * margin)):
+            return ShootingResult(False, tt, tt * 0, tt * 0, heading, T, sol.nit,
+                                  "direct method's track comes too close to land")
     return ShootingResult(True, tt, track[:, 0], track[:, 1], heading, T, sol.nit, "converged")

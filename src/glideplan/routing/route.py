@@ -229,8 +229,15 @@ def route(
         tol = max(1e-3 * grid.spacing, 0.01)
         shot = zermelo_shooting(sampler, speed, t0, goal_xy, theta0, grid_T, tol_m=tol)
         if not shot.converged:
+            land = sampler.land()
+            clearance = None
+            if np.any(land):
+                from scipy.ndimage import distance_transform_edt
+
+                clearance = distance_transform_edt(~land) * grid.spacing
             shot = direct_refinement(sampler, speed, t0, goal_xy, g.t, g.heading, grid_T,
-                                     tol_m=max(0.05 * grid.spacing, 1.0))
+                                     tol_m=max(0.05 * grid.spacing, 1.0), clearance=clearance,
+                                     margin=grid.spacing)
             shot_name = "direct-shooting"
         else:
             shot_name = "zermelo-shooting"

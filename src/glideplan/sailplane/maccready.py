@@ -89,7 +89,8 @@ def speed_to_fly(
 
 
 def maccready_table(polar: SailplanePolar, mcs: ArrayLike) -> list[dict[str, float]]:
-    """Still-air speed to fly, glide ratio and average cross-country speed for each MC.
+    """Still-air speed to fly, glide ratio and average cross-country speed for each MC
+    (`at_top_speed`: the speed to fly was clipped to v_max).
 
     Cross-country speed (climbing at MC, gliding at the speed to fly v):
     V_xc = v MC / (w(v) + MC) (0 for MC = 0).
@@ -104,6 +105,8 @@ def maccready_table(polar: SailplanePolar, mcs: ArrayLike) -> list[dict[str, flo
             "speed_to_fly_kmh": float(vi * 3.6),
             "glide_ratio": float(vi / wi),
             "cross_country_kmh": float(x * 3.6),
+            # the quadratic is not extrapolated beyond the polar's top speed
+            "at_top_speed": bool(vi >= polar.v_max * (1.0 - 1e-12)),
         }
         for m, vi, wi, x in zip(mc, v, w, xc, strict=True)
     ]

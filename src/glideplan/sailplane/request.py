@@ -214,7 +214,15 @@ def _arrival(
         raise_planning(sol.message or sol.status.value)
     assert sol.path is not None and sol.endpoint_error is not None
     path = sol.path
-    smp = path.sample(track_points, objective="altitude")
+    # half the samples over the whole glide, half over the approach (the last segment)
+    t_gate = path.duration - path.segments[-1].duration
+    half = max(2, track_points // 2)
+    times = np.unique(
+        np.concatenate(
+            [np.linspace(0.0, path.duration, half), np.linspace(t_gate, path.duration, half)]
+        )
+    )
+    smp = path.sample(times=times, objective="altitude")
     assert smp.cost is not None
     lat, lon = proj.to_geographic(smp.x, smp.y)
     alt = alt0 - smp.cost
@@ -237,7 +245,7 @@ def _arrival(
         "track": {"lat": lat.tolist(), "lon": lon.tolist(), "alt": alt.tolist()},
         "endpoint_error": sol.endpoint_error.to_dict(),
         "planner": sol.planner,
-        "warm_starts": sol.extras.get("warm_starts", []),
+        "approach_warm_starts": sol.extras.get("warm_starts", []),
     }
     drawing = FinalGlideDrawing(
         x=smp.x,

@@ -44,7 +44,10 @@ __all__ = [
 class DisturbanceStream(Protocol):
     """One realisation of a disturbance for `rows` vehicles, stepped once per time step."""
 
-    rows: int
+    @property
+    def rows(self) -> int:
+        """Number of vehicles (rows) of the realisation."""
+        ...
 
     def next(self) -> np.ndarray:
         """Disturbance velocity (rows, 2) in m/s over the next step."""

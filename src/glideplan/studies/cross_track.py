@@ -173,8 +173,8 @@ class CrossTrackConfig:
             )
         object.__setattr__(self, "follower", follower)
 
-    def follower_settings_for(self, follower: dict[str, float] | None = None) -> FollowerSettings:
-        extra = dict(self.follower if follower is None else follower)
+    def follower_settings_for(self, follower: dict[str, Any] | None = None) -> FollowerSettings:
+        extra: dict[str, Any] = dict(self.follower if follower is None else follower)
         try:
             return FollowerSettings(speed=self.speed, max_turn_rate=self.max_turn_rate, **extra)
         except TypeError:
@@ -203,7 +203,7 @@ class CrossTrackConfig:
 
     def units(self) -> list[Unit]:
         """The work units, in their fixed order (the index seeds each unit)."""
-        out = []
+        out: list[Unit] = []
         for case in self.cases:
             for eps in self.eps:
                 for first in range(0, self.samples, self.chunk):

@@ -2,7 +2,7 @@
 
 The problem, in normalised time tau = t / T in [0, 1] with free final time T:
 minimise J = integral_0^T L(c) dt subject to z' = (v cos psi + wx, v sin psi + wy, u)(z, c)
-(wx, wy: the system's drift, zero unless given),
+(wx, wy: a steady drift, an NLP parameter, zero unless given),
 z(0) = 0, z(1) = goal (heading on a chosen 2 pi branch), c in the box, g(c) in [lo, hi].
 Positions are scaled by `length_scale` and time by `time_scale` inside the NLP.
 
@@ -68,7 +68,7 @@ class Transcription:
     n_control_points: int
     lbg: np.ndarray
     ubg: np.ndarray
-    rhs: ca.Function  # (z, c, Ls, Ts) -> dz/dt in scaled units (per unit scaled time)
+    rhs: ca.Function  # (z, c, Ls, Ts, drift) -> dz/dt in scaled units (per unit scaled time)
     kinematics: ca.Function  # c -> (speed, turn_rate)
     cost_rate: ca.Function  # c -> L
     path: ca.Function  # c -> path-constraint values
@@ -122,6 +122,7 @@ class Transcription:
         tau: np.ndarray,
         length_scale: float,
         time_scale: float,
+        drift: tuple[float, float] = (0.0, 0.0),
     ) -> tuple[np.ndarray, np.ndarray]:
         """Scaled states (3, n) and controls (m, n) of a solution at normalised times tau.
 
@@ -140,9 +141,12 @@ class Transcription:
             u0, um, u1 = U[:, 2 * k], U[:, 2 * k + 1], U[:, 2 * k + 2]
             controls = u0 * (2 * s - 1) * (s - 1) + um * 4 * s * (1 - s) + u1 * s * (2 * s - 1)
             F = (
-                np.asarray(self.rhs(Z, U[:, 0::2], length_scale, time_scale), dtype=float).reshape(
-                    N_STATES, -1
-                )
+                np.asarray(
+                    self.rhs(
+                        Z, U[:, 0::2], length_scale, time_scale, np.asarray(drift, dtype=float)
+                    ),
+                    dtype=float,
+                ).reshape(N_STATES, -1)
                 * T
             )
             z0, z1, f0, f1 = Z[:, k], Z[:, k + 1], F[:, k] * h, F[:, k + 1] * h
@@ -194,10 +198,11 @@ def _build(
             raise InvalidParameterError(
                 "system", system.name, f"its {what} must be one scalar CasADi expression"
             )
-    wx, wy = system.drift  # steady uniform wind or current (m/s), zero by default
+    W_sym = ca.SX.sym("drift", 2)  # steady uniform wind or current (m/s)
+    wx, wy = W_sym[0], W_sym[1]
     rhs = ca.Function(
         "rhs",
-        [zs, c, Ls_sym, Ts_sym],
+        [zs, c, Ls_sym, Ts_sym, W_sym],
         [
             ca.vertcat(
                 Ts_sym / Ls_sym * (speed * ca.cos(zs[2]) + wx),
@@ -218,6 +223,7 @@ def _build(
     goal = ca.SX.sym("goal", N_STATES)
     frac = ca.SX.sym("frac", N)
     Ls, Ts, Js, smooth = ca.SX.sym("Ls"), ca.SX.sym("Ts"), ca.SX.sym("Js"), ca.SX.sym("eps")
+    drift = ca.SX.sym("drift", 2)
     h = (frac / ca.sum1(frac)).T  # 1 x N
     radau = np.zeros(0)
 
@@ -226,10 +232,10 @@ def _build(
         Z = ca.SX.sym("Z", N_STATES, ns)
         U = ca.SX.sym("U", m, nc)
         Un, Um = U[:, 0::2], U[:, 1::2]
-        F = T * rhs(Z, Un, Ls, Ts)
+        F = T * rhs(Z, Un, Ls, Ts, drift)
         H3 = ca.repmat(h, N_STATES, 1)
         Zm = 0.5 * (Z[:, :-1] + Z[:, 1:]) + H3 / 8 * (F[:, :-1] - F[:, 1:])
-        Fm = T * rhs(Zm, Um, Ls, Ts)
+        Fm = T * rhs(Zm, Um, Ls, Ts, drift)
         defects = Z[:, 1:] - Z[:, :-1] - H3 / 6 * (F[:, :-1] + 4 * Fm + F[:, 1:])
         Lk = cost(Un)
         Lmid = cost(Um)
@@ -255,7 +261,7 @@ def _build(
             dz = 0
             for r in range(d + 1):
                 dz = dz + C[r, j] * Z[:, r : r + 1 + (N - 1) * d : d]
-            cols.append(dz - H3 * T * rhs(zj, uj, Ls, Ts))
+            cols.append(dz - H3 * T * rhs(zj, uj, Ls, Ts, drift))
             J = J + wq[j] * ca.sum2(h * Lall[:, j : j + 1 + (N - 1) * d : d])
         defects = ca.horzcat(*cols)
         J = Ts * T * J
@@ -271,7 +277,7 @@ def _build(
         lbg.append(np.tile(pc_lo, nc))
         ubg.append(np.tile(pc_hi, nc))
     w = ca.vertcat(T, ca.vec(Z), ca.vec(U))
-    p = ca.vertcat(goal, frac, Ls, Ts, Js, smooth)
+    p = ca.vertcat(goal, frac, Ls, Ts, Js, smooth, drift)
     # A tiny penalty on control differences between consecutive collocation points picks
     # one control history where the cost does not fix it (singular arcs such as straight
     # Dubins segments would otherwise chatter between nodes and midpoints); it vanishes

@@ -184,7 +184,9 @@ class _Problem:
         smoothing: float,
         retime: bool,
         clock: _Deadline,
+        drift: tuple[float, float] = (0.0, 0.0),
     ) -> None:
+        self.drift = drift
         self.clock = clock
         self.smoothing = smoothing
         self.retime = retime
@@ -212,7 +214,7 @@ class _Problem:
             [
                 [g.x / self.Ls, g.y / self.Ls, g.heading + TWO_PI * k],
                 fractions,
-                [self.Ls, self.Ts, cost_scale, self.smoothing],
+                [self.Ls, self.Ts, cost_scale, self.smoothing, *self.drift],
             ]
         )
 
@@ -279,10 +281,10 @@ class _Problem:
         tr = self.transcription(prev.transcription.n_intervals * 2)
         T, _, _ = prev.transcription.unpack(prev.w)
         Z, _ = prev.transcription.interpolate(
-            prev.w, prev.fractions, tr.state_tau(fr), self.Ls, self.Ts
+            prev.w, prev.fractions, tr.state_tau(fr), self.Ls, self.Ts, self.drift
         )
         _, U = prev.transcription.interpolate(
-            prev.w, prev.fractions, tr.control_tau(fr), self.Ls, self.Ts
+            prev.w, prev.fractions, tr.control_tau(fr), self.Ls, self.Ts, self.drift
         )
         return self.solve(tr, tr.pack(T, Z, U), k, fr, cost_scale)
 
@@ -294,7 +296,7 @@ class _Problem:
         nodes = tr.mesh(fr)
         sub = np.arange(density) / density
         tau = np.concatenate([(nodes[:-1, None] + np.diff(nodes)[:, None] * sub).ravel(), [1.0]])
-        _, U = tr.interpolate(best.w, fr, tau, self.Ls, self.Ts)
+        _, U = tr.interpolate(best.w, fr, tau, self.Ls, self.Ts, self.drift)
         U = self._admissible(tr, fr, best.w, tau, U)
         T = tr.unpack(best.w)[0] * self.Ts
         t = tau * T
@@ -306,7 +308,7 @@ class _Problem:
         if self.retime:
             target = np.array([g.x, g.y, g.heading + TWO_PI * k])
             t_new, stretch, ok = retime(
-                t, speed, turn, target, length_scale=self.Ls, drift=self.system.drift
+                t, speed, turn, target, length_scale=self.Ls, drift=self.drift
             )
             info["retime_stretch"] = stretch
             if ok:
@@ -320,9 +322,7 @@ class _Problem:
                     f"{raw['heading']:.3g} rad"
                 )
         info["endpoint_error"] = self._error(t, speed, turn)
-        # with a drift, the nodes are ground positions; the segment's own interpolation
-        # ignores drift, so drifting callers rebuild the path from `controls`
-        x, y, psi = fly_controls(t, speed, turn, drift=self.system.drift)
+        x, y, psi = fly_controls(t, speed, turn, drift=self.drift)
         seg = Sampled(t, x, y, psi, speed, turn, label="D", info={"system": self.system.name})
         controls = {"t": t, "speed": speed, "turn_rate": turn}
         controls.update({n: U[i] for i, n in enumerate(self.system.control_names)})
@@ -376,7 +376,7 @@ class _Problem:
         return np.max(np.maximum(lo[:, None] - G, 0.0) + np.maximum(G - hi[:, None], 0.0), axis=0)
 
     def _error(self, t: np.ndarray, speed: np.ndarray, turn: np.ndarray) -> dict[str, float]:
-        x, y, psi = fly_controls(t, speed, turn, drift=self.system.drift)
+        x, y, psi = fly_controls(t, speed, turn, drift=self.drift)
         g = self.goal
         return {
             "position": math.hypot(x[-1] - g.x, y[-1] - g.y),
@@ -474,6 +474,7 @@ def solve_direct(
     smoothing: float = 1e-6,
     retime: bool = True,
     time_limit: float | None = None,
+    drift: tuple[float, float] = (0.0, 0.0),
 ) -> DirectResult:
     """Minimise integral L(c) dt from the origin (0, 0, 0) to `goal`, free final time.
 
@@ -509,6 +510,11 @@ def solve_direct(
             or None for no limit. Each IPOPT solve gets the remaining time as
             `max_wall_time`; once the limit is reached the call stops and fails with the
             message "time limit of N s reached" (never a partial result).
+        drift: a steady uniform wind or current (wx, wy) (m/s) added to the ground velocity,
+            x' = v cos psi + wx, y' = v sin psi + wy (eq. A.4); an NLP parameter, so one
+            built transcription serves every drift. The returned `Sampled` nodes are then
+            ground positions, but its own interpolation knows no drift: drifting callers
+            rebuild the segment from `controls` (see `glideplan.planners.final_glide`).
 
     Returns:
         A `DirectResult`; failures are reported in `status`, never returned as paths.
@@ -520,7 +526,15 @@ def solve_direct(
     eps = check_nonnegative("smoothing", smoothing)
     t_start = time.perf_counter()
     clock = _Deadline(t_start, time_limit)
-    prob = _Problem(goal, system, scheme, int(degree), Ls, Ts, opts, eps, bool(retime), clock)
+    try:
+        wx, wy = (float(d) for d in drift)
+    except (TypeError, ValueError):
+        raise InvalidParameterError("drift", drift, "must be a pair (wx, wy) in m/s") from None
+    if not (math.isfinite(wx) and math.isfinite(wy)):
+        raise InvalidParameterError("drift", drift, "must be finite (m/s)")
+    prob = _Problem(
+        goal, system, scheme, int(degree), Ls, Ts, opts, eps, bool(retime), clock, (wx, wy)
+    )
     N = int(n_intervals)
     tr = prob.transcription(N)
     t_build = time.perf_counter() - t_start

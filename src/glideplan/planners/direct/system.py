@@ -31,9 +31,10 @@ class ControlSystem:
       (lo/hi numbers, +-inf allowed), imposed at every collocation point,
     - `controls_from(speed, turn_rate) -> (n, m) ndarray` (NumPy) the controls that fly a
       given speed and turn-rate history; used to turn analytic paths into initial guesses
-      (None: the controls are (speed, turn_rate) themselves),
-    - `drift` (wx, wy): a steady uniform wind or current (m/s) added to the ground velocity,
-      x' = v cos psi + wx, y' = v sin psi + wy (eq. A.4 with no unknown part); default none.
+      (None: the controls are (speed, turn_rate) themselves).
+
+    A steady uniform wind or current is not part of the system: pass it to `solve_direct`
+    as `drift` (an NLP parameter, so one built transcription serves every wind).
     """
 
     name: str
@@ -44,18 +45,8 @@ class ControlSystem:
     cost_rate: Callable
     path_constraints: Callable = _no_path_constraints
     controls_from: Callable | None = None
-    drift: tuple[float, float] = (0.0, 0.0)
 
     def __post_init__(self) -> None:
-        try:
-            wx, wy = (float(d) for d in self.drift)
-        except (TypeError, ValueError):
-            raise InvalidParameterError(
-                "drift", self.drift, "must be a pair (wx, wy) in m/s"
-            ) from None
-        if not (np.isfinite(wx) and np.isfinite(wy)):
-            raise InvalidParameterError("drift", self.drift, "must be finite (m/s)")
-        object.__setattr__(self, "drift", (wx, wy))
         m = len(self.control_names)
         object.__setattr__(self, "control_names", tuple(self.control_names))
         lower = tuple(float(v) for v in self.lower)

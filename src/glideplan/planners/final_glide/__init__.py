@@ -21,10 +21,10 @@ from typing import Any
 from glideplan.path import Path
 from glideplan.planners.final_glide.direct import (
     ArrivalResult,
-    lead_in_straight,
     control_system,
     guess_paths,
     guess_speed_and_radius,
+    lead_in_straight,
     solve_arrival,
 )
 from glideplan.planners.final_glide.segment import DriftingSampled
@@ -78,8 +78,8 @@ def plan_final_glide(
     psi_w = vehicle.wind_direction - problem.frame.heading
     wind = (vehicle.wind_speed * math.cos(psi_w), vehicle.wind_speed * math.sin(psi_w))
     t0 = time.perf_counter()
-    lead = lead_in_straight(problem.goal, vehicle, wind, mc=mc) if approach else None
-    gate = lead.end if lead is not None else Pose()
+    lead = lead_in_straight(problem.goal, vehicle, wind, mc=mc) if approach else ()
+    gate = lead[-1].end if lead else Pose()
     res = solve_arrival(
         problem.goal.relative_to(gate),
         vehicle,
@@ -106,9 +106,9 @@ def plan_final_glide(
     seg = res.path.segments[0]
     assert isinstance(seg, DriftingSampled)
     path = res.path.transformed(gate)
-    if lead is not None:
-        path = Path((lead, *path.segments), vehicle)
-    stats["lead_in_straight_m"] = lead.length if lead is not None else 0.0
+    if lead:
+        path = Path((*lead, *path.segments), vehicle)
+    stats["lead_in_straight_m"] = lead[-1].length if lead else 0.0
     word = seg.turn_word(0.05 * float(vehicle.max_turn_rate(vehicle.polar.v_best_glide)))
     cand = Candidate(
         word,

@@ -2,7 +2,8 @@
 
 The sailplane (`glideplan.vehicles.sailplane`) is handed to the shared engine
 (`glideplan.planners.direct`) as controls (V, phi) in [v_min, v_max] x [-bank_max, bank_max]
-with kinematics (V, g tan(phi) / V), the wind as the engine's drift, the cost rate
+with kinematics (V, g tan(phi) / V), the wind as the engine's drift (an NLP parameter: one
+transcription serves every goal and wind), the cost rate
 w_phi(V) + MC (the turning polar plus MacCready's price of time; MC = 0 is pure altitude
 loss) and the path constraints V^2 cos(phi) >= v_min^2 (stall speed v_min sqrt(n) in a turn)
 and, with `turn_rate_max`, |g tan(phi) / V| <= u_max. The starts are the known-wind planner's
@@ -23,7 +24,12 @@ from glideplan.path import Path
 from glideplan.planners.direct import ControlSystem, DirectResult, solve_direct
 from glideplan.planners.dubins import WORDS
 from glideplan.planners.final_glide.segment import DriftingSampled
-from glideplan.planners.wind import DriftingStraight, convected_dubins, convected_dubins_path
+from glideplan.planners.wind import (
+    DriftingStraight,
+    TrochoidArc,
+    convected_dubins,
+    convected_dubins_path,
+)
 from glideplan.pose import Pose
 from glideplan.sailplane.maccready import speed_to_fly
 from glideplan.sailplane.polar import GRAVITY, SailplanePolar
@@ -48,7 +54,6 @@ def _system(
     bank_max: float,
     turn_rate_max: float | None,
     turning_polar: bool,
-    drift: tuple[float, float],
     mc: float,
 ) -> ControlSystem:
     import casadi as ca
@@ -81,21 +86,20 @@ def _system(
         cost_rate=cost,
         path_constraints=constraints,
         controls_from=controls_from,
-        drift=drift,
     )
 
 
-def control_system(vehicle: Sailplane, wind: tuple[float, float], mc: float = 0.0) -> ControlSystem:
-    """The sailplane for the engine, with `wind` (wx, wy) (m/s) in the planner's frame.
+def control_system(vehicle: Sailplane, mc: float = 0.0) -> ControlSystem:
+    """The sailplane for the engine (the wind goes to `solve_direct` as its drift).
 
-    Cached per (polar, limits, wind, MC) so the engine's transcriptions are reused.
+    Cached per (polar, limits, MC) so the engine's transcriptions are reused for every goal
+    and wind.
     """
     return _system(
         vehicle.polar,
         vehicle.bank_max,
         vehicle.turn_rate_max,
         vehicle.turning_polar,
-        (float(wind[0]), float(wind[1])),
         float(check_nonnegative("mc", mc)),
     )
 
@@ -177,7 +181,7 @@ def solve_arrival(
     if not starts:
         raise InvalidParameterError("goal", goal, "the known-wind planner found no warm start")
     v, radius = guess_speed_and_radius(vehicle, mc)
-    system = control_system(vehicle, wind, mc)
+    system = control_system(vehicle, mc)
     res = solve_direct(
         goal,
         system,
@@ -188,6 +192,8 @@ def solve_arrival(
         length_scale=radius,
         time_scale=radius / v,
         max_refined_starts=1,
+        output_density=2,  # the Hermite-Simpson midpoints; fewer kinks for verification
+        drift=(float(wind[0]), float(wind[1])),
     )
     if not res.ok:
         return ArrivalResult(res, None, tuple(starts))
@@ -215,33 +221,40 @@ def lead_in_straight(
     *,
     mc: float = 0.0,
     approach_radii: float = 12.0,
-) -> DriftingStraight | None:
-    """The long first straight of a far glide, flown at the MacCready speed, or None.
+) -> tuple[TrochoidArc | DriftingStraight, ...]:
+    """The long first straight of a far glide, flown at the MacCready speed (or nothing).
 
-    When the fastest warm start begins with a straight longer than `approach_radii` turn
-    radii, the glider holds the start heading at the speed to fly for that straight's ground
-    track (`maccready.speed_to_fly` with its tail- and crosswind) until `approach_radii / 2`
-    radii of it are left; the direct method then solves only the approach from there, on a
-    mesh that resolves its turns (a uniform mesh over a 30 km glide would not).
+    When the fastest warm start begins with a straight (after at most a slight turn, < 0.05
+    rad, kept as it is) longer than `approach_radii` turn radii, the glider flies that
+    straight's heading at the speed to fly for its ground track (`maccready.speed_to_fly`
+    with its tail- and crosswind) until `approach_radii / 2` radii of it are left; the
+    direct method then solves only the approach from there, on a mesh that resolves its
+    turns (a uniform mesh over a 30 km glide would not).
     """
     starts = guess_paths(goal, vehicle, wind, mc=mc, max_starts=1)
     if not starts:
-        return None
-    first = starts[0].segments[0]
+        return ()
+    segs = [sg for sg in starts[0].segments if sg.duration > 0.0]
+    lead: list[TrochoidArc | DriftingStraight] = []
+    if segs and isinstance(segs[0], TrochoidArc) and segs[0].angle < 0.05 and len(segs) > 1:
+        lead.append(segs[0])
+        segs = segs[1:]
+    first = segs[0] if segs else None
     v, radius = guess_speed_and_radius(vehicle, mc)
     if not isinstance(first, DriftingStraight) or first.length_m <= approach_radii * radius:
-        return None
+        return ()
     wx, wy = wind
-    chi = math.atan2(v * math.sin(first.start.heading) + wy, v * math.cos(first.start.heading) + wx)
+    h = first.start.heading
+    chi = math.atan2(v * math.sin(h) + wy, v * math.cos(h) + wx)
     wt = wx * math.cos(chi) + wy * math.sin(chi)
     wc = -wx * math.sin(chi) + wy * math.cos(chi)
     vs = float(speed_to_fly(vehicle.polar, mc, wt, wc))
     if not math.isfinite(vs):
-        return None
-    h = first.start.heading
+        return ()
     ground_guess = math.hypot(v * math.cos(h) + wx, v * math.sin(h) + wy) * first.duration
     ground_speed = math.hypot(vs * math.cos(h) + wx, vs * math.sin(h) + wy)
     keep = ground_guess - 0.5 * approach_radii * radius
     if keep <= 0.0 or ground_speed <= 0.0:
-        return None
-    return DriftingStraight(first.start, vs * keep / ground_speed, vs, (float(wx), float(wy)))
+        return ()
+    lead.append(DriftingStraight(first.start, vs * keep / ground_speed, vs, (float(wx), float(wy))))
+    return tuple(lead)

@@ -94,6 +94,7 @@ from glideplan.planners.min_altitude.families import FAMILIES, Family, family_na
 from glideplan.planners.min_altitude.reporting import dubins_reference, flight_profile
 from glideplan.planners.min_altitude.synthesis import DEFAULT_GRID, synthesize
 from glideplan.planning import PlannerOutput, Problem, register_planner
+from glideplan.segments import Sampled
 from glideplan.solution import Candidate
 from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider
 
@@ -193,7 +194,7 @@ def plan_min_altitude_direct(
         )
     path = res.path.with_vehicle(glider)
     seg = path.segments[0]
-    word = seg.turn_word(0.05 * glider.u_max) if hasattr(seg, "turn_word") else path.word
+    word = seg.turn_word(0.05 * glider.u_max) if isinstance(seg, Sampled) else path.word
     info = {"collocation_cost": res.cost}
     cand = Candidate(word, "direct", path.cost("altitude"), path, "feasible", info)
     return PlannerOutput((cand,), stats, "", extras, warnings=res.warnings)

@@ -22,6 +22,7 @@ from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import Pose
 from glideplan.solution import Candidate
 from glideplan.vehicles.variable_speed_car import VariableSpeedCar
+from glideplan.words import run_word
 
 __all__ = [
     "classify_controls",
@@ -129,25 +130,11 @@ def classify_controls(
     labels = np.where(straight, "S", np.where(speed >= vmid, "B", "C"))
     dirs = np.where(straight, "S", np.where(turn_rate > 0, "L", "R"))
     dt = np.gradient(t)
-    total = float(t[-1] - t[0]) or 1.0
-    fam: list[list] = []
-    word: list[list] = []
-    for runs, values in ((fam, labels), (word, dirs)):
-        for val, w in zip(values, dt, strict=True):
-            if runs and runs[-1][0] == val:
-                runs[-1][1] += w
-            else:
-                runs.append([str(val), float(w)])
-
-    def squash(runs: list[list]) -> str:
-        kept = [r for r in runs if r[1] >= min_fraction * total] or runs
-        out: list[str] = []
-        for val, _ in kept:
-            if not out or out[-1] != val:
-                out.append(val)
-        return "".join(out)
-
-    return squash(fam), squash(word)
+    least = min_fraction * (float(t[-1] - t[0]) or 1.0)
+    fam, word = (
+        run_word(values, dt, min_weight=least, keep_all_if_empty=True) for values in (labels, dirs)
+    )
+    return fam, word
 
 
 @register_planner(

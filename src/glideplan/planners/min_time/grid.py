@@ -19,6 +19,7 @@ from glideplan.planners.dubins import dubins_shortest
 from glideplan.planners.min_time.synthesis import synthesize
 from glideplan.validation import check_finite, check_finite_array
 from glideplan.vehicles.variable_speed_car import VariableSpeedCar
+from glideplan.words import run_word
 
 __all__ = ["TimeOptimalGrid", "best_time", "time_optimal_grid"]
 
@@ -57,8 +58,7 @@ def best_time(vehicle: VariableSpeedCar, x: float, y: float, heading: float) -> 
         if amount > 1e-12 and (not merged or merged[-1] != (lab, d)):
             merged.append((lab, d))
     family = "".join(lab for lab, _ in merged)
-    word = "".join("S" if lab == "S" else ("L" if d > 0 else "R") for lab, d in merged)
-    word = "".join(c for i, c in enumerate(word) if i == 0 or c != word[i - 1])
+    word = run_word("S" if lab == "S" else ("L" if d > 0 else "R") for lab, d in merged)
     return best.cost / vehicle.u_max, family, word
 
 

@@ -1,0 +1,34 @@
+"""`glideplan explore`: serve the interactive explorer page on this machine."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+from glideplan.cli.app import app
+
+
+@app.command("explore")
+def explore_command(
+    port: Annotated[int, typer.Option("--port", help="TCP port of the page.")] = 5006,
+    host: Annotated[
+        str, typer.Option("--host", help="Address to bind (this machine only by default).")
+    ] = "127.0.0.1",
+    no_show: Annotated[
+        bool, typer.Option("--no-show", help="Do not open a browser; just serve.")
+    ] = False,
+) -> None:
+    """Serve a web page at http://HOST:PORT/ to drag the start and goal and watch the plan.
+
+    Every registered planner with its vehicle's parameters (named like `plan` options),
+    every candidate and its cost, the endpoint error and the planner time; the state lives
+    in the URL (e.g. /?planner=dubins&goal=4,3,90&radius=1). Works offline. Ctrl-C stops.
+    """
+    from glideplan.errors import InvalidParameterError
+    from glideplan.explore.server import serve
+
+    if not 0 < port < 65536:
+        raise InvalidParameterError("port", port, "must be in 1..65535")
+    typer.echo(f"glideplan explore: serving http://{host}:{port}/ (Ctrl-C to stop)", err=True)
+    serve(port, host, show=not no_show)

@@ -1,0 +1,156 @@
+"""`glideplan mission plan`: a route file in, an optimal multi-leg mission and vehicle files out."""
+
+from __future__ import annotations
+
+import math
+import pathlib
+from typing import Annotated, Any
+
+import typer
+
+from glideplan.cli.app import mission_app
+from glideplan.cli.common import announce, check_figure_file, flag_names, print_json
+from glideplan.errors import InvalidParameterError, PlanningError
+
+
+def _track_json(plan: Any, track: Any) -> dict[str, list[float]]:
+    r = plan.route
+    if r.projection is None:
+        return {"x": [round(float(v), 4) for v in track.x],
+                "y": [round(float(v), 4) for v in track.y]}
+    lat, lon = r.projection.to_geographic(track.x, track.y)
+    return {"lat": [round(float(v), 9) for v in lat], "lon": [round(float(v), 9) for v in lon]}
+
+
+@mission_app.command("plan")
+def mission_plan(
+    route: Annotated[pathlib.Path, typer.Argument(
+        help="Route file: .csv (name,lat,lon[,heading_deg] or name,x,y[,heading_deg]), .gpx, "
+             ".kml or .geojson.", show_default=False)],
+    speed: Annotated[float, typer.Option("--speed", help="Speed through the air/water (m/s).",
+                                         show_default=False)],
+    radius: Annotated[float, typer.Option("--radius", help="Minimum turn radius (m).",
+                                          show_default=False)],
+    objective: Annotated[str | None, typer.Option(
+        "--objective", help="length or time (default: length; time with --wind).")] = None,
+    wind: Annotated[tuple[float, float] | None, typer.Option(
+        "--wind", metavar="SPEED DIR_DEG",
+        help="Steady wind/current: speed (m/s) and the compass direction it blows FROM (deg).",
+        show_default=False)] = None,
+    field: Annotated[pathlib.Path | None, typer.Option(
+        "--field", help="Current field file (the routing issue's fields): not yet supported.",
+        show_default=False)] = None,
+    headings: Annotated[int | None, typer.Option(
+        "--headings", help="Candidate headings per free waypoint K (default 360; 36 in wind).",
+        show_default=False)] = None,
+    export: Annotated[pathlib.Path | None, typer.Option(
+        "--export", help="Directory to write the mission files into.", show_default=False)] = None,
+    formats: Annotated[str | None, typer.Option(
+        "--formats", help="Comma-separated: geojson,kml,gpx,csv,qgc-wpl,qgc-plan,slocum,"
+                          "seaglider (default: all).", show_default=False)] = None,
+    acceptance_radius: Annotated[float, typer.Option(
+        "--acceptance-radius", help="Waypoint acceptance radius in the vehicle files (m).")
+    ] = 100.0,
+    max_deviation: Annotated[float | None, typer.Option(
+        "--max-deviation", help="Largest distance of the straight legs from the planned track "
+                                "(m; default half the acceptance radius).",
+        show_default=False)] = None,
+    altitude: Annotated[float, typer.Option(
+        "--altitude", help="QGC waypoint altitude above home (m).")] = 50.0,
+    goto_number: Annotated[int, typer.Option(
+        "--goto-number", help="Slocum goto file number NN (goto_lNN.ma).")] = 10,
+    max_goto_waypoints: Annotated[int, typer.Option(
+        "--max-goto-waypoints", help="Most waypoints per Slocum goto file (split beyond).")] = 8,
+    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+    plot: Annotated[pathlib.Path | None, typer.Option(
+        "--plot", help="Draw the mission into FILE (.png, .pdf, .svg).", show_default=False)
+    ] = None,
+) -> None:
+    """Plan a multi-leg mission through ROUTE's waypoints, choosing the free headings optimally.
+
+    Each leg is the optimal Dubins (or, with --wind, convected-Dubins minimum-time) path,
+    verified by integration. With --export the mission is written for GIS tools and vehicles.
+    """
+    from glideplan.formats import ExportOptions, export_mission, parse_formats, read_route
+    from glideplan.missions import plan_mission, straight_leg_list
+
+    if field is not None:
+        raise InvalidParameterError(
+            "--field", str(field), "not yet supported by mission plan (use --wind for a "
+            "steady current)")
+    plot = check_figure_file(plot)
+    if not math.isfinite(speed) or speed <= 0:
+        raise InvalidParameterError("--speed", speed, "must be finite and > 0 (m/s)")
+    if not math.isfinite(radius) or radius <= 0:
+        raise InvalidParameterError("--radius", radius, "must be finite and > 0 (m)")
+    if wind is not None and wind[0] >= speed:
+        raise InvalidParameterError(
+            "--wind", wind[0], f"speed must be below the vehicle's speed {speed:g} m/s")
+    obj = objective or ("time" if wind is not None else "length")
+    with flag_names(**{"acceptance-radius": "--acceptance-radius", "altitude": "--altitude",
+                       "max-deviation": "--max-deviation"}):
+        options = ExportOptions(acceptance_radius=acceptance_radius,
+                                max_deviation=max_deviation, altitude=altitude,
+                                goto_number=goto_number, max_goto_waypoints=max_goto_waypoints,
+                                name=route.stem or "mission")
+    r = read_route(route)
+    if formats is not None and export is None:
+        raise InvalidParameterError("--formats", formats, "needs --export DIR")
+    with flag_names(formats="--formats", headings="--headings", objective="--objective"):
+        fmts = parse_formats(formats, r.geographic) if export is not None else ()
+        mission = plan_mission(r, speed=speed, radius=radius, objective=obj,
+                               wind=None if wind is None else (wind[0], wind[1]),
+                               headings=headings)
+    if not mission.ok:
+        bad = next(leg for leg in mission.legs if not leg.solution.ok)
+        raise PlanningError(
+            f"leg {bad.index + 1} ({r.names[bad.start]} -> {r.names[bad.end]}): "
+            f"{bad.solution.status.value}: {bad.solution.message}")
+    files: dict[str, Any] = {}
+    with flag_names(**{"max-deviation": "--max-deviation", "goto-number": "--goto-number",
+                       "max-goto-waypoints": "--max-goto-waypoints"}):
+        if export is not None:
+            files, legs = export_mission(mission, export, fmts, options)
+        else:
+            legs = straight_leg_list(mission, options.deviation)
+    stats = dict(mission.stats)
+    stats["straight_legs"] = {
+        "waypoints": len(legs.names),
+        "tolerance_m": legs.tolerance_m,
+        "max_deviation_m": legs.max_deviation_m,
+        "sample_spacing_m": legs.sample_spacing_m,
+    }
+    if plot is not None:
+        from glideplan.missions.plot import plot_mission
+        from glideplan.plotting import save_figure
+
+        save_figure(plot_mission(mission, legs), str(plot))
+        files["plot"] = str(plot)
+    data = mission.to_dict()
+    data["stats"] = stats
+    data["track"] = _track_json(mission, mission.track())
+    data["files"] = files
+    if json_out:
+        print_json(data)
+        return
+    _print_summary(mission, legs, files)
+
+
+def _print_summary(mission: Any, legs: Any, files: dict[str, Any]) -> None:
+    r = mission.route
+    typer.echo(f"mission {r.source}: {r.n} waypoints, {len(mission.legs)} legs, objective "
+               f"{mission.objective}")
+    for i, leg in enumerate(mission.legs):
+        typer.echo(f"  leg {i + 1:3d} {r.names[leg.start]:>10s} -> {r.names[leg.end]:<10s} "
+                   f"{leg.solution.word:4s} {leg.length_m:10.1f} m {leg.duration_s:10.1f} s")
+    hd = ", ".join(f"{r.names[i]} {h:.1f}" for i, h in enumerate(mission.headings_deg))
+    typer.echo(f"headings (compass deg): {hd}")
+    typer.echo(f"total: {mission.total_length_m:.1f} m, {mission.total_duration_s:.1f} s; "
+               f"largest endpoint error {mission.stats['max_endpoint_error']:.1e}")
+    if r.projection is not None:
+        typer.echo(f"projection: aeqd about {r.names[0]}, scale distortion "
+                   f"{r.distortion:.1e}")
+    typer.echo(f"straight legs: {len(legs.names)} waypoints within {legs.max_deviation_m:.1f} m "
+               f"of the track (limit {legs.tolerance_m:g} m)")
+    for fmt, path in files.items():
+        announce(f"wrote {fmt}: {path if isinstance(path, str) else ', '.join(path)}", False)

@@ -1,0 +1,171 @@
+"""`glideplan route`: the time-optimal route through a current/wind forecast (issue 12)."""
+
+from __future__ import annotations
+
+import math
+import pathlib
+from typing import Annotated, Any
+
+import typer
+
+from glideplan.cli.app import app
+
+_EXAMPLES = ("double-gyre",)
+
+
+def parse_depart(text: str | None) -> Any:
+    """ISO 8601 (UTC if no offset; 'Z' accepted) -> numpy.datetime64[ms] in UTC, or None."""
+    if text is None:
+        return None
+    import datetime as dt
+
+    import numpy as np
+
+    from glideplan.errors import InvalidParameterError
+
+    try:
+        when = dt.datetime.fromisoformat(text.strip())
+    except ValueError:
+        raise InvalidParameterError("--depart", text, "must be ISO 8601 (2026-01-01T06:00Z)") from None
+    if when.tzinfo is not None:
+        when = when.astimezone(dt.UTC).replace(tzinfo=None)
+    return np.datetime64(when, "ms")
+
+
+@app.command("route")
+def route_command(
+    from_: Annotated[
+        tuple[float, float],
+        typer.Option("--from", help="Start LAT LON (degrees, WGS84).", show_default=False),
+    ],
+    to: Annotated[
+        tuple[float, float],
+        typer.Option("--to", help="Goal LAT LON (degrees, WGS84).", show_default=False),
+    ],
+    speed: Annotated[
+        float, typer.Option("--speed", help="Speed through the water (air), V (m/s).")
+    ],
+    field: Annotated[
+        list[pathlib.Path] | None,
+        typer.Option("--field", help="NetCDF or GRIB file (repeat to merge files).",
+                     show_default=False),
+    ] = None,
+    example: Annotated[
+        str | None,
+        typer.Option("--example", help="A built-in field instead of files: double-gyre.",
+                     show_default=False),
+    ] = None,
+    depart: Annotated[
+        str | None,
+        typer.Option("--depart", help="Departure time, ISO 8601 (default: the field's first).",
+                     show_default=False),
+    ] = None,
+    depth_range: Annotated[
+        tuple[float, float] | None,
+        typer.Option("--depth-range", help="Average currents over depths Z0 Z1 (m, down).",
+                     show_default=False),
+    ] = None,
+    resolution: Annotated[
+        float | None,
+        typer.Option("--resolution", help="Grid spacing (m; default ~200 cells across).",
+                     show_default=False),
+    ] = None,
+    radius: Annotated[
+        float | None,
+        typer.Option("--radius", help="Turn radius R0 (m): build and follow the flyable path.",
+                     show_default=False),
+    ] = None,
+    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+    plot: Annotated[
+        pathlib.Path | None, typer.Option("--plot", help="Draw the route to FILE (.png/.pdf/.svg).")
+    ] = None,
+) -> None:
+    """Time-optimal route through a current or wind field (front propagation, refined, verified).
+
+    Exit 0 solved, 1 unreachable, 2 bad input.
+    """
+    from glideplan.cli.common import check_figure_file, print_json
+    from glideplan.errors import InvalidParameterError
+
+    if not (math.isfinite(speed) and speed > 0):
+        raise InvalidParameterError("--speed", speed, "must be finite and > 0 (m/s)")
+    for name, val in (("--from", from_), ("--to", to)):
+        if not all(math.isfinite(v) for v in val):
+            raise InvalidParameterError(name, val, "latitude/longitude must be finite")
+        if abs(val[0]) > 90 or not -180 <= val[1] <= 360:
+            raise InvalidParameterError(name, val, "latitude in [-90, 90], longitude in [-180, 360]")
+    if resolution is not None and not (math.isfinite(resolution) and resolution > 0):
+        raise InvalidParameterError("--resolution", resolution, "must be finite and > 0 (m)")
+    if radius is not None and not (math.isfinite(radius) and radius > 0):
+        raise InvalidParameterError("--radius", radius, "must be finite and > 0 (m)")
+    if depth_range is not None and not (
+        all(math.isfinite(z) and z >= 0 for z in depth_range) and depth_range[0] < depth_range[1]
+    ):
+        raise InvalidParameterError("--depth-range", depth_range, "needs 0 <= Z0 < Z1 (m, down)")
+    plot = check_figure_file(plot)
+    if (field is None) == (example is None):
+        raise InvalidParameterError("--field", None, "give --field FILE or --example double-gyre")
+    when = parse_depart(depart)
+
+    from glideplan.fields import double_gyre, open_field
+
+    if example is not None:
+        if example not in _EXAMPLES:
+            raise InvalidParameterError("--example", example, f"must be one of {_EXAMPLES}")
+        if depth_range is not None:
+            raise InvalidParameterError("--depth-range", depth_range, "needs --field files")
+        flow = double_gyre()
+        source: dict[str, Any] = {"file": None, "example": example}
+    else:
+        assert field is not None
+        flow = open_field(field, depth_range=depth_range)
+        source = {"file": [str(p) for p in field]}
+
+    from glideplan.cli.common import solving
+    from glideplan.routing import route
+
+    result = solving("routing", lambda: route(flow, from_, to, speed, depart=when,
+                                              resolution=resolution))
+    out = result.to_dict()
+    out["field"] = {**source, **out["field"]}
+    if radius is not None and result.ok:
+        from glideplan.routing.glider import follow_route
+
+        glider = solving("following", lambda: follow_route(result, flow, speed, radius))
+        out["glider"] = glider.to_dict()
+    if plot is not None:
+        from glideplan.routing.plot import plot_route
+
+        plot_route(result, flow, plot)
+    if json_out:
+        print_json(out)
+    else:
+        _print_summary(out)
+    if not result.ok:
+        if not json_out:
+            typer.echo(f"glideplan: unreachable: {result.message}", err=True)
+        raise typer.Exit(1)
+
+
+def _print_summary(out: dict[str, Any]) -> None:
+    def hours(s: float | None) -> str:
+        return "n/a" if s is None else f"{s / 3600.0:.2f} h"
+
+    typer.echo(f"status: {out['status']}")
+    if out["status"] == "solved":
+        typer.echo(f"depart: {out['depart']}  arrive: {out['arrive']}")
+        typer.echo(f"duration: {hours(out['duration_s'])}  distance: "
+                   f"{out['distance_m'] / 1000:.2f} km  method: {out['method']}")
+        typer.echo(f"straight line with crab angle: {hours(out['straight_line_duration_s'])}")
+        typer.echo(f"endpoint error (controls flown through the field): "
+                   f"{out['endpoint_error_m']:.2f} m")
+        if "glider" in out:
+            g = out["glider"]
+            if g["status"] == "followed":
+                typer.echo(f"glider path: R0' = {g['feasible_radius_m']:.1f} m, {g['legs']} legs,"
+                           f" max cross-track error {g['max_cross_track_m']:.2f} m, miss "
+                           f"{g['final_distance_m']:.2f} m")
+            else:
+                typer.echo(f"glider path: {g['status']}: {g['message']}")
+    else:
+        typer.echo(f"best reachable distance to the goal: {out['best_distance_m']:.0f} m")

@@ -1,0 +1,54 @@
+"""Serve the explorer page locally with Panel (Bokeh server): every script and style sheet
+comes from this server (Panel and Bokeh's bundled resources), nothing from a CDN."""
+
+from __future__ import annotations
+
+import threading
+from typing import Any
+
+__all__ = ["serve", "warm_up"]
+
+
+def warm_up() -> None:
+    """Plan each fast planner once so that the first page does not pay the imports
+    (SciPy's integrators for the verification, the planners' tables)."""
+    from glideplan.explore.catalog import build_catalog
+    from glideplan.explore.solve import solve_view
+    from glideplan.explore.state import initial_state
+
+    catalog = build_catalog()
+    for entry in catalog.entries:
+        if not entry.slow:
+            solve_view(catalog, initial_state(entry))
+
+
+def serve(
+    port: int = 5006, host: str = "127.0.0.1", *, show: bool = True, threaded: bool = False
+) -> Any:
+    """Serve the page at http://HOST:PORT/ (blocks unless `threaded`; then returns the server).
+
+    Connections are accepted from `host` only (127.0.0.1 unless told otherwise).
+    """
+    import panel as pn
+
+    from glideplan.explore.app import create_page
+    from glideplan.explore.catalog import build_catalog
+
+    catalog = build_catalog()
+    threading.Thread(target=warm_up, daemon=True, name="glideplan-warm-up").start()
+    origin = (
+        [f"{host}:{port}", f"localhost:{port}"]
+        if host in ("127.0.0.1", "localhost")
+        else [f"{host}:{port}"]
+    )
+    return pn.serve(
+        {"/": lambda: create_page(catalog)},
+        port=port,
+        address=host,
+        show=show,
+        threaded=threaded,
+        start=True,
+        title="glideplan explore",
+        websocket_origin=origin,
+        verbose=False,
+    )

@@ -1,0 +1,76 @@
+"""Draw a planned mission: track, waypoints, heading arrows, labelled legs (Matplotlib)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from glideplan.missions.plan import MissionPlan
+from glideplan.missions.straight_legs import StraightLegList
+
+__all__ = ["plot_mission"]
+
+
+def plot_mission(plan: MissionPlan, legs: StraightLegList | None = None) -> Any:
+    """A figure of `plan`: axes in degrees (lon, lat) for geographic routes, else metres."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8, 7))
+    r = plan.route
+    track = plan.track()
+    geo = r.projection is not None
+    proj = r.projection
+
+    def xy(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        if proj is None:
+            return x, y
+        lat, lon = proj.to_geographic(x, y)
+        return lon, lat
+
+    span = max(float(np.ptp(track.x)), float(np.ptp(track.y)), plan.radius)
+    arrow = 0.06 * span
+    tx, ty = xy(track.x, track.y)
+    ax.plot(tx, ty, "-", color="tab:blue", lw=1.6, label="planned track")
+    if legs is not None:
+        lx, ly = xy(legs.x, legs.y)
+        ax.plot(lx, ly, "--", color="tab:orange", lw=0.9, marker=".", ms=4,
+                label=f"straight legs (within {legs.tolerance_m:g} m)")
+    wx, wy = xy(r.x, r.y)
+    ax.plot(wx, wy, "o", color="k", ms=6, label="waypoints", zorder=5)
+    hx, hy = xy(r.x + arrow * np.cos(plan.headings), r.y + arrow * np.sin(plan.headings))
+    for i in range(r.n):
+        color = "tab:red" if r.free[i] else "tab:green"
+        ax.annotate("", xy=(hx[i], hy[i]), xytext=(wx[i], wy[i]),
+                    arrowprops={"arrowstyle": "->", "color": color, "lw": 1.6}, zorder=6)
+        ax.annotate(f"{r.names[i]}\n{plan.headings_deg[i]:.0f}\N{DEGREE SIGN}",
+                    (wx[i], wy[i]), textcoords="offset points", xytext=(6, -14), fontsize=8)
+    for leg in plan.legs:
+        sel = np.nonzero(track.leg == leg.index)[0]
+        mid = sel[len(sel) // 2]
+        ax.annotate(f"{leg.index + 1}: {leg.solution.word} {leg.length_m:.0f} m",
+                    (tx[mid], ty[mid]), fontsize=7, color="tab:blue",
+                    bbox={"boxstyle": "round,pad=0.15", "fc": "white", "alpha": 0.7, "lw": 0})
+    ax.plot([], [], color="tab:red", label="chosen heading")
+    ax.plot([], [], color="tab:green", label="given heading")
+    if geo:
+        assert r.lat is not None
+        ax.set_aspect(1.0 / math.cos(math.radians(float(np.mean(r.lat)))))
+        ax.set_xlabel("longitude [deg]")
+        ax.set_ylabel("latitude [deg]")
+        ax.ticklabel_format(useOffset=False)
+    else:
+        ax.set_aspect("equal")
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+    wind = "" if plan.wind is None else (
+        f", wind {plan.wind[0]:g} m/s from {plan.wind[1]:g}\N{DEGREE SIGN}")
+    ax.set_title(f"mission: {r.n} waypoints, {plan.total_length_m:.0f} m, "
+                 f"{plan.total_duration_s / 3600:.2f} h (R = {plan.radius:g} m{wind})")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    return fig

@@ -1,0 +1,583 @@
+"""Regression corpus: bad input tried as a new user would (issue 10, sections 3 and 6).
+
+One parametrised test runs every command-line case and checks its exit code (0 solved or
+done, 1 planning failure, 2 bad input, 3 internal error), that stderr holds one
+`glideplan: error:` line and no traceback where the command fails, and a fragment of the
+message the user reads. A second one runs the Python API cases. The expectations are the
+documented rules (`glideplan.cli.app`, `glideplan.vehicles.base`, `glideplan.planning.plan`),
+not recorded output. Every case runs in bounded time: in-process, or in a subprocess with a
+timeout and a 3 GB address-space limit where a regression could hang or exhaust memory.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import pathlib
+import resource
+import subprocess
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import pytest
+
+from glideplan.errors import InvalidParameterError, PlanningError, ResultsFileError
+
+ERROR = "glideplan: error:"
+
+
+@dataclass(frozen=True)
+class Case:
+    """A command line, the exit code(s) it must give, and text its output must hold.
+
+    `argv` may hold "{tmp}" (a fresh directory) and "{bad_toml}", "{binary}", "{true_toml}",
+    "{empty_toml}", "{partial_toml}" (files made in it). `stream` is where `fragment` must
+    appear ("err" or "out"). `patch` replaces `glideplan.planning.plan` (the exit-code rules
+    of section 3). `subprocess` runs the CLI in a child with `timeout` seconds. A `pending`
+    case (its fix belongs to another part of the code and is not in yet) costs too much CPU
+    while it fails: it is skipped with that reason unless GLIDEPLAN_PENDING_CASES=1.
+    """
+
+    argv: tuple[str, ...]
+    code: int | frozenset[int]
+    fragment: str
+    stream: str = "err"
+    patch: Callable[..., Any] | None = None
+    subprocess: bool = False
+    timeout: float = 60.0
+    pending: str = ""
+
+
+def _raise(exc: BaseException) -> Callable[..., Any]:
+    def plan(*args: Any, **kwargs: Any) -> Any:
+        raise exc
+
+    return plan
+
+
+DUBINS = ("plan", "dubins", "--goal", "4", "3", "90", "--radius", "1")
+TMIN = ("plan", "time-optimal", "--v-min", "0.3", "--v-max", "1", "--u-max", "1")
+WIND = ("plan", "wind", "--speed", "1", "--radius", "1", "--wind", "0.5", "0")
+
+CASES: dict[str, Case] = {
+    # ---- section 3: exit codes --------------------------------------------------------
+    "usage: unknown command": Case(("fly-me",), 2, "No such command"),
+    "usage: missing option": Case(("plan", "dubins", "--goal", "1", "2", "3"), 2, "--radius"),
+    "usage: not a number": Case((*DUBINS[:-1], "wide"), 2, "--radius"),
+    "bad input: InvalidParameterError": Case((*DUBINS[:-1], "-1"), 2, "--radius=-1"),
+    "bad input: malformed TOML file": Case(
+        ("design", "tank", "--params", "{bad_toml}"), 2, "not valid TOML"
+    ),
+    "bad input: ResultsFileError": Case(
+        DUBINS, 2, "corrupt store", patch=_raise(ResultsFileError("corrupt store"))
+    ),
+    "bad input: missing file": Case(
+        ("design", "tank", "--params", "{tmp}/nope.toml"), 2, "nope.toml"
+    ),
+    "planning failure: solver failed": Case(
+        (
+            "plan",
+            "load-factor",
+            "--goal",
+            "1",
+            "2",
+            "0",
+            "--max-iterations",
+            "1",
+            "--max-starts",
+            "1",
+        ),
+        1,
+        "solver_failed",
+    ),
+    "planning failure: PlanningError": Case(
+        DUBINS, 1, "no path today", patch=_raise(PlanningError("no path today"))
+    ),
+    "internal error: bare ValueError is a bug": Case(
+        DUBINS,
+        3,
+        "internal error: ValueError: math domain error; rerun with --debug",
+        patch=_raise(ValueError("math domain error")),
+    ),
+    "internal error: any exception": Case(
+        DUBINS,
+        3,
+        "internal error: ZeroDivisionError: division by zero",
+        patch=_raise(ZeroDivisionError("division by zero")),
+    ),
+    "internal error: --debug prints the traceback": Case(
+        ("--debug", *DUBINS), 3, "Traceback", patch=_raise(KeyError("k"))
+    ),
+    # ---- section 6: a wrong path called solved ----------------------------------------
+    "v_max 1e200": Case(
+        (
+            "plan",
+            "time-optimal",
+            "--goal",
+            "0",
+            "2",
+            "120",
+            "--v-min",
+            "0.3",
+            "--v-max",
+            "1e200",
+            "--u-max",
+            "1",
+            "--json",
+        ),
+        2,
+        "--v-max=1e+200: must lie in",
+    ),
+    "v_max 1e15": Case(
+        (
+            "plan",
+            "time-optimal",
+            "--goal",
+            "0",
+            "2",
+            "120",
+            "--v-min",
+            "0.3",
+            "--v-max",
+            "1e15",
+            "--u-max",
+            "1",
+        ),
+        2,
+        "--v-max",
+    ),
+    "v_max / v_min above 1e6": Case(
+        (
+            "plan",
+            "time-optimal",
+            "--goal",
+            "0",
+            "2",
+            "120",
+            "--v-min",
+            "1e-6",
+            "--v-max",
+            "2",
+            "--u-max",
+            "1",
+        ),
+        2,
+        "v_max/v_min",
+    ),
+    "bang radius above 1e7 m": Case(
+        (
+            "plan",
+            "time-optimal",
+            "--goal",
+            "0",
+            "2",
+            "120",
+            "--v-min",
+            "0.3",
+            "--v-max",
+            "1000",
+            "--u-max",
+            "1e-5",
+        ),
+        2,
+        "--v-max/--u-max",
+    ),
+    # ---- unbounded memory / no end (fixed by the core engineer) -------------------------
+    "wind far goal -1e6": Case(
+        (
+            "plan",
+            "wind",
+            "--goal",
+            "-1e6",
+            "0",
+            "180",
+            "--speed",
+            "1",
+            "--radius",
+            "1",
+            "--wind",
+            "0.99",
+            "0",
+            "--json",
+        ),
+        frozenset({0, 1, 2}),
+        "",
+        subprocess=True,
+    ),
+    "wind far goal -1e5": Case(
+        (
+            "plan",
+            "wind",
+            "--goal",
+            "-1e5",
+            "0",
+            "180",
+            "--speed",
+            "1",
+            "--radius",
+            "1",
+            "--wind",
+            "0.99",
+            "0",
+            "--json",
+        ),
+        frozenset({0, 1, 2}),
+        "",
+        subprocess=True,
+    ),
+    "load-factor far goal with --time-limit": Case(
+        ("plan", "load-factor", "--goal", "1000", "0", "180", "--time-limit", "2"),
+        frozenset({0, 1}),
+        "",
+        subprocess=True,
+        timeout=40.0,
+    ),
+    "load-factor far goal": Case(
+        ("plan", "load-factor", "--goal", "1000", "0", "180"),
+        frozenset({0, 1, 2}),
+        "",
+        subprocess=True,
+        timeout=30.0,
+        pending="core: a far goal without --time-limit still runs > 100 s (issue 10 sec. 6)",
+    ),
+    # ---- silent surprises -------------------------------------------------------------
+    "--plot a directory": Case((*DUBINS, "--plot", "{tmp}"), 2, "is a directory"),
+    "--plot without a format": Case((*DUBINS, "--plot", "{tmp}/figure"), 2, ".png"),
+    "--plot in a missing directory": Case(
+        (*DUBINS, "--plot", "{tmp}/no/f.png"), 2, "does not exist"
+    ),
+    "--plot writes and says so": Case((*DUBINS, "--plot", "{tmp}/f.png"), 0, "wrote", "out"),
+    "design glide TOML true": Case(
+        ("design", "glide", "--params", "{true_toml}"), 2, "not a boolean"
+    ),
+    "design trim --bladder-l 1000": Case(
+        ("design", "trim", "--bladder-l", "1000"), 2, "--bladder-l=1000.0: must lie in [0, 5] L"
+    ),
+    "design trim --bladder-l -1": Case(("design", "trim", "--bladder-l", "-1"), 2, "--bladder-l"),
+    "design valve --volume-l 1000": Case(
+        ("design", "valve", "--volume-l", "1000"), 2, "--volume-l"
+    ),
+    "design dives --volume-l 1000": Case(
+        ("design", "dives", "--volume-l", "1000"), 2, "--volume-l"
+    ),
+    "design glide --volume-l 1000": Case(
+        ("design", "glide", "--volume-l", "1000"), 2, "--volume-l"
+    ),
+    "empty TOML says defaults are used": Case(
+        ("design", "tank", "--params", "{empty_toml}"), 0, "sets no parameters"
+    ),
+    "partial TOML names the defaulted fields": Case(
+        ("design", "tank", "--params", "{partial_toml}"), 0, "tank.{name, internal_volume_m3"
+    ),
+    "study cross-track --dt 100": Case(
+        ("study", "cross-track", "--out", "{tmp}/s", "--dt", "100", "--samples", "2"), 2, "dt"
+    ),
+    "reproduce --only ''": Case(("reproduce", "--only", "", "--out", "{tmp}/r"), 2, "only"),
+    "reproduce --only ,,": Case(("reproduce", "--only", ",,", "--out", "{tmp}/r"), 2, "only"),
+    # ---- unclear messages -------------------------------------------------------------
+    "--radius 1e-300": Case((*DUBINS[:-1], "1e-300"), 2, "--radius=1e-300: must lie in"),
+    "--radius 1e300": Case((*DUBINS[:-1], "1e300"), 2, "--radius=1e+300: must lie in"),
+    "--speed 1e300": Case((*DUBINS, "--speed", "1e300"), 2, "--speed"),
+    "--goal 4 3 (at the end)": Case(
+        ("plan", "dubins", "--radius", "1", "--goal", "4", "3"),
+        2,
+        "--goal needs 3 values (x y heading_deg)",
+    ),
+    "--goal 4 3 (before an option)": Case(
+        ("plan", "dubins", "--goal", "4", "3", "--radius", "1"),
+        2,
+        "--goal needs 3 values (x y heading_deg)",
+    ),
+    "--goal nan": Case(
+        ("plan", "dubins", "--goal", "nan", "3", "0", "--radius", "1"), 2, "--goal x"
+    ),
+    "--goal 1e300": Case(
+        ("plan", "dubins", "--goal", "1e300", "3", "0", "--radius", "1"),
+        2,
+        "--goal x=1e+300: must lie within",
+    ),
+    "--wind one value": Case(
+        ("plan", "wind", "--goal", "1", "2", "0", "--speed", "1", "--radius", "1", "--wind", "0.5"),
+        2,
+        "--wind needs 2 values",
+    ),
+    "--wind as fast as the vehicle": Case(
+        (
+            "plan",
+            "wind",
+            "--goal",
+            "1",
+            "2",
+            "0",
+            "--speed",
+            "1",
+            "--radius",
+            "1",
+            "--wind",
+            "1",
+            "0",
+        ),
+        2,
+        "--wind",
+    ),
+    "design tank --params a binary file": Case(
+        ("design", "tank", "--params", "{binary}"), 2, "is not a TOML text file"
+    ),
+    "design init a directory": Case(("design", "init", "{tmp}"), 2, "is a directory"),
+    "--time-limit on a synthesis method": Case(
+        (*TMIN, "--goal", "1", "2", "0", "--time-limit", "5"), 2, "takes no time limit"
+    ),
+    "--time-limit negative": Case(
+        (*TMIN, "--goal", "1", "2", "0", "--time-limit", "-5", "--method", "direct"),
+        2,
+        "--time-limit=-5.0: must be > 0",
+    ),
+    "--time-limit reached on the direct method": Case(
+        (*TMIN, "--goal", "0", "2", "120", "--time-limit", "0.01", "--method", "direct"),
+        1,
+        "time limit of 0.01 s reached",
+    ),
+    "--time-limit reached on load-factor": Case(
+        ("plan", "load-factor", "--goal", "1.1", "2", "0", "--time-limit", "0.01"),
+        1,
+        "time limit of 0.01 s reached",
+    ),
+    "--method unknown": Case(
+        (*TMIN, "--goal", "1", "2", "0", "--method", "shooting"), 2, "--method"
+    ),
+    "min-altitude --u-max without --polar": Case(
+        ("plan", "min-altitude", "--goal", "100", "0", "0", "--u-max", "1"), 2, "--u-max"
+    ),
+    # ---- start equal to goal: a solved zero-length path, every planner ------------------
+    "same pose: dubins": Case(
+        ("plan", "dubins", "--goal", "0", "0", "0", "--radius", "1", "--json"),
+        0,
+        '"cost": 0.0',
+        "out",
+    ),
+    "same pose: dubins, shifted start, heading + 360": Case(
+        (
+            "plan",
+            "dubins",
+            "--start",
+            "5",
+            "-2",
+            "30",
+            "--goal",
+            "5",
+            "-2",
+            "390",
+            "--radius",
+            "1",
+            "--json",
+        ),
+        0,
+        "the goal is the start",
+        "out",
+    ),
+    "same pose: wind": Case(
+        (
+            "plan",
+            "wind",
+            "--goal",
+            "0",
+            "0",
+            "0",
+            "--speed",
+            "1",
+            "--radius",
+            "1",
+            "--wind",
+            "0.5",
+            "0",
+            "--json",
+        ),
+        0,
+        '"cost": 0.0',
+        "out",
+    ),
+    "same pose: time-optimal": Case(
+        (*TMIN, "--goal", "0", "0", "0", "--json"), 0, '"cost": 0.0', "out"
+    ),
+    "same pose: time-optimal direct": Case(
+        (*TMIN, "--goal", "0", "0", "0", "--method", "direct", "--json"), 0, '"cost": 0.0', "out"
+    ),
+    "same pose: min-altitude": Case(
+        ("plan", "min-altitude", "--goal", "0", "0", "0", "--json"), 0, '"cost": 0.0', "out"
+    ),
+    "same pose: min-altitude direct": Case(
+        ("plan", "min-altitude", "--goal", "0", "0", "0", "--method", "direct", "--json"),
+        0,
+        '"cost": 0.0',
+        "out",
+    ),
+    "same pose: load-factor": Case(
+        ("plan", "load-factor", "--goal", "0", "0", "0", "--json"), 0, '"cost": 0.0', "out"
+    ),
+}
+
+
+def _files(tmp: pathlib.Path) -> dict[str, str]:
+    files = {
+        "bad_toml": ("broken.toml", b"[tank\nmax_pressure_pa = 1\n"),
+        "binary": ("binary.toml", b"\x7fELF\x02\x01\x01\x00\x00\x00\xd0\xff"),
+        "true_toml": ("true.toml", b"[glide]\nreference_area_m2 = true\n"),
+        "empty_toml": ("empty.toml", b""),
+        "partial_toml": ("partial.toml", b"[tank]\nmax_pressure_psi = 3000\n"),
+    }
+    out = {"tmp": str(tmp)}
+    for key, (name, data) in files.items():
+        (tmp / name).write_bytes(data)
+        out[key] = str(tmp / name)
+    return out
+
+
+def _limit_memory() -> None:  # pragma: no cover - runs in the child
+    limit = 3 * 1024**3
+    resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+
+
+def _run_subprocess(argv: list[str], timeout: float) -> tuple[int, str, str]:
+    try:
+        out = subprocess.run(
+            [sys.executable, "-m", "glideplan", *argv],
+            capture_output=True,
+            text=True,
+            timeout=timeout,
+            preexec_fn=_limit_memory,
+        )
+    except subprocess.TimeoutExpired:
+        pytest.fail(f"no answer within {timeout:g} s (bounded time is required)")
+    return out.returncode, out.stdout, out.stderr
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_cli_case(name: str, run_cli, tmp_path, monkeypatch) -> None:
+    """Each case: the documented exit code, a one-line error (no traceback) on failure."""
+    case = CASES[name]
+    if case.pending and not os.environ.get("GLIDEPLAN_PENDING_CASES"):
+        pytest.skip(f"pending: {case.pending}")
+    subs = _files(tmp_path)
+    argv = [a.format(**subs) if "{" in a else a for a in case.argv]
+    if case.patch is not None:
+        monkeypatch.setattr("glideplan.planning.plan", case.patch)
+    if case.subprocess:
+        code, out, err = _run_subprocess(argv, case.timeout)
+    else:
+        code, out, err = run_cli(*argv)
+    codes = case.code if isinstance(case.code, frozenset) else frozenset({case.code})
+    assert code in codes, f"exit {code}, expected {sorted(codes)}\nstderr: {err[-2000:]}"
+    lines = [line for line in err.strip().splitlines() if line]
+    if "--debug" in argv:
+        assert "Traceback" in err and lines[-1].startswith(ERROR)
+    elif code != 0:
+        errors = [line for line in lines if line.startswith(ERROR)]
+        others = [line for line in lines if not line.startswith("glideplan: warning:")]
+        assert len(errors) == 1 and others == errors, err
+        assert "Traceback" not in err and "Warning" not in err
+    else:
+        assert ERROR not in err and "Traceback" not in err, err
+    text = err if case.stream == "err" else out
+    assert case.fragment in text, f"{case.fragment!r} not in {text[-2000:]!r}"
+    if code == 0 and "--json" in argv:
+        data = json.loads(out)  # stdout holds exactly one JSON object
+        if data.get("status") == "solved":  # never a wrong path called solved
+            assert data["endpoint_error"]["position"] <= 1e-4
+
+
+# ---- the Python API ---------------------------------------------------------------------
+
+
+def _plan_without_vehicle() -> Any:
+    from glideplan import Pose, plan
+
+    return plan(Pose(0, 0, 0), Pose(4, 3, 0), None)  # type: ignore[arg-type]
+
+
+def _pose_text() -> Any:
+    from glideplan import Pose
+
+    return Pose("1", 0, 0)  # type: ignore[arg-type]
+
+
+def _dubins_bools() -> Any:
+    from glideplan import DubinsCar
+
+    return DubinsCar(True, True)
+
+
+def _vsc_1e20() -> Any:
+    from glideplan import VariableSpeedCar
+
+    return VariableSpeedCar(0.3, 1e20, 1)
+
+
+def _radius_tiny() -> Any:
+    from glideplan import DubinsCar
+
+    return DubinsCar(1.0, 1e-300)
+
+
+def _glider_absurd() -> Any:
+    from glideplan import QuadraticPolarGlider
+
+    return QuadraticPolarGlider(2.7e-21, -1.37e-10, 2.31, 21.0, 1e12, 0.2)
+
+
+def _load_factor_absurd() -> Any:
+    from glideplan import LoadFactorGlider
+
+    return LoadFactorGlider(n_max=1e9)
+
+
+def _plan_tolerance_bool() -> Any:
+    from glideplan import DubinsCar, Pose, plan
+
+    return plan(Pose(0, 0, 0), Pose(4, 3, 0), DubinsCar(), tolerance=True)
+
+
+def _plan_goal_two_values() -> Any:
+    from glideplan import DubinsCar, Pose, plan
+
+    return plan(Pose(0, 0, 0), (4, 3), DubinsCar())  # type: ignore[arg-type]
+
+
+def _plan_unknown_option() -> Any:
+    from glideplan import DubinsCar, Pose, plan
+
+    return plan(Pose(0, 0, 0), Pose(4, 3, 0), DubinsCar(), time_limit=5)
+
+
+def _sample_huge() -> Any:
+    from glideplan import DubinsCar, Pose, plan
+
+    path = plan(Pose(0, 0, 0), Pose(4, 3, 0), DubinsCar()).path
+    assert path is not None
+    return path.sample(n=10**10)
+
+
+API_CASES: dict[str, tuple[Callable[[], Any], str]] = {
+    "plan(..., vehicle=None)": (_plan_without_vehicle, "vehicle"),
+    'Pose("1", 0, 0)': (_pose_text, "x"),
+    "DubinsCar(True, True)": (_dubins_bools, "speed"),
+    "VariableSpeedCar(0.3, 1e20, 1)": (_vsc_1e20, "v_max"),
+    "DubinsCar(1, 1e-300)": (_radius_tiny, "turn_radius"),
+    "QuadraticPolarGlider v_max 1e12": (_glider_absurd, "v_max"),
+    "LoadFactorGlider(n_max=1e9)": (_load_factor_absurd, "n_max"),
+    "plan(tolerance=True)": (_plan_tolerance_bool, "tolerance"),
+    "plan(goal=(4, 3))": (_plan_goal_two_values, "goal"),
+    "plan(unknown option)": (_plan_unknown_option, "time_limit"),
+    "path.sample(n=10**10)": (_sample_huge, "n"),
+}
+
+
+@pytest.mark.parametrize("name", list(API_CASES))
+def test_api_case(name: str) -> None:
+    """Types and ranges are checked where the API is entered: InvalidParameterError naming
+    the parameter, never AttributeError, MemoryError or a wrong answer."""
+    function, parameter = API_CASES[name]
+    with pytest.raises(InvalidParameterError) as err:
+        function()
+    assert err.value.name == parameter, str(err.value)

@@ -1,0 +1,156 @@
+"""Time-optimal routes against closed-form answers (issue 12), files built here with xarray."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from glideplan.fields import UniformField, double_gyre, open_field
+from glideplan.fields.synthetic import copernicus_dataset, hycom_dataset
+from glideplan.geodesy import LocalProjection
+from glideplan.routing import route
+
+V = 0.3
+DAY = 86400.0
+T0 = np.datetime64("2026-01-01T00:00", "ns")
+HOURS = np.arange(73)
+TIMES = T0 + HOURS * np.timedelta64(3600, "s")
+LAT = np.linspace(29.5, 30.5, 51)
+LON = np.linspace(-40.5, -39.5, 51)
+START, GOAL = (29.9, -40.2), (30.1, -39.85)
+
+
+def current(t_s):
+    """The uniform, time-varying current c(t) (m/s) east and north."""
+    w = 2 * math.pi * np.asarray(t_s) / DAY
+    return 0.12 + 0.06 * np.sin(w), 0.04 * np.cos(w)
+
+
+def drift_time_optimum(goal_xy, c_levels_t, cu, cv, speed):
+    """Smallest t with |B - A - int_0^t c| = V t for c piecewise linear between levels.
+
+    Closed form of the reachable set (a disk of radius V t about the drift), solved by brentq.
+    """
+    def drift(t):
+        tt = np.concatenate([c_levels_t[c_levels_t < t], [t]])
+        uu, vv = np.interp(tt, c_levels_t, cu), np.interp(tt, c_levels_t, cv)
+        return np.trapezoid(uu, tt), np.trapezoid(vv, tt)
+
+    def f(t):
+        dx, dy = drift(t)
+        return math.hypot(goal_xy[0] - dx, goal_xy[1] - dy) - speed * t
+
+    return brentq(f, 1.0, c_levels_t[-1], xtol=1e-6)
+
+
+@pytest.fixture(scope="module")
+def uniform_files(tmp_path_factory):
+    d = tmp_path_factory.mktemp("uniform")
+    ts = HOURS * 3600.0
+    cu, cv = current(ts)
+    shape = (ts.size, 1, LAT.size, LON.size)
+    u = np.broadcast_to(cu[:, None, None, None], shape)
+    v = np.broadcast_to(cv[:, None, None, None], shape)
+    cop, hyc = d / "cmems.nc", d / "hycom.nc"
+    copernicus_dataset(LAT, LON, TIMES, [0.5], u, v).to_netcdf(cop)
+    hycom_dataset(LAT, LON, TIMES, [0.0], u, v, packed=False).to_netcdf(hyc)
+    # The reference uses the file's float32 values, as the field does.
+    return cop, hyc, ts, cu.astype(np.float32).astype(float), cv.astype(np.float32).astype(float)
+
+
+def test_time_varying_uniform_current_both_layouts(uniform_files):
+    """t* of the drifting disk (closed form) within 1% on the default grid; layouts agree.
+
+    The local plane's axes turn by the meridian convergence (< 0.2 deg here) away from the
+    start; its effect on t* is below 1e-4, so the reference treats c as uniform in the plane.
+    """
+    cop, hyc, ts, cu, cv = uniform_files
+    gx, gy = LocalProjection(*START).to_local(*GOAL)
+    t_star = drift_time_optimum((float(gx), float(gy)), ts, cu, cv, V)
+    results = [route(open_field(p), START, GOAL, V) for p in (cop, hyc)]
+    for r in results:
+        assert r.status == "solved"
+        assert abs(r.grid_duration_s - t_star) <= 0.01 * t_star
+        assert abs(r.duration_s - t_star) <= 1e-3 * t_star
+        assert r.endpoint_error_m < 50.0
+        assert str(r.depart)[:16] == "2026-01-01T00:00"
+    assert results[0].duration_s == pytest.approx(results[1].duration_s, rel=1e-6)
+    assert results[0].grid_duration_s == pytest.approx(results[1].grid_duration_s, rel=1e-6)
+
+
+def test_depth_averaged_route_equals_uniform(tmp_path):
+    """0-500 m average of 1 m/s at 0 and 50 m, 0 below = 0.15 m/s: same time as uniform 0.15.
+
+    Closed form for a steady uniform current c: |B - A - c t| = V t.
+    """
+    z = np.arange(0.0, 501.0, 50.0)
+    prof = np.where(z <= 50.0, 1.0, 0.0)
+    u = prof[None, :, None, None] * np.ones((1, z.size, LAT.size, LON.size))
+    path = tmp_path / "layers.nc"
+    copernicus_dataset(LAT, LON, TIMES[:1], z, u, 0.0 * u).to_netcdf(path)
+    avg = route(path, START, GOAL, V, depth_range=(0.0, 500.0), cells=60)
+    uni = route(UniformField(0.15, 0.0), START, GOAL, V, cells=60)
+    gx, gy = (float(a) for a in LocalProjection(*START).to_local(*GOAL))
+    c = 0.15
+    a, b, cc = V * V - c * c, 2 * gx * c, -(gx * gx + gy * gy)
+    t_star = (-b + math.sqrt(b * b - 4 * a * cc)) / (2 * a)
+    assert avg.duration_s == pytest.approx(t_star, rel=1e-3)
+    assert avg.duration_s == pytest.approx(uni.duration_s, rel=1e-4)
+    assert avg.field_info["depth_average_m"] == [0.0, 500.0]
+
+
+def _tangent_arc_tangent(d, r):
+    """Shortest path around a disk of radius r between points at distance d either side."""
+    return 2 * math.sqrt(d * d - r * r) + r * (math.pi - 2 * math.acos(r / d))
+
+
+def test_island_tangent_arc_tangent(tmp_path):
+    """Zero current, a NaN island between start and goal: tangent-arc-tangent within 1%.
+
+    The obstacle the file defines is every field cell touching a NaN node, whose boundary
+    lies between R_n and R_n + sqrt(2) dx; the reference radius is R_n + dx / sqrt(2) (that
+    band moves the closed form by <= 0.4%). No track point may be on land.
+    """
+    centre = LocalProjection(30.0, -40.0)
+    lat = np.arange(29.7, 30.3001, 0.0025)
+    lon = np.arange(-40.35, -39.6499, 0.0029)
+    LA, LO = np.meshgrid(lat, lon, indexing="ij")
+    x, y = centre.to_local(LA, LO)
+    r_n, d = 8000.0, 20000.0
+    land = np.hypot(x, y) < r_n
+    u = np.where(land, np.nan, 0.0)[None, None]
+    path = tmp_path / "island.nc"
+    copernicus_dataset(lat, lon, TIMES[:1], [0.5], u, u).to_netcdf(path)
+    start = tuple(float(a) for a in centre.to_geographic(-d, 0.0))
+    goal = tuple(float(a) for a in centre.to_geographic(d, 0.0))
+    fld = open_field(path)
+    r = route(fld, start, goal, V)
+    dx = 0.0029 * 111_320 * math.cos(math.radians(30.0))
+    ref = _tangent_arc_tangent(d, r_n + dx / math.sqrt(2)) / V
+    assert r.status == "solved"
+    assert abs(r.duration_s - ref) <= 0.01 * ref
+    uu, _ = fld.velocity(0.0, r.lat, r.lon)
+    assert np.all(np.isfinite(uu)), "a track point is on land"
+    assert r.endpoint_error_m < 2 * r.stats["spacing_m"]
+
+
+def test_double_gyre_beats_crabbing_and_refinement_not_slower():
+    """The route is not slower than holding the straight line; refined <= grid."""
+    r = route(double_gyre(), (30.45, -39.8), (30.45, -38.2), 0.5, cells=100)
+    assert r.status == "solved" and r.straight_line_duration_s is not None
+    assert r.duration_s <= r.straight_line_duration_s
+    assert r.duration_s <= r.grid_duration_s
+    assert r.method != "grid"
+    assert r.endpoint_error_m < 100.0
+
+
+def test_unreachable_reports_best_distance():
+    """A 0.4 m/s current against a 0.3 m/s vehicle: the goal upstream cannot be reached."""
+    r = route(UniformField(-0.4, 0.0), (30.0, -40.0), (30.0, -39.7), V, cells=60)
+    assert r.status == "unreachable" and r.duration_s is None
+    gx = float(LocalProjection(30.0, -40.0).to_local(30.0, -39.7)[0])
+    assert 0.5 * gx < r.best_distance_m <= gx
+    assert r.straight_line_duration_s is None
