@@ -144,6 +144,8 @@ def main() -> None:
         and not better
     )
     print("PASS" if passed else "FAIL")
+    if not passed:
+        raise SystemExit(1)
 
 
 if __name__ == "__main__":

@@ -5,7 +5,8 @@ For N random goals in [-3, 3]^2 (uniform headings) and each speed ratio r/R in {
 started from Dubins paths only (independent of the synthesis), and the direct method started
 also from the synthesis's three best families. Checks: the synthesis cost is never above
 either direct cost by more than 1e-4 (relative), never above the Dubins-at-v_max and
-CCC-at-v_min times, equal for mirrored goals, and every path ends at its goal (< 1e-6).
+CCC-at-v_min times, equal for mirrored goals (1e-9), and every path ends at its goal
+(< 1e-6). Prints PASS or FAIL (exit 1).
 
     .venv/bin/python benchmarks/min_time_vs_direct.py [--n 200] [--processes 2] [--out FILE]
 """
@@ -122,6 +123,7 @@ def main() -> None:
         f"{len(rows)} goals ({len(FIXED_GOALS)} fixed, {args.n} random per speed ratio), "
         f"{wall:.0f} s on {args.processes} cores"
     )
+    failed = False
     for rho in (0.3, 0.5):
         sub = [r for r in rows if r["rho"] == rho]
         print(f"\nr/R = {rho}: {len(sub)} goals")
@@ -138,6 +140,7 @@ def main() -> None:
             )
             for r in worse:
                 print(f"    WORSE: {r}")
+            failed |= bool(worse)
         above = [r for r in sub if r["synthesis"] > r["dubins_bound"] * (1 + 1e-12)]
         miss = [r for r in sub if r["dissertation_types_only"] > r["synthesis"] + 1e-9]
         worst = max((r["dissertation_types_only"] / r["synthesis"] - 1 for r in miss), default=0)
@@ -151,10 +154,14 @@ def main() -> None:
             f" max endpoint error {err:.1e};"
             f" synthesis median {1e3 * np.median([r['synthesis_seconds'] for r in sub]):.1f} ms"
         )
+        failed |= bool(above) or mirror > 1e-9 or err >= 1e-6
         fams: dict[str, int] = {}
         for r in sub:
             fams[r["family"]] = fams.get(r["family"], 0) + 1
         print("  optimal families:", dict(sorted(fams.items(), key=lambda kv: -kv[1])))
+    print("FAIL" if failed else "PASS")
+    if failed:
+        raise SystemExit(1)
 
 
 if __name__ == "__main__":

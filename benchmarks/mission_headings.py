@@ -76,8 +76,8 @@ def main() -> None:
     args = ap.parse_args()
     print("random missions, spacing 0.5-5 R (R = 1), all headings free; mean over "
           f"{args.seeds} missions per size; times on this (shared) machine, one process\n")
-    header = (f"| n | method | K | total length (mean) | vs DP+refine | worst vs DP | "
-              f"time [s] (median) |")
+    header = ("| n | method | K | total length (mean) | vs DP+refine | worst vs DP | "
+              "CPU time [s] (median) |")
     print(header)
     print("|---|---|---|---|---|---|---|")
     never_longer = True
@@ -90,17 +90,17 @@ def main() -> None:
             fixed = np.full(n, np.nan)
             cost = StillAirCost(pts, 1.0)
             for k in (72, 360):
-                t0 = time.perf_counter()
+                t0 = time.process_time()
                 res = optimise_headings(cost, pts, fixed, k)
-                dt = time.perf_counter() - t0
+                dt = time.process_time() - t0
                 rows.setdefault(f"DP + refine|{k}", []).append((res.total, dt))
                 if k == 360 and n == 200:
                     t200.append(dt)
             for name, fn in HEURISTICS.items():
-                t0 = time.perf_counter()
+                t0 = time.process_time()
                 h = fn(pts, fixed)
                 total, _ = headings_cost(cost, h)
-                dt = time.perf_counter() - t0
+                dt = time.process_time() - t0
                 rows.setdefault(f"{name}|-", []).append((total, dt))
         dp = np.array([c for c, _ in rows["DP + refine|360"]])
         for key, vals in rows.items():
@@ -115,7 +115,7 @@ def main() -> None:
             print(f"| {n} | {name} | {k} | {c.mean():.3f} | {ratio.mean():.4f} | "
                   f"{ratio.max():.4f} | {np.median(t):.4f} |")
     # brute force
-    worst = -math.inf
+    worst = {72: -math.inf, 360: -math.inf}
     rng = np.random.default_rng(7)
     for b in range(args.brute):
         n = 3 if b % 2 == 0 else 4
@@ -124,16 +124,19 @@ def main() -> None:
         if n == 4:
             fixed[0] = rng.uniform(0, 2 * math.pi)
         bf = brute_force(pts, fixed)
-        res = optimise_headings(StillAirCost(pts, 1.0), pts, fixed, 72)
-        worst = max(worst, (res.total - bf) / bf)
+        for k in worst:
+            res = optimise_headings(StillAirCost(pts, 1.0), pts, fixed, k)
+            worst[k] = max(worst[k], (res.total - bf) / bf)
     med = float(np.median(t200))
-    print(f"\nbrute force (1 degree, {args.brute} missions of 3-4 waypoints): DP + refine with "
-          f"K = 72 is at most {100 * worst:+.4f} % from it (target <= +0.1 %): "
-          f"{'PASS' if worst <= 1e-3 else 'FAIL'}")
+    for k, wk in worst.items():
+        print(f"\nbrute force (1 degree, {args.brute} missions of 3-4 waypoints): DP + refine "
+              f"with K = {k} is at most {100 * wk:+.4f} % from it (target <= +0.1 %): "
+              f"{'PASS' if wk <= 1e-3 else 'FAIL'}{' (default K)' if k == 360 else ''}")
     print(f"never longer than a heuristic (K = 72 and 360, all missions): "
           f"{'PASS' if never_longer else 'FAIL'}")
-    print(f"200 waypoints, K = 360: median {med:.2f} s over {len(t200)} missions "
-          f"(target <= 2 s on one core): {'PASS' if med <= 2.0 else 'FAIL'}")
+    print(f"200 waypoints, K = 360: median CPU time {med:.2f} s over {len(t200)} missions "
+          f"(target <= 2 s on one core; process CPU time, as the machine is shared): "
+          f"{'PASS' if med <= 2.0 else 'FAIL'}")
     report_peers([
         "bisector, Savla alternating and point-at-next heuristics (implemented here, "
         "run in this process on the same missions)",

@@ -15,9 +15,12 @@ from glideplan.segments import Segment
 from glideplan.vehicles.base import Vehicle
 from glideplan.words import run_word
 
-__all__ = ["Path", "PathSamples"]
+__all__ = ["MAX_SAMPLES", "Path", "PathSamples"]
 
 _JOIN_TOL = 1e-7
+# At most this many samples per `Path.sample` call: ten float arrays of this length take
+# 800 MB; more is a mistake (or needs chunks), not a MemoryError halfway through.
+MAX_SAMPLES = 10_000_000
 
 
 @dataclass(frozen=True, eq=False)
@@ -135,9 +138,13 @@ class Path:
             tq = t0[k] + tl
         else:
             if times is None:
+                if n is not None and (isinstance(n, bool) or not float(n).is_integer()):
+                    raise InvalidParameterError("n", n, "must be an integer")
                 count = 200 if n is None else int(n)
-                if count < 2:
-                    raise InvalidParameterError("n", n, "must be >= 2")
+                if count < 2 or count > MAX_SAMPLES:
+                    raise InvalidParameterError(
+                        "n", n, f"must lie in [2, {MAX_SAMPLES}] (samples per call)"
+                    )
                 tq = np.linspace(0.0, t0[-1], count)
             else:
                 tq = np.clip(np.asarray(times, dtype=float).ravel(), 0.0, t0[-1])

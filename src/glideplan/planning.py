@@ -214,7 +214,7 @@ def _same_pose_solution(
 
     speed = float(getattr(vehicle, "speed", getattr(vehicle, "v_max", 1.0)))
     path = Path((Straight(start, 0.0, speed=speed),), vehicle)
-    cand = Candidate("", "", 0.0, path, "feasible", {"zero_length": True})
+    cand = Candidate("", "", 0.0, path, Status.FEASIBLE, {"zero_length": True})
     return Solution(
         Status.SOLVED,
         spec.name,

@@ -145,8 +145,37 @@ def plot_path(
     return ax
 
 
+def _wind_arrow(ax: Any, vehicle: Vehicle) -> None:
+    """An arrow in the top-left corner pointing where a steady wind blows, labelled."""
+    speed = float(getattr(vehicle, "wind_speed", 0.0) or 0.0)
+    if speed <= 0.0:
+        return
+    to = float(getattr(vehicle, "wind_direction", 0.0))
+    x0, y0, r = 0.1, 0.88, 0.06
+    ax.annotate(
+        "",
+        xy=(x0 + r * math.cos(to), y0 + r * math.sin(to)),
+        xytext=(x0 - r * math.cos(to), y0 - r * math.sin(to)),
+        xycoords="axes fraction",
+        arrowprops={"arrowstyle": "-|>", "color": "tab:blue", "lw": 1.8},
+    )
+    ax.text(
+        x0,
+        y0 - 0.1,
+        f"wind {speed:g} m/s",
+        transform=ax.transAxes,
+        ha="center",
+        fontsize=8,
+        color="tab:blue",
+    )
+
+
 def _title(solution: Solution, unit: str) -> str:
     head = f"{solution.planner} ({solution.objective}): {describe_vehicle(solution.vehicle)}"
+    eps = solution.extras.get("disturbance_ratio")
+    radius = solution.extras.get("radius")
+    if isinstance(eps, float) and eps > 0.0 and isinstance(radius, float):
+        head += f"; planned with R0 (1 + eps)^2 = {radius:.4g} m (eps = {eps:g})"
     problem = f"start {_pose_text(solution.start, unit)} -> goal {_pose_text(solution.goal, unit)}"
     if solution.ok:
         word = solution.word or "(none: start = goal)"
@@ -232,6 +261,7 @@ def plot_solution(solution: Solution, ax: Any = None, *, candidates: bool = Fals
         lim(mid - half_k, mid + half_k)
     ax.set_aspect("equal", adjustable="box")
     _label_axes(ax, unit)
+    _wind_arrow(ax, solution.vehicle)
     ax.grid(True, lw=0.4, alpha=0.5)
     ax.set_title(_title(solution, unit), fontsize=9, loc="left")
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=8)

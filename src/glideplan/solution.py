@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Any
 
-from glideplan.errors import PlanningError
+from glideplan.errors import InvalidParameterError, PlanningError
 from glideplan.path import Path
 from glideplan.pose import Pose
 from glideplan.vehicles.base import Vehicle
@@ -18,12 +18,22 @@ __all__ = ["Candidate", "Solution", "Status"]
 
 
 class Status(StrEnum):
-    """Outcome of a planning request."""
+    """Outcome of a planning request, of one candidate, or of one numerical solve.
 
-    SOLVED = "solved"  # a path was found and verified by integration
+    The one status vocabulary of the library (a `StrEnum`: members compare equal to their
+    strings, which is what `--json` prints). A `Solution` is SOLVED, NO_PATH, NOT_VERIFIED or
+    SOLVER_FAILED; a `Candidate` is FEASIBLE, INFEASIBLE, LOCAL or FAILED; a direct solve
+    (`glideplan.planners.direct.DirectResult`) is SOLVED or FAILED.
+    """
+
+    SOLVED = "solved"  # a path was found and verified by integration (or a solve converged)
     NO_PATH = "no_path"  # no candidate satisfies the boundary conditions
     NOT_VERIFIED = "not_verified"  # candidates exist but none passed verification
     SOLVER_FAILED = "solver_failed"  # a numerical solver failed (e.g. IPOPT did not converge)
+    FEASIBLE = "feasible"  # a candidate with a path that reaches the goal
+    INFEASIBLE = "infeasible"  # a candidate type with no path for this goal
+    LOCAL = "local"  # a converged start of a multi-start solve that is not the best
+    FAILED = "failed"  # one numerical solve (a start, a candidate) did not converge
 
 
 @dataclass(frozen=True, eq=False)
@@ -34,22 +44,35 @@ class Candidate:
     family: str
     cost: float
     path: Path | None = None
-    status: str = "feasible"
+    status: Status = Status.FEASIBLE
     info: Mapping[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        # a planner may pass the status's string; anything else is a bug
+        status = next((s for s in _CANDIDATE_STATUSES if s == self.status), None)
+        if status is None:
+            known = ", ".join(s.value for s in _CANDIDATE_STATUSES)
+            raise InvalidParameterError("status", self.status, f"must be one of {known}")
+        object.__setattr__(self, "status", status)
 
     @property
     def feasible(self) -> bool:
-        return self.path is not None and self.status == "feasible" and math.isfinite(self.cost)
+        return (
+            self.path is not None and self.status is Status.FEASIBLE and math.isfinite(self.cost)
+        )
 
     def to_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {
             "word": self.word,
             "family": self.family,
             "cost": self.cost,
-            "status": self.status,
+            "status": self.status.value,
         }
         out.update({k: v for k, v in self.info.items() if _jsonable(v)})
         return out
+
+
+_CANDIDATE_STATUSES = (Status.FEASIBLE, Status.INFEASIBLE, Status.LOCAL, Status.FAILED)
 
 
 def _jsonable(v: Any) -> bool:

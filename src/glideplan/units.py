@@ -1,4 +1,10 @@
-"""Unit conversions used only at the edges (CLI, files, presets); SI is used inside."""
+"""Unit conversions used only at the edges (CLI, files, presets); SI is used inside.
+
+Every factor is an exact definition (NIST SP 811): g0 = 9.80665 m/s^2, 1 lb = 0.45359237 kg,
+1 lbf = g0 lb, 1 in = 0.0254 m, 1 ft = 0.3048 m, 1 psi = 1 lbf/in^2, 0 degC = 273.15 K. They
+are the values of `scipy.constants` (checked in the tests), written here because importing
+`scipy.constants` costs a large part of the CLI's start-up time.
+"""
 
 from __future__ import annotations
 
@@ -8,70 +14,111 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 __all__ = [
+    "FT_M",
     "G0",
+    "INCH_M",
+    "LBF_N",
+    "LB_KG",
+    "PSI_PA",
+    "ZERO_CELSIUS_K",
+    "celsius_to_kelvin",
     "deg_to_rad",
+    "feet_to_m",
     "inch3_to_m3",
     "inch_to_m",
     "kmh_to_ms",
+    "lb_to_kg",
     "litre_to_m3",
     "m3_to_litre",
     "ms_to_kmh",
+    "n_to_lbf",
     "pa_to_psi",
     "psi_to_pa",
     "rad_to_deg",
 ]
 
 G0 = 9.80665  # standard gravity, m/s^2
-_PSI = 6894.757293168361  # Pa per psi
-_INCH = 0.0254  # m per inch
+LB_KG = 0.45359237  # kg per pound (mass)
+LBF_N = G0 * LB_KG  # N per pound-force
+INCH_M = 0.0254  # m per inch
+FT_M = 12.0 * INCH_M  # m per foot
+PSI_PA = LBF_N / INCH_M**2  # Pa per psi
+ZERO_CELSIUS_K = 273.15  # K at 0 degC
+_KMH_MS = 1.0 / 3.6  # m/s per km/h
+
+
+def _scaled(x: ArrayLike, factor: float, offset: float = 0.0) -> np.ndarray | float:
+    """x * factor + offset: a float for a scalar, an array otherwise."""
+    if np.ndim(x):
+        return np.asarray(x, dtype=float) * factor + offset
+    return float(x) * factor + offset  # type: ignore[arg-type]
 
 
 def kmh_to_ms(v_kmh: ArrayLike) -> np.ndarray | float:
     """Speed in km/h to m/s."""
-    return np.asarray(v_kmh, dtype=float) / 3.6 if np.ndim(v_kmh) else float(v_kmh) / 3.6
+    return _scaled(v_kmh, _KMH_MS)
 
 
 def ms_to_kmh(v_ms: ArrayLike) -> np.ndarray | float:
     """Speed in m/s to km/h."""
-    return np.asarray(v_ms, dtype=float) * 3.6 if np.ndim(v_ms) else float(v_ms) * 3.6
+    return _scaled(v_ms, 3.6)
 
 
 def deg_to_rad(a_deg: ArrayLike) -> np.ndarray | float:
     """Angle in degrees to radians."""
-    return np.deg2rad(a_deg) if np.ndim(a_deg) else math.radians(float(a_deg))
+    return np.deg2rad(a_deg) if np.ndim(a_deg) else math.radians(float(a_deg))  # type: ignore[arg-type]
 
 
 def rad_to_deg(a_rad: ArrayLike) -> np.ndarray | float:
     """Angle in radians to degrees."""
-    return np.rad2deg(a_rad) if np.ndim(a_rad) else math.degrees(float(a_rad))
+    return np.rad2deg(a_rad) if np.ndim(a_rad) else math.degrees(float(a_rad))  # type: ignore[arg-type]
 
 
 def psi_to_pa(p_psi: ArrayLike) -> np.ndarray | float:
     """Pressure in psi to pascal."""
-    return np.asarray(p_psi, dtype=float) * _PSI if np.ndim(p_psi) else float(p_psi) * _PSI
+    return _scaled(p_psi, PSI_PA)
 
 
 def pa_to_psi(p_pa: ArrayLike) -> np.ndarray | float:
     """Pressure in pascal to psi."""
-    return np.asarray(p_pa, dtype=float) / _PSI if np.ndim(p_pa) else float(p_pa) / _PSI
+    return _scaled(p_pa, 1.0 / PSI_PA)
 
 
 def litre_to_m3(v_l: ArrayLike) -> np.ndarray | float:
     """Volume in litres to cubic metres."""
-    return np.asarray(v_l, dtype=float) * 1e-3 if np.ndim(v_l) else float(v_l) * 1e-3
+    return _scaled(v_l, 1e-3)
 
 
 def m3_to_litre(v_m3: ArrayLike) -> np.ndarray | float:
     """Volume in cubic metres to litres."""
-    return np.asarray(v_m3, dtype=float) * 1e3 if np.ndim(v_m3) else float(v_m3) * 1e3
+    return _scaled(v_m3, 1e3)
 
 
 def inch_to_m(l_in: ArrayLike) -> np.ndarray | float:
     """Length in inches to metres."""
-    return np.asarray(l_in, dtype=float) * _INCH if np.ndim(l_in) else float(l_in) * _INCH
+    return _scaled(l_in, INCH_M)
 
 
 def inch3_to_m3(v_in3: ArrayLike) -> np.ndarray | float:
     """Volume in cubic inches to cubic metres."""
-    k = _INCH**3
-    return np.asarray(v_in3, dtype=float) * k if np.ndim(v_in3) else float(v_in3) * k
+    return _scaled(v_in3, INCH_M**3)
+
+
+def feet_to_m(l_ft: ArrayLike) -> np.ndarray | float:
+    """Length in feet to metres."""
+    return _scaled(l_ft, FT_M)
+
+
+def lb_to_kg(m_lb: ArrayLike) -> np.ndarray | float:
+    """Mass in pounds to kilograms."""
+    return _scaled(m_lb, LB_KG)
+
+
+def n_to_lbf(f_n: ArrayLike) -> np.ndarray | float:
+    """Force in newtons to pound-force."""
+    return _scaled(f_n, 1.0 / LBF_N)
+
+
+def celsius_to_kelvin(t_c: ArrayLike) -> np.ndarray | float:
+    """Temperature in degC to K."""
+    return _scaled(t_c, 1.0, ZERO_CELSIUS_K)

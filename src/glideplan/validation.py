@@ -15,7 +15,11 @@ __all__ = [
     "check_in_range",
     "check_less",
     "check_nonnegative",
+    "check_nonnegative_array",
     "check_positive",
+    "check_positive_array",
+    "check_probability",
+    "scalar_or_array",
 ]
 
 
@@ -83,13 +87,54 @@ def check_less(name_a: str, a: float, name_b: str, b: float, *, strict: bool = T
 
 
 def check_finite_array(name: str, value: Any, *, last_dim: int | None = None) -> np.ndarray:
-    """Return `value` as a float array with only finite entries (and the given last axis size)."""
+    """Return `value` as a float array with only finite entries (and the given last axis size).
+
+    A scalar is a 0-d array; a bool or text (or an array of them) is refused.
+    """
+    if isinstance(value, (bool, np.bool_, str, bytes)) or (
+        isinstance(value, np.ndarray) and value.dtype.kind in "bSUO"
+    ):
+        raise InvalidParameterError(name, value, "must be a real number or array of them")
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise InvalidParameterError(name, value, "must be an array of real numbers") from None
+        raise InvalidParameterError(name, value, "must be a real number or array of them") from None
     if last_dim is not None and (arr.ndim == 0 or arr.shape[-1] != last_dim):
         raise InvalidParameterError(name, arr.shape, f"last axis must have size {last_dim}")
     if not np.all(np.isfinite(arr)):
-        raise InvalidParameterError(name, "array", "must be finite (no NaN or infinity)")
+        shown = value if arr.ndim == 0 else "array"
+        raise InvalidParameterError(name, shown, "must be finite (no NaN or infinity)")
     return arr
+
+
+def _first_bad(arr: np.ndarray, mask: np.ndarray) -> float:
+    return float(arr[mask].flat[0]) if arr.ndim else float(arr)
+
+
+def check_nonnegative_array(name: str, value: Any) -> np.ndarray:
+    """Return `value` as a finite float array with every entry >= 0."""
+    arr = check_finite_array(name, value)
+    if np.any(arr < 0.0):
+        raise InvalidParameterError(name, _first_bad(arr, arr < 0.0), "must be >= 0")
+    return arr
+
+
+def check_positive_array(name: str, value: Any) -> np.ndarray:
+    """Return `value` as a finite float array with every entry > 0."""
+    arr = check_finite_array(name, value)
+    if np.any(arr <= 0.0):
+        raise InvalidParameterError(name, _first_bad(arr, arr <= 0.0), "must be > 0")
+    return arr
+
+
+def check_probability(name: str, value: Any) -> float:
+    """Return `value` as a float in [0, 1]."""
+    arr = check_finite_array(name, value)
+    if arr.ndim != 0 or not 0.0 <= float(arr) <= 1.0:
+        raise InvalidParameterError(name, value, "must be a probability in [0, 1]")
+    return float(arr)
+
+
+def scalar_or_array(x: np.ndarray) -> np.ndarray | float:
+    """Return a Python float for 0-d results, the array otherwise."""
+    return float(x) if np.ndim(x) == 0 else x

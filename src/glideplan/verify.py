@@ -9,9 +9,9 @@ Gauss-Legendre rules (NumPy) on pieces turning at most pi/4, whose error is belo
 the piece length; this keeps SciPy out of the start-up of a Dubins plan. Other segments are
 integrated with SciPy's DOP853 (imported when needed). The difference
 between the integrated end state and the goal is the endpoint error every solution carries.
-A segment flown in a steady uniform wind or current reports it as `drift = (wx, wy)` (m/s),
-which is added to the velocity (eq. A.4 with no unknown part); segments without the
-attribute have no drift.
+Every segment reports the steady uniform wind or current it is flown in as
+`drift = (wx, wy)` (m/s; zero for most), which is added to the velocity (eq. A.4 with no
+unknown part).
 """
 
 from __future__ import annotations
@@ -57,7 +57,7 @@ class IntegratedPath:
 
 def _constant_controls(seg: Segment, rate: Any) -> tuple[float, float, float] | None:
     """(speed, turn rate, cost rate) when the segment's controls are constant, else None."""
-    if not getattr(seg, "constant_controls", False):
+    if not seg.constant_controls:
         return None
     v, u = seg.controls(np.array([0.0, 0.5 * seg.duration, seg.duration]))
     if np.ptp(v) > 1e-12 * abs(v[0]) or np.ptp(u) > 1e-12 * max(1.0, abs(u[0])):
@@ -100,7 +100,7 @@ def integrate_path(
     for seg in path.segments:
         if seg.duration <= 0.0:
             continue
-        wx, wy = (float(c) for c in getattr(seg, "drift", (0.0, 0.0)))
+        wx, wy = (float(c) for c in seg.drift)
         fixed = _constant_controls(seg, rate)
         if fixed is not None:
             state = _integrate_constant(state, seg.duration, fixed, np.array([wx, wy]))

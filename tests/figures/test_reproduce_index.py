@@ -77,7 +77,7 @@ def test_index_md_is_rendered_from_the_same_rows(index):
     text = (out / "index.md").read_text()
     for fig in doc["figures"].values():
         for row in fig["rows"]:
-            assert row["quantity"].replace("|", "/") in text
+            assert row["quantity"].replace("|", "\\|") in text
     total = sum(len(f["rows"]) for f in doc["figures"].values())
     assert f"Rows: {total};" in text
 

@@ -64,7 +64,7 @@ def test_local_route_with_wind(run_cli, tmp_path):
         (["--speed", "1", "--radius", "10", "--wind", "0.2", "0", "--objective", "length"],
          "--objective"),
         (["--speed", "1", "--radius", "10", "--formats", "gpx"], "--formats"),
-        (["--speed", "1", "--radius", "10", "--field", "x.nc"], "--field"),
+        (["--speed", "1", "--radius", "10", "--field", "missing.nc"], "--field"),
         (["--speed", "1", "--radius", "10", "--plot", "m.txt"], "--plot"),
     ],
 )
@@ -78,3 +78,25 @@ def test_geographic_formats_need_a_geographic_route(cli_error, tmp_path):
     line = cli_error("mission", "plan", str(p), "--speed", "1", "--radius", "100", "--export",
                      str(tmp_path / "o"), "--formats", "slocum")
     assert "geographic route" in line
+
+
+@pytest.mark.parametrize(
+    ("flag", "value"),
+    [("--goto-number", "120"), ("--max-goto-waypoints", "1"), ("--acceptance-radius", "0"),
+     ("--max-deviation", "-5")],
+)
+def test_bad_export_options_fail_before_planning(cli_error, tmp_path, flag, value):
+    line = cli_error("mission", "plan", str(DATA), "--speed", "1", "--radius", "10",
+                     "--export", str(tmp_path), flag, value)
+    assert flag in line
+
+
+def test_demo_mission_example(tmp_path):
+    """`make demo`'s mission row: planned, not longer than the heuristics, files written."""
+    from glideplan.cli.demo import _mission_example
+
+    row = _mission_example(tmp_path, plots=False)
+    assert row["ok"]
+    assert float(row["cost"]) <= float(row["reference"].split()[0]) + 0.05
+    for name in ("goto_l10.ma", "targets", "buzzards_bay.plan", "buzzards_bay.kml"):
+        assert (tmp_path / name).is_file()

@@ -49,10 +49,12 @@ def test_wind_times_match_the_planner():
     1e-6 relative on random legs (it may only overestimate, when two roots share a cell)."""
     rng = np.random.default_rng(4)
     v, r, wind = 1.0, 1.0, (0.3, -0.2)
-    starts = np.zeros((25, 3))
-    starts[:, 2] = rng.uniform(-math.pi, math.pi, 25)
-    goals = np.column_stack([rng.uniform(-6, 6, 25), rng.uniform(-6, 6, 25),
-                             rng.uniform(-math.pi, math.pi, 25)])
+    m = 60  # goals at 0.5-6 R: short legs, where arcs wrap and words jump by 2 pi R
+    starts = np.zeros((m, 3))
+    starts[:, 2] = rng.uniform(-math.pi, math.pi, m)
+    dist, bearing = rng.uniform(0.5, 6.0, m), rng.uniform(-math.pi, math.pi, m)
+    goals = np.column_stack([dist * np.cos(bearing), dist * np.sin(bearing),
+                             rng.uniform(-math.pi, math.pi, m)])
     got = convected_times(starts, goals, speed=v, radius=r, wind=wind)
     for s, g, t in zip(starts, goals, got, strict=True):
         c, sn = math.cos(s[2]), math.sin(s[2])

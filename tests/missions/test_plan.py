@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import pathlib
 
 import numpy as np
 import pytest
@@ -75,4 +76,17 @@ def test_wind_mission_times_match_the_wind_planner():
         wind_local = (c * 0.0 + s * -0.2, -s * 0.0 + c * -0.2)  # (0, -0.2) rotated
         ref = convected_dubins(local, speed=1.0, radius=150.0, wind=wind_local).time
         assert leg.duration_s == pytest.approx(ref, rel=1e-9)
+    assert plan.total_duration_s == pytest.approx(plan.heading_plan.total, rel=1e-6)
+
+
+def test_wind_mission_planned_cost_is_the_flown_time():
+    """Regression: in a wind the optimiser's cost of the chosen headings (vectorised times)
+    equals the verified legs' total time; a spurious root at a 2 pi jump of a word's length
+    once made the refinement report less than the planner then flew."""
+    from glideplan.formats import read_route
+
+    data = pathlib.Path(__file__).parents[2] / "src/glideplan/missions/data/buzzards_bay.gpx"
+    plan = plan_mission(read_route(data), speed=0.5, radius=300.0, objective="time",
+                        wind=(0.15, 200.0), headings=12)
+    assert plan.ok
     assert plan.total_duration_s == pytest.approx(plan.heading_plan.total, rel=1e-6)

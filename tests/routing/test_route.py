@@ -139,18 +139,22 @@ def test_island_tangent_arc_tangent(tmp_path):
 
 def test_double_gyre_beats_crabbing_and_refinement_not_slower():
     """The route is not slower than holding the straight line; refined <= grid."""
-    r = route(double_gyre(), (30.45, -39.8), (30.45, -38.2), 0.5, cells=100)
+    r = route(double_gyre(), (30.45, -39.8), (30.45, -38.2), 0.5, cells=60)
     assert r.status == "solved" and r.straight_line_duration_s is not None
     assert r.duration_s <= r.straight_line_duration_s
     assert r.duration_s <= r.grid_duration_s
     assert r.method != "grid"
-    assert r.endpoint_error_m < 100.0
+    # The refinement flies the grid's bilinear current; the field itself differs by O(h^2).
+    assert r.endpoint_error_m < 0.1 * r.stats["spacing_m"]
 
 
 def test_unreachable_reports_best_distance():
-    """A 0.4 m/s current against a 0.3 m/s vehicle: the goal upstream cannot be reached."""
+    """A 0.4 m/s current against a 0.3 m/s vehicle: the goal upstream cannot be reached.
+
+    Every point reachable after t = 0 lies downstream, so the closest approach is the start.
+    """
     r = route(UniformField(-0.4, 0.0), (30.0, -40.0), (30.0, -39.7), V, cells=60)
     assert r.status == "unreachable" and r.duration_s is None
     gx = float(LocalProjection(30.0, -40.0).to_local(30.0, -39.7)[0])
-    assert 0.5 * gx < r.best_distance_m <= gx
+    assert r.best_distance_m == pytest.approx(gx, rel=1e-9)
     assert r.straight_line_duration_s is None

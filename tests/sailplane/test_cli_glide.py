@@ -235,3 +235,17 @@ def test_ardusoar_needs_a_wing_area(cli_error, fixtures_dir, tmp_path):
         "glide", "ardusoar", str(fixtures_dir / "Delta_LF.plr"), "--out", str(tmp_path / "p")
     )
     assert "--wing-area" in line
+
+
+def test_wind_stronger_than_the_glider_is_below_glide(run_cli, dg_file):
+    """A 45 m/s headwind beats the polar's top speed (150 km/h): no airspeed makes progress,
+    so the goal is "below glide" at any altitude (straight or with an arrival heading)."""
+    base = ["glide", "final", "--polar", str(dg_file), "--from", "47.0", "8.0", "1500"]
+    for extra in ([], ["--arrival-heading", "0"]):
+        code, out, err = run_cli(
+            *base, "--to", "47.3", "8.0", "420", "--wind", "45", "0", "--json", *extra
+        )
+        assert code == 0, err
+        d = json.loads(out)
+        assert d["status"] == "below glide"
+        assert d["altitude_loss_m"] is None and "wind" in d["message"]

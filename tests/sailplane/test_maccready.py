@@ -73,3 +73,27 @@ def test_vectorised_over_many_goals_equals_one_at_a_time(dg_polar):
 def test_wind_faster_than_the_glider_makes_the_goal_unreachable(dg_polar):
     g = straight_final_glide(dg_polar, 5000.0, 0.0, wind=(-60.0, 0.0), start_altitude=5000.0)
     assert math.isinf(float(g.altitude_loss)) and not bool(g.reachable)
+
+
+def test_speed_to_fly_is_a_minimum_for_any_wind(dg_polar):
+    """Property (Hypothesis): no feasible airspeed nearby does better than the speed to fly."""
+    from hypothesis import given, settings
+    from hypothesis import strategies as st
+
+    p = dg_polar
+
+    def f(v, mc, wt, wc):
+        return (p.sink(v) + mc) / (math.sqrt(v * v - wc * wc) + wt)
+
+    @settings(max_examples=200, deadline=None)
+    @given(st.floats(-15.0, 15.0), st.floats(-15.0, 15.0), st.floats(0.0, 5.0))
+    def check(wt, wc, mc):
+        v = float(speed_to_fly(p, mc, wt, wc))
+        if not math.isfinite(v):
+            return
+        for dv in (-0.05, 0.05):
+            u = v + dv
+            if p.v_min <= u <= p.v_max and u > abs(wc) and math.sqrt(u * u - wc * wc) + wt > 0:
+                assert f(v, mc, wt, wc) <= f(u, mc, wt, wc) * (1 + 1e-12)
+
+    check()

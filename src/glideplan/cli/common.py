@@ -87,7 +87,8 @@ def solving(description: str, function: Callable[[], T]) -> T:
         console=console,
         transient=True,
     ) as progress:
-        progress.add_task(description, total=None)
+        hint = " (Ctrl-C stops; --time-limit SECONDS bounds it)" if "direct" in description else ""
+        progress.add_task(description + hint, total=None)
         return function()
 
 

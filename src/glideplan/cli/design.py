@@ -16,7 +16,7 @@ import typer
 from glideplan.cli.app import design_app
 from glideplan.cli.common import flag_names, print_json, print_warnings
 from glideplan.errors import InvalidParameterError
-from glideplan.validation import check_finite, check_positive
+from glideplan.validation import check_finite, check_in_range, check_positive
 
 ParamsOpt = Annotated[
     pathlib.Path | None,
@@ -27,6 +27,8 @@ ParamsOpt = Annotated[
         "defaults, listed in a warning.",
     ),
 ]
+MAX_STATIONS = 1001  # `design trim --steps`: a table, not a sweep
+
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")]
 
 
@@ -116,15 +118,17 @@ def tank(
     """Air in the tank by the ideal gas law (7.1) and how deep it can inflate."""
     from glideplan.design import M_AIR_KG_PER_MOL, R_GAS_J_PER_MOL_K
     from glideplan.units import pa_to_psi, psi_to_pa
-    from glideplan.validation import check_positive
 
     p = _params(params)
     t = p.tank
     env = p.environment
+    rated_psi = float(pa_to_psi(t.max_pressure_pa))
     p_pa = (
         t.max_pressure_pa
         if pressure_psi is None
-        else psi_to_pa(check_positive("--pressure-psi", pressure_psi))
+        else psi_to_pa(
+            check_in_range("--pressure-psi", pressure_psi, 0.0, rated_psi, low_open=True)
+        )
     )
     n = float(t.moles(env.temperature_k, p_pa))
     data = {
@@ -214,7 +218,8 @@ def valve(
     v = litre_to_m3(_bladder_volume_l("--volume-l", volume_l, b))
     cd = h.drag_coefficient if drag_coefficient is None else drag_coefficient
     check_positive("--tank-psi", tank_psi)
-    with flag_names(depth_m="--depth-m", drag_coefficient="--cd"):
+    names = {"tank_pressure_pa": "--tank-psi (in Pa)"}
+    with flag_names(depth_m="--depth-m", drag_coefficient="--cd", **names):
         zdot = float(terminal_depth_rate_m_s(b.net_weight_n(v, env), h.cross_section_m2, cd, env))
         ndot = float(air_exchange_rate_mol_s(v, zdot, env))
         data: dict[str, Any] = {
@@ -266,8 +271,8 @@ def trim(
     )
     from glideplan.units import litre_to_m3
 
-    if steps < 2:
-        raise InvalidParameterError("--steps", steps, "must be >= 2")
+    if not 2 <= steps <= MAX_STATIONS:
+        raise InvalidParameterError("--steps", steps, f"must lie in [2, {MAX_STATIONS}]")
     p = _params(params)
     lay = p.trim
     v = litre_to_m3(_bladder_volume_l("--bladder-l", bladder_l, p.bladder))
@@ -372,12 +377,13 @@ def lbl(
         raise InvalidParameterError(flag.get(exc.name, exc.name), exc.value, exc.rule) from None
     b = np.asarray(cfg.beacons_m)
     pad = 0.1 * float(np.max(np.ptp(b, axis=0)))
-    track = lawnmower_track(
-        (float(b[:, 0].min() - pad), float(b[:, 0].max() + pad)),
-        (float(b[:, 1].min() - pad), float(b[:, 1].max() + pad)),
-        swaths,
-        step_m,
-    )
+    with flag_names(swaths="--swaths", step_m="--step-m"):
+        track = lawnmower_track(
+            (float(b[:, 0].min() - pad), float(b[:, 0].max() + pad)),
+            (float(b[:, 1].min() - pad), float(b[:, 1].max() + pad)),
+            swaths,
+            step_m,
+        )
     stats = simulate_survey(cfg, track, seed).statistics
     data = stats.to_dict() | {"seed": seed, "beacons": len(b), "method": cfg.method}
     rows = [[k, v] for k, v in data.items()]

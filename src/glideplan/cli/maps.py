@@ -11,6 +11,7 @@ import numpy as np
 import typer
 
 from glideplan.cli.app import map_app
+from glideplan.cli.common import check_figure_file, flag_names
 from glideplan.errors import InvalidParameterError
 
 HeadingOpt = Annotated[
@@ -20,9 +21,13 @@ ExtentOpt = Annotated[
     float, typer.Option("--extent", help="Half-width L of the grid [-L, L]^2 (units of R0).")
 ]
 GridOpt = Annotated[int, typer.Option("--n", help="Grid points per axis (n x n goals).")]
-OutOpt = Annotated[pathlib.Path | None, typer.Option("--out", help="Figure file (PNG, PDF, SVG).")]
+OutOpt = Annotated[
+    pathlib.Path | None,
+    typer.Option("--out", metavar="FILE", help="Figure file (PNG, PDF, SVG)."),
+]
 DataOpt = Annotated[
-    pathlib.Path | None, typer.Option("--data", help="Grid data file (.csv or .npz).")
+    pathlib.Path | None,
+    typer.Option("--data", metavar="FILE", help="Grid data file (.csv or .npz)."),
 ]
 SchedulerOpt = Annotated[
     str | None,
@@ -33,9 +38,14 @@ ProcessesOpt = Annotated[
 ]
 
 
+_FLAGS = {"n": "--n", "extent": "--extent", "eps": "--eps", "disturbance_ratio": "--eps"}
+
+
 def _check_data_file(path: pathlib.Path | None) -> None:
     if path is not None and path.suffix.lower() not in (".csv", ".npz"):
-        raise InvalidParameterError("data", str(path), "must end in .csv or .npz")
+        raise InvalidParameterError("--data", str(path), "must end in .csv or .npz")
+    if path is not None and not (path.parent if str(path.parent) else pathlib.Path(".")).is_dir():
+        raise InvalidParameterError("--data", str(path), "its directory does not exist")
 
 
 def _batch_options(scheduler: str | None, processes: int | None) -> dict[str, Any]:
@@ -44,14 +54,15 @@ def _batch_options(scheduler: str | None, processes: int | None) -> dict[str, An
         opts["scheduler"] = scheduler
     if processes is not None:
         if processes < 1:
-            raise InvalidParameterError("processes", processes, "must be >= 1")
+            raise InvalidParameterError("--processes", processes, "must be >= 1")
         opts["processes"] = processes
     return opts
 
 
 def _write_data(path: pathlib.Path, columns: dict[str, np.ndarray], meta: dict[str, Any]) -> None:
     if path.suffix.lower() == ".npz":
-        np.savez_compressed(path, **columns, **{k: np.asarray(v) for k, v in meta.items()})
+        arrays: dict[str, Any] = {**columns, **{k: np.asarray(v) for k, v in meta.items()}}
+        np.savez_compressed(path, **arrays)
         return
     names = list(columns)
     with path.open("w", newline="") as fh:
@@ -90,8 +101,10 @@ def partition_command(
     from glideplan.studies.maps import partition_map
 
     _check_data_file(data)
-    psi1 = math.radians(_finite("heading", heading))
-    pmap = partition_map(psi1, extent, n, eps, **_batch_options(scheduler, processes))
+    check_figure_file(out, "--out")
+    psi1 = math.radians(_finite("--heading", heading))
+    with flag_names(**_FLAGS):
+        pmap = partition_map(psi1, extent, n, eps, **_batch_options(scheduler, processes))
     table = Table(title=f"Dubins partition, heading {heading:g} deg, eps {eps:g}, {n}x{n} grid")
     table.add_column("optimal word(s)")
     table.add_column("share of grid", justify="right")
@@ -120,8 +133,10 @@ def tradespace_command(
     from glideplan.studies.maps import tradespace_map
 
     _check_data_file(data)
-    psi1 = math.radians(_finite("heading", heading))
-    tmap = tradespace_map(psi1, eps, extent, n, **_batch_options(scheduler, processes))
+    check_figure_file(out, "--out")
+    psi1 = math.radians(_finite("--heading", heading))
+    with flag_names(**_FLAGS):
+        tmap = tradespace_map(psi1, eps, extent, n, **_batch_options(scheduler, processes))
     ratio = tmap.ratio[np.isfinite(tmap.ratio)]
     table = Table(title=f"Tradespace T, heading {heading:g} deg, eps {eps:g}, {n}x{n} grid")
     table.add_column("quantity")

@@ -4,13 +4,23 @@ from __future__ import annotations
 
 import math
 import pathlib
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
 from glideplan.cli.app import mission_app
-from glideplan.cli.common import announce, check_figure_file, flag_names, print_json
+from glideplan.cli.common import (
+    announce,
+    check_figure_file,
+    flag_names,
+    print_json,
+    print_warnings,
+)
 from glideplan.errors import InvalidParameterError, PlanningError
+
+if TYPE_CHECKING:
+    from glideplan.missions.field_mission import FieldMission
+    from glideplan.missions.plan import MissionPlan
 
 
 def _track_json(plan: Any, track: Any) -> dict[str, list[float]]:
@@ -38,8 +48,9 @@ def mission_plan(
         help="Steady wind/current: speed (m/s) and the compass direction it blows FROM (deg).",
         show_default=False)] = None,
     field: Annotated[pathlib.Path | None, typer.Option(
-        "--field", help="Current field file (the routing issue's fields): not yet supported.",
-        show_default=False)] = None,
+        "--field", help="Current/wind field file (NetCDF or GRIB, as `glideplan route`): each "
+                        "leg is routed through it (time-optimal, headings free; --radius "
+                        "unused).", show_default=False)] = None,
     headings: Annotated[int | None, typer.Option(
         "--headings", help="Candidate headings per free waypoint K (default 360; 36 in wind).",
         show_default=False)] = None,
@@ -74,11 +85,11 @@ def mission_plan(
     from glideplan.formats import ExportOptions, export_mission, parse_formats, read_route
     from glideplan.missions import plan_mission, straight_leg_list
 
-    if field is not None:
-        raise InvalidParameterError(
-            "--field", str(field), "not yet supported by mission plan (use --wind for a "
-            "steady current)")
     plot = check_figure_file(plot)
+    if field is not None and wind is not None:
+        raise InvalidParameterError("--wind", wind, "give either --wind or --field, not both")
+    if field is not None and objective not in (None, "time"):
+        raise InvalidParameterError("--objective", objective, "with --field only time")
     if not math.isfinite(speed) or speed <= 0:
         raise InvalidParameterError("--speed", speed, "must be finite and > 0 (m/s)")
     if not math.isfinite(radius) or radius <= 0:
@@ -88,7 +99,8 @@ def mission_plan(
             "--wind", wind[0], f"speed must be below the vehicle's speed {speed:g} m/s")
     obj = objective or ("time" if wind is not None else "length")
     with flag_names(**{"acceptance-radius": "--acceptance-radius", "altitude": "--altitude",
-                       "max-deviation": "--max-deviation"}):
+                       "max-deviation": "--max-deviation", "goto-number": "--goto-number",
+                       "max-goto-waypoints": "--max-goto-waypoints"}):
         options = ExportOptions(acceptance_radius=acceptance_radius,
                                 max_deviation=max_deviation, altitude=altitude,
                                 goto_number=goto_number, max_goto_waypoints=max_goto_waypoints,
@@ -96,16 +108,18 @@ def mission_plan(
     r = read_route(route)
     if formats is not None and export is None:
         raise InvalidParameterError("--formats", formats, "needs --export DIR")
-    with flag_names(formats="--formats", headings="--headings", objective="--objective"):
+    mission: MissionPlan | FieldMission
+    with flag_names(formats="--formats", headings="--headings", objective="--objective",
+                    field="--field"):
         fmts = parse_formats(formats, r.geographic) if export is not None else ()
-        mission = plan_mission(r, speed=speed, radius=radius, objective=obj,
-                               wind=None if wind is None else (wind[0], wind[1]),
-                               headings=headings)
+        if field is not None:
+            mission = _plan_in_field(r, field, speed)
+        else:
+            mission = plan_mission(r, speed=speed, radius=radius, objective=obj,
+                                   wind=None if wind is None else (wind[0], wind[1]),
+                                   headings=headings)
     if not mission.ok:
-        bad = next(leg for leg in mission.legs if not leg.solution.ok)
-        raise PlanningError(
-            f"leg {bad.index + 1} ({r.names[bad.start]} -> {r.names[bad.end]}): "
-            f"{bad.solution.status.value}: {bad.solution.message}")
+        raise PlanningError(_failure(mission))
     files: dict[str, Any] = {}
     with flag_names(**{"max-deviation": "--max-deviation", "goto-number": "--goto-number",
                        "max-goto-waypoints": "--max-goto-waypoints"}):
@@ -136,13 +150,41 @@ def mission_plan(
     _print_summary(mission, legs, files)
 
 
+def _plan_in_field(r: Any, path: pathlib.Path, speed: float) -> FieldMission:
+    from glideplan.fields import open_field
+    from glideplan.missions.field_mission import plan_mission_in_field
+
+    if not r.geographic:
+        raise InvalidParameterError("--field", str(path), "needs a geographic route (lat/lon)")
+    if not path.is_file():
+        raise InvalidParameterError("--field", str(path), "no such file")
+    mission = plan_mission_in_field(r, open_field(path), speed=speed)
+    for name in mission.stats["headings_not_enforced"]:
+        print_warnings([f"heading given at {name} is not enforced when routing through a "
+                        "field (the router steers a point mass)"])
+    return mission
+
+
+def _failure(mission: Any) -> str:
+    r = mission.route
+    for leg in mission.legs:
+        solution = getattr(leg, "solution", None)
+        if solution is None and not leg.ok:  # a FieldLeg
+            return (f"leg {leg.index + 1} ({r.names[leg.start]} -> {r.names[leg.end]}): "
+                    f"unreachable through the field: {leg.result.message}")
+        if solution is not None and not solution.ok:
+            return (f"leg {leg.index + 1} ({r.names[leg.start]} -> {r.names[leg.end]}): "
+                    f"{leg.solution.status.value}: {leg.solution.message}")
+    return "planning failed"
+
+
 def _print_summary(mission: Any, legs: Any, files: dict[str, Any]) -> None:
     r = mission.route
     typer.echo(f"mission {r.source}: {r.n} waypoints, {len(mission.legs)} legs, objective "
-               f"{mission.objective}")
+               f"{mission.objective}{' (through the field)' if mission.radius is None else ''}")
     for i, leg in enumerate(mission.legs):
         typer.echo(f"  leg {i + 1:3d} {r.names[leg.start]:>10s} -> {r.names[leg.end]:<10s} "
-                   f"{leg.solution.word:4s} {leg.length_m:10.1f} m {leg.duration_s:10.1f} s")
+                   f"{leg.word:4s} {leg.length_m:10.1f} m {leg.duration_s:10.1f} s")
     hd = ", ".join(f"{r.names[i]} {h:.1f}" for i, h in enumerate(mission.headings_deg))
     typer.echo(f"headings (compass deg): {hd}")
     typer.echo(f"total: {mission.total_length_m:.1f} m, {mission.total_duration_s:.1f} s; "

@@ -54,7 +54,7 @@ def _cell(value: object) -> str:
         return "-"
     if isinstance(value, float):
         return f"{value:.6g}"
-    return str(value).replace("|", "/")
+    return str(value).replace("|", "\\|")  # a literal bar inside a Markdown table cell
 
 
 def index_json(results: list[FigureResult], out: pathlib.Path) -> dict[str, Any]:

@@ -8,12 +8,6 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from glideplan.design._checks import (
-    finite_array,
-    nonnegative_array,
-    positive_array,
-    scalar_or_array,
-)
 from glideplan.design.gas import (
     FRESH_WATER,
     R_GAS_J_PER_MOL_K,
@@ -22,7 +16,10 @@ from glideplan.design.gas import (
 )
 from glideplan.errors import InvalidParameterError
 from glideplan.units import inch_to_m, psi_to_pa
-from glideplan.validation import check_nonnegative, check_positive
+from glideplan.validation import check_finite_array as finite_array
+from glideplan.validation import check_nonnegative, check_positive, scalar_or_array
+from glideplan.validation import check_nonnegative_array as nonnegative_array
+from glideplan.validation import check_positive_array as positive_array
 
 __all__ = [
     "DEFAULT_ELASTIC_COEFFICIENTS_PA",

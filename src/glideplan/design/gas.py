@@ -7,11 +7,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from glideplan.design._checks import nonnegative_array, positive_array, scalar_or_array
-from glideplan.design._units import lb_to_kg
 from glideplan.errors import InvalidParameterError
-from glideplan.units import inch3_to_m3, psi_to_pa
-from glideplan.validation import check_positive
+from glideplan.units import inch3_to_m3, lb_to_kg, psi_to_pa
+from glideplan.validation import check_nonnegative_array as nonnegative_array
+from glideplan.validation import check_positive, scalar_or_array
+from glideplan.validation import check_positive_array as positive_array
 
 __all__ = [
     "FRESH_WATER",

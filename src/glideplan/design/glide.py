@@ -13,10 +13,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
-from glideplan.design._checks import finite_array, positive_array, scalar_or_array
 from glideplan.design.gas import SEA_WATER, Environment
 from glideplan.errors import InvalidParameterError
-from glideplan.validation import check_positive
+from glideplan.validation import check_finite_array as finite_array
+from glideplan.validation import check_positive, scalar_or_array
+from glideplan.validation import check_positive_array as positive_array
 
 __all__ = [
     "SEAGLIDER_LIKE",

@@ -24,14 +24,23 @@ from typing import Any
 import numpy as np
 import tomli_w
 
-from glideplan.design._units import celsius_to_kelvin, feet_to_m, lb_to_kg
 from glideplan.design.buoyancy import VTUG_BLADDER, VTUG_HULL, Bladder, Hull
 from glideplan.design.gas import FRESH_WATER, FX23DV, Environment, Tank
 from glideplan.design.glide import SEAGLIDER_LIKE, DragPolar
 from glideplan.design.positioning import LBLConfig
 from glideplan.design.trim import VTUG_TRIM, TrimLayout
 from glideplan.errors import InvalidParameterError
-from glideplan.units import deg_to_rad, inch3_to_m3, inch_to_m, kmh_to_ms, litre_to_m3, psi_to_pa
+from glideplan.units import (
+    celsius_to_kelvin,
+    deg_to_rad,
+    feet_to_m,
+    inch3_to_m3,
+    inch_to_m,
+    kmh_to_ms,
+    lb_to_kg,
+    litre_to_m3,
+    psi_to_pa,
+)
 
 __all__ = [
     "DesignParameters",

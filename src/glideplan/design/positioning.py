@@ -16,13 +16,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from glideplan.design._checks import (
-    finite_array,
-    probability,
-    scalar_or_array,
-)
 from glideplan.errors import InvalidParameterError
-from glideplan.validation import check_nonnegative, check_positive
+from glideplan.validation import check_finite_array as finite_array
+from glideplan.validation import check_nonnegative, check_positive, scalar_or_array
+from glideplan.validation import check_probability as probability
 
 __all__ = [
     "ErrorStatistics",

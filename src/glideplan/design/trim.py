@@ -13,10 +13,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from glideplan.design._checks import finite_array, nonnegative_array, scalar_or_array
 from glideplan.design.gas import FRESH_WATER, Environment
 from glideplan.errors import InvalidParameterError
-from glideplan.validation import check_finite, check_nonnegative, check_positive
+from glideplan.validation import check_finite, check_nonnegative, check_positive, scalar_or_array
+from glideplan.validation import check_finite_array as finite_array
+from glideplan.validation import check_nonnegative_array as nonnegative_array
 
 __all__ = [
     "VTUG_TRIM",

@@ -11,12 +11,6 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from glideplan.design._checks import (
-    finite_array,
-    nonnegative_array,
-    positive_array,
-    scalar_or_array,
-)
 from glideplan.design.buoyancy import (
     Bladder,
     Hull,
@@ -26,7 +20,10 @@ from glideplan.design.buoyancy import (
 from glideplan.design.gas import FRESH_WATER, R_GAS_J_PER_MOL_K, Environment
 from glideplan.errors import InvalidParameterError
 from glideplan.units import pa_to_psi
-from glideplan.validation import check_positive
+from glideplan.validation import check_finite_array as finite_array
+from glideplan.validation import check_nonnegative_array as nonnegative_array
+from glideplan.validation import check_positive, scalar_or_array
+from glideplan.validation import check_positive_array as positive_array
 
 __all__ = [
     "ASSUMED_BLADDER_CURVE_NOTE",

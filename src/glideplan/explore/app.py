@@ -30,7 +30,7 @@ from bokeh.models import (
 )
 from bokeh.plotting import figure
 
-from glideplan.explore.catalog import Catalog, PlannerEntry, build_catalog
+from glideplan.explore.catalog import Catalog, PlannerEntry, build_catalog, planner_key
 from glideplan.explore.downloads import path_csv, solution_json, solution_png
 from glideplan.explore.solve import View, partition_image, solve_view
 from glideplan.explore.state import (
@@ -101,6 +101,14 @@ class Explorer:
     ) -> None:
         self.catalog = catalog or build_catalog()
         self.state = state_from_query(self.catalog, query or {})
+        asked = (query or {}).get("planner") if isinstance(query, dict) else None
+        self._planner_note = (
+            f"planner={asked!r}: must be one of {', '.join(self.catalog.keys)}"
+            if asked
+            and asked not in self.catalog.keys
+            and planner_key(asked) != self.state.planner.split("/")[0]
+            else ""
+        )
         self.view: View | None = None
         self.sync = sync
         self._doc = pn.state.curdoc if not sync else None
@@ -110,6 +118,7 @@ class Explorer:
         self._syncing = False
         self._errors: dict[str, str] = {}
         self._drawn: dict[tuple[str, str], tuple[float, float]] = {}
+        self._partition_cache: tuple[Any, dict[str, Any] | None] | None = None
         self._build_figures()
         self._build_widgets()
         self._set_planner_inputs()
@@ -241,6 +250,7 @@ class Explorer:
         draw = PointDrawTool(renderers=[points], add=False, drag=True)
         fig.add_tools(draw)
         fig.toolbar.active_drag = draw
+        self._legend_items = list(fig.legend.items)
         fig.legend.location = "top_left"
         fig.legend.background_fill_alpha = 0.8
         fig.legend.label_text_font_size = "11px"
@@ -297,7 +307,7 @@ class Explorer:
     def _build_widgets(self) -> None:
         options = {e.label: e.key for e in self.catalog.entries}
         self.planner_select = pn.widgets.Select(
-            name="Planner", options=options, value=self.state.planner, width=290
+            label="Planner", options=options, value=self.state.planner, width=290
         )
         self.planner_select.param.watch(self._on_planner, "value")
         self.planner_help = _html(width=290)
@@ -305,7 +315,7 @@ class Explorer:
         self.error_panes: dict[str, pn.pane.HTML] = {}
         for name in ("start", "goal"):
             w = pn.widgets.TextInput(
-                name=f"{name} (x, y, heading deg)",
+                label=f"{name} (x, y, heading deg)",
                 value=getattr(self.state, name),
                 width=290,
                 css_classes=[f"gp-input-{name}"],
@@ -319,11 +329,11 @@ class Explorer:
             self.option_box, title="Planner options", collapsed=True, width=300, margin=(5, 5)
         )
         self.candidates_toggle = pn.widgets.Checkbox(
-            name="show every candidate", value=self.state.candidates
+            label="show every candidate", value=self.state.candidates
         )
         self.candidates_toggle.param.watch(self._on_flags, "value")
         self.partition_toggle = pn.widgets.Checkbox(
-            name="partition map background (Fig 3.1)", value=self.state.partition
+            label="partition map background (Fig 3.1)", value=self.state.partition
         )
         self.partition_toggle.param.watch(self._on_flags, "value")
         self.general_error = _html(width=290)
@@ -334,25 +344,25 @@ class Explorer:
             pn.widgets.FileDownload(
                 callback=self._json_file,
                 filename="glideplan-solution.json",
-                label="Solution JSON",
-                button_type="primary",
-                width=118,
+                label="JSON",
+                color="primary",
+                width=92,
                 embed=False,
             ),
             pn.widgets.FileDownload(
                 callback=self._csv_file,
                 filename="glideplan-path.csv",
-                label="Path CSV",
-                button_type="primary",
-                width=90,
+                label="CSV",
+                color="primary",
+                width=92,
                 embed=False,
             ),
             pn.widgets.FileDownload(
                 callback=self._png_file,
                 filename="glideplan-figure.png",
-                label="Figure PNG",
-                button_type="primary",
-                width=100,
+                label="PNG",
+                color="primary",
+                width=92,
                 embed=False,
             ),
             margin=(5, 0),
@@ -374,7 +384,7 @@ class Explorer:
                 else ""
             )
             w = pn.widgets.TextInput(
-                name=f"{p.label}{hint or unit}",
+                label=f"{p.label}{hint or unit}",
                 value=self.state.values.get(p.name, p.default),
                 width=290 if p.target == "vehicle" else 270,
                 css_classes=[f"gp-input-{p.name}"],
@@ -412,7 +422,9 @@ class Explorer:
             self.candidates_toggle,
             self.partition_toggle,
             self.general_error,
-            _html('<div class="gp-help">Downloads</div>'),
+            _html(
+                '<div class="gp-help">Download the solution (as <code>plan --json</code>), the path, the figure</div>'
+            ),
             self.downloads,
             width=320,
         )
@@ -452,9 +464,20 @@ class Explorer:
         self.fig.tags = ["?" + state_to_query(self.catalog, self.state)]
 
     def _on_planner(self, event: Any) -> None:
-        if event.new == self.state.planner:
-            return
-        entry = self.catalog.get(event.new)
+        if event.new != self.state.planner:
+            self._locked(lambda: self._switch_planner(event.new))
+
+    def _locked(self, fn: Callable[[], None]) -> None:
+        """Run `fn` holding the document's lock (Panel's widget callbacks do not hold it,
+        and Bokeh models may only change under it)."""
+        if self._doc is None:
+            fn()
+        else:
+            self._doc.add_next_tick_callback(fn)
+
+    def _switch_planner(self, key: str) -> None:
+        entry = self.catalog.get(key)
+        self._planner_note = ""
         self.state = initial_state(entry)
         self._set_inputs_from_state()
         self._set_planner_inputs()
@@ -472,23 +495,25 @@ class Explorer:
     def _make_pose_watcher(self, name: str) -> Callable[[Any], None]:
         def watch(event: Any) -> None:
             if not self._syncing:
-                self.set_state(replace(self.state, **{name: event.new}))
+                self._locked(lambda: self.set_state(replace(self.state, **{name: event.new})))
 
         return watch
 
     def _make_value_watcher(self, name: str) -> Callable[[Any], None]:
         def watch(event: Any) -> None:
             if not self._syncing:
-                self.set_state(self.state.with_values(**{name: event.new}))
+                self._locked(lambda: self.set_state(self.state.with_values(**{name: event.new})))
 
         return watch
 
     def _on_flags(self, event: Any) -> None:
-        self.set_state(
-            replace(
-                self.state,
-                candidates=self.candidates_toggle.value,
-                partition=self.partition_toggle.value,
+        self._locked(
+            lambda: self.set_state(
+                replace(
+                    self.state,
+                    candidates=self.candidates_toggle.value,
+                    partition=self.partition_toggle.value,
+                )
             )
         )
 
@@ -624,8 +649,20 @@ class Explorer:
         view = solve_view(self.catalog, state)
         part = None
         if state.partition and view.request is not None:
-            bounds = self._bounds_for(view)
-            part = partition_image(view.request, bounds)
+            req = view.request
+            # the map depends on the start, the goal's heading, the vehicle, eps and the view
+            key = (
+                req.start,
+                req.goal.heading,
+                req.vehicle,
+                tuple(req.options.items()),
+                self._bounds_for(view),
+            )
+            cached = self._partition_cache
+            if cached is None or cached[0] != key:
+                cached = (key, partition_image(req, key[-1]))
+                self._partition_cache = cached
+            part = cached[1]
         return view, part
 
     def _bounds_for(self, view: View) -> tuple[float, float, float, float]:
@@ -646,12 +683,17 @@ class Explorer:
         for name, pane in self.error_panes.items():
             pane.object = _error_html(view.errors.get(name, ""))
         unowned = {k: v for k, v in view.errors.items() if k not in self.error_panes}
+        if self._planner_note:
+            unowned = {"planner": self._planner_note, **unowned}
         self.general_error.object = "".join(_error_html(v) for v in unowned.values())
         self.strip.object = self._strip_html(view)
         self.path_src.data = {"x": view.path["x"], "y": view.path["y"]}
         air = view.air_path
         self.air_src.data = {"x": air["x"], "y": air["y"]} if air else {"x": [], "y": []}
         self.air_renderer.visible = air is not None
+        self.fig.legend.items = [
+            it for it in self._legend_items if it.renderers[0] is not self.air_renderer or air
+        ]
         cands = view.candidates or _empty_candidates()
         self.cand_src.selected.indices = []
         self.cand_src.data = {k: v for k, v in cands.items() if k != "cost"} | {
@@ -694,8 +736,8 @@ class Explorer:
         wx, wy = view.wind
         w = math.hypot(wx, wy)
         span = self.x_range.end - self.x_range.start
-        x0 = self.x_range.start + 0.12 * span
-        y0 = self.y_range.end - 0.2 * span
+        x0 = self.x_range.end - 0.3 * span
+        y0 = self.y_range.end - 0.12 * span
         if w > 0:
             length = 0.1 * span * w / max(view.request.vehicle.speed, w)
             x1, y1 = x0 + length * wx / w, y0 + length * wy / w

@@ -92,6 +92,11 @@ class Parameter:
     def label(self) -> str:
         return self.name.replace("_", "-")
 
+    @property
+    def flag(self) -> str:
+        """The command-line flag, as the CLI's messages name it (`--radius`)."""
+        return f"--{self.label}"
+
     def parse(self, text: str) -> dict[str, Any]:
         """The field values for the entered `text`; raises `InvalidParameterError` naming it."""
         raw = str(text).strip()
@@ -100,25 +105,26 @@ class Parameter:
         if self.kind == "group":
             items = [p for p in raw.replace(",", " ").split()]
             if len(items) != len(self.fields):
+                names = ", ".join(f.rpartition(".")[2] for f in self.fields)
                 raise InvalidParameterError(
-                    self.name, text, f"needs {len(self.fields)} numbers: {', '.join(self.fields)}"
+                    self.flag, text, f"needs {len(self.fields)} numbers: {names}"
                 )
             out: dict[str, Any] = {}
             for field, item, unit in zip(self.fields, items, self.units, strict=True):
-                value = parse_number(self.name, item)
+                value = parse_number(self.flag, item)
                 out[field] = math.radians(value) if unit == "deg" else value
             return out
         field = self.fields[0]
         if self.kind == "float":
-            return {field: parse_number(self.name, raw)}
+            return {field: parse_number(self.flag, raw)}
         if self.kind == "int":
             try:
                 return {field: int(raw)}
             except ValueError:
-                raise InvalidParameterError(self.name, text, "must be an integer") from None
+                raise InvalidParameterError(self.flag, text, "must be an integer") from None
         if self.kind == "bool":
             if raw.lower() not in ("true", "false", "1", "0", "yes", "no"):
-                raise InvalidParameterError(self.name, text, "must be true or false")
+                raise InvalidParameterError(self.flag, text, "must be true or false")
             return {field: raw.lower() in ("true", "1", "yes")}
         return {field: raw}
 

@@ -25,8 +25,8 @@ __all__ = ["View", "partition_image", "solve_view"]
 
 _COST_UNITS: Mapping[str, str] = {"length": "m", "time": "s", "altitude": "m"}
 _PATH_SAMPLES = 240
-_CANDIDATE_SAMPLES = 90
-_PROFILE_SAMPLES = 240
+_CANDIDATE_SAMPLES = 60
+_PROFILE_SAMPLES = 160
 
 
 @dataclass(frozen=True, eq=False)
@@ -146,8 +146,11 @@ def solve_view(catalog: Catalog, state: ExploreState) -> View:
             **dict(req.options),
         )
     except InvalidParameterError as err:
-        p = entry.parameter(err.name)
-        name = p.name if p is not None else (err.name if err.name in ("start", "goal") else "")
+        bare = err.name.lstrip("-").replace("-", "_")
+        p = entry.parameter(bare)
+        name = p.name if p is not None else (bare if bare in ("start", "goal") else "")
+        if p is not None:
+            err = InvalidParameterError(p.flag, err.value, err.rule)
         return View(state, entry, {name: one_line(err)}, request=req)
     seconds = time.perf_counter() - t0
     units = _units(entry)
@@ -177,7 +180,7 @@ def _candidates(solution: Any) -> dict[str, list[Any]]:
     best = solution.path
     for i, c in enumerate(solution.candidates):
         if c.path is not None and c.feasible:
-            s = c.path.sample(n=max(_CANDIDATE_SAMPLES, 30 * len(c.path.segments)))
+            s = c.path.sample(n=max(_CANDIDATE_SAMPLES, 20 * len(c.path.segments)))
             xs, ys = s.x, s.y
         else:
             xs, ys = np.zeros(0), np.zeros(0)

@@ -168,7 +168,7 @@ def request(catalog: Catalog, state: ExploreState) -> tuple[Request | None, dict
     poses: dict[str, Pose] = {}
     for name in POSE_NAMES:
         try:
-            poses[name] = parse_pose_text(getattr(state, name), name)
+            poses[name] = parse_pose_text(getattr(state, name), f"--{name}")
         except InvalidParameterError as err:
             errors[name] = one_line(err)
     fields: dict[str, Any] = {}
@@ -189,7 +189,7 @@ def request(catalog: Catalog, state: ExploreState) -> tuple[Request | None, dict
         p = entry.parameter(err.name)
         name = p.name if p is not None else ""
         if p is not None:
-            err = InvalidParameterError(p.name, err.value, err.rule)
+            err = InvalidParameterError(p.flag, err.value, err.rule)
         return None, {name: one_line(err)}
     except (TypeError, ValueError) as err:
         return None, {"": one_line(err)}

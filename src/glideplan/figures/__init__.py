@@ -1,7 +1,10 @@
 """Dissertation figures and tables that `glideplan reproduce` regenerates.
 
 One module per chapter (`ch2.py`, `ch3.py`, ...) registers its figures with `reproducible`;
-`load_all()` imports every `ch*` module of this package.
+`load_all()` imports every `ch*` module of this package. A figure computes with library code,
+keeps the dissertation's printed values as `Printed` data and compares with `compare()`:
+one `Comparison` row type whose verdict `verdict()` computes. Output files are named
+`<id with _ for .>[_what].<ext>` (fig7_17.png, fig4_7_candidates.png).
 """
 
 import importlib
@@ -11,21 +14,27 @@ from glideplan.figures.registry import (
     Comparison,
     FigureReport,
     FigureSpec,
+    Printed,
+    compare,
     figure_specs,
     get_figure,
     reproducible,
     run_figure,
+    verdict,
 )
 
 __all__ = [
     "Comparison",
     "FigureReport",
     "FigureSpec",
+    "Printed",
+    "compare",
     "figure_specs",
     "get_figure",
     "load_all",
     "reproducible",
     "run_figure",
+    "verdict",
 ]
 
 

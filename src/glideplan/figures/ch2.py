@@ -75,9 +75,9 @@ def fig2_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
             longest = max(feasible, key=lambda c: c.cost)
             note = (
                 f"{ccc_words} is feasible too: the outer turning circles' centres are "
-                f"{centre:.2f} R0 < 4 R0 apart; it is the longest candidate "
-                f"({ccc[0].cost:.3f} R0, longest {longest.word} {longest.cost:.3f}), "
-                "so the figure leaves it out"
+                f"{centre:.2f} R0 < 4 R0 apart; at {ccc[0].cost:.3f} R0 it is "
+                + ("the longest candidate" if longest in ccc else f"longer than {sol.word}")
+                + " and the figure draws only words with an S"
             )
         rows.append(
             compare(

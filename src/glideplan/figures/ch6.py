@@ -144,7 +144,8 @@ def fig6_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
                 reference_source="the corner: sqrt(n_max^2-1)/v_c^2"),
         compare("grid minimum of f0 minus the locus image", gap, reference=0.0,
                 reference_source="section 6.5: the extremal locus is the southern boundary",
-                note="a value >= 0 (up to the grid step) confirms it"),
+                note="the locus is the southern boundary where this is >= 0 (up to the grid "
+                "step)"),
     )  # fmt: skip
     return FigureReport(files=(save_png(fig, out_dir / "fig6_4.png", crop=True).name,), rows=rows)
 

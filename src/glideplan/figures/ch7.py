@@ -13,9 +13,9 @@ import pathlib
 
 import numpy as np
 
-from glideplan.design._units import LB_KG, n_to_lbf
 from glideplan.figures._common import pyplot, save_png
 from glideplan.figures.registry import FigureReport, Printed, compare, reproducible, yes_no
+from glideplan.units import LB_KG, n_to_lbf
 
 S72 = "section 7.2"
 # Values printed in chapter 7 (source: section, table or figure)
@@ -347,11 +347,11 @@ def fig7_8(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax2.set_title("(b) inflator")
     files = (save_png(fig, out_dir / "fig7_8.png", crop=True).name,)
     j = int(np.argmax(cv_pr[:, 0]))
-    # (7.6): ndot does not depend on depth, and q ~ C_v sqrt(p1 dp): C_v sqrt(p1) is constant
-    p1 = np.asarray(env.ambient_pressure_pa(np.array([0.0, 100.0]))) + float(
-        b.elastic_pressure_pa(5e-3)
-    )
-    invariant = cv_def[-1, [0, -1]] * np.sqrt(p1)
+    # (7.6): ndot does not depend on depth, and (7.8) q ~ C_v sqrt(p1 dp) (1 - 2 dp / (3 p1)),
+    # so C_v sqrt(p1) (1 - 2 dp / (3 p1)) is the same at every depth for a fixed volume
+    dp = float(b.elastic_pressure_pa(5e-3))
+    p1 = np.asarray(env.ambient_pressure_pa(np.array([0.0, 100.0]))) + dp
+    invariant = cv_def[-1, [0, -1]] * np.sqrt(p1) * (1 - 2 * dp / (3 * p1))
     trend = "rises" if cv_def[-1, -1] > cv_def[-1, 0] else "falls"
     overstate = float(np.nanmax(cv_pr / np.where(cv_ch > 0, cv_ch, np.nan)))
     rows = (
@@ -362,9 +362,9 @@ def fig7_8(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
             "deflator C_v with depth (5 L)",
             trend,
             DEFLATOR_TREND,
-            note=f"{cv_def[-1, 0]:.3f} at 0 m, {cv_def[-1, -1]:.3f} at 100 m; C_v sqrt(p1) = "
-            f"{invariant[0]:.1f} and {invariant[1]:.1f}: (7.6) makes ndot independent of depth "
-            "and q ~ C_v sqrt(p1 dp), so C_v ~ 1/sqrt(p1)",
+            note=f"{cv_def[-1, 0]:.3f} at 0 m, {cv_def[-1, -1]:.3f} at 100 m; "
+            f"C_v sqrt(p1) (1 - 2 dp/(3 p1)) = {invariant[0]:.2f} and {invariant[1]:.2f}: (7.6) "
+            "makes ndot independent of depth, so by (7.8) C_v falls as p1 grows",
         ),
         compare(
             "inflator C_v, largest at 500 psia (choked flow)",

@@ -31,6 +31,7 @@ __all__ = [
     "get_figure",
     "half_unit",
     "reproducible",
+    "run_figure",
     "verdict",
     "yes_no",
 ]

@@ -13,6 +13,7 @@ from glideplan.formats.vehicle_files import (
     write_seaglider_targets,
     write_slocum_goto,
 )
+from glideplan.missions.field_mission import FieldMission
 from glideplan.missions.plan import MissionPlan
 from glideplan.missions.straight_legs import StraightLegList, straight_leg_list
 
@@ -41,6 +42,11 @@ class ExportOptions:
                 raise InvalidParameterError(label, v, "must be finite and > 0 (m)")
         if not (self.altitude == self.altitude and abs(self.altitude) < float("inf")):
             raise InvalidParameterError("altitude", self.altitude, "must be finite (m)")
+        if not isinstance(self.goto_number, int) or not 0 <= self.goto_number <= 99:
+            raise InvalidParameterError("goto-number", self.goto_number, "must be in 0..99")
+        if not isinstance(self.max_goto_waypoints, int) or self.max_goto_waypoints < 2:
+            raise InvalidParameterError(
+                "max-goto-waypoints", self.max_goto_waypoints, "must be an integer >= 2")
 
     @property
     def deviation(self) -> float:
@@ -66,7 +72,7 @@ def parse_formats(text: str | None, geographic: bool = True) -> tuple[str, ...]:
 
 
 def export_mission(
-    plan: MissionPlan,
+    plan: MissionPlan | FieldMission,
     out_dir: pathlib.Path,
     formats: tuple[str, ...],
     options: ExportOptions = ExportOptions(),
@@ -74,7 +80,7 @@ def export_mission(
     """Write `formats` into `out_dir`; return format -> path (Slocum: list) and the leg list."""
     out_dir.mkdir(parents=True, exist_ok=True)
     legs = straight_leg_list(plan, options.deviation)
-    track = plan.track(min(plan.radius / 10.0, legs.sample_spacing_m))
+    track = plan.track(legs.sample_spacing_m)
     stem = options.name
     files: dict[str, str | list[str]] = {}
     acc = options.acceptance_radius

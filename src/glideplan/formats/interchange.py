@@ -15,20 +15,23 @@ from xml.sax.saxutils import escape
 
 import numpy as np
 
+from glideplan.missions.field_mission import FieldMission
 from glideplan.missions.plan import MissionPlan, Track
 from glideplan.missions.straight_legs import StraightLegList
 
 __all__ = ["write_csv", "write_geojson", "write_gpx", "write_kml"]
 
 
-def _track_latlon(plan: MissionPlan, track: Track) -> tuple[np.ndarray, np.ndarray]:
+def _track_latlon(
+    plan: MissionPlan | FieldMission, track: Track
+) -> tuple[np.ndarray, np.ndarray]:
     assert plan.route.projection is not None
     lat, lon = plan.route.projection.to_geographic(track.x, track.y)
     return lat, lon
 
 
 def write_geojson(
-    plan: MissionPlan, legs: StraightLegList, track: Track, path: pathlib.Path
+    plan: MissionPlan | FieldMission, legs: StraightLegList, track: Track, path: pathlib.Path
 ) -> pathlib.Path:
     """A FeatureCollection: mission waypoints (Points), straight legs and track (LineStrings)."""
     r = plan.route
@@ -69,7 +72,7 @@ def _kml_coords(lon: np.ndarray, lat: np.ndarray) -> str:
 
 
 def write_kml(
-    plan: MissionPlan, legs: StraightLegList, track: Track, path: pathlib.Path
+    plan: MissionPlan | FieldMission, legs: StraightLegList, track: Track, path: pathlib.Path
 ) -> pathlib.Path:
     """KML 2.2: a Document with waypoint Placemarks, the straight legs and the track."""
     r = plan.route
@@ -110,7 +113,7 @@ def write_kml(
 
 
 def write_gpx(
-    plan: MissionPlan, legs: StraightLegList, track: Track, path: pathlib.Path
+    plan: MissionPlan | FieldMission, legs: StraightLegList, track: Track, path: pathlib.Path
 ) -> pathlib.Path:
     """GPX 1.1: waypoints (wpt), the straight-leg route (rte) and the track (trk)."""
     import gpxpy.gpx
@@ -140,7 +143,9 @@ def write_gpx(
     return path
 
 
-def write_csv(plan: MissionPlan, legs: StraightLegList, path: pathlib.Path) -> pathlib.Path:
+def write_csv(
+    plan: MissionPlan | FieldMission, legs: StraightLegList, path: pathlib.Path
+) -> pathlib.Path:
     """The straight-leg list as CSV: name,lat,lon,heading_deg,mission (or name,x,y,... local).
 
     Geographic headings are compass bearings; local ones degrees CCW from +x (as read).

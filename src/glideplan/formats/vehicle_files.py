@@ -94,7 +94,7 @@ def write_slocum_goto(
 
 
 def _ascii(name: str) -> str:
-    return re.sub(r"[^A-Za-z0-9_.-]+", "_", name).strip("_") or "WP"
+    return re.sub(r"[^A-Za-z0-9_]+", "_", name).strip("_") or "WP"
 
 
 def _unique_names(names: tuple[str, ...]) -> list[str]:

@@ -1,5 +1,6 @@
 """Missions on the Earth: routes of waypoints, multi-leg plans with optimised headings."""
 
+from glideplan.missions.field_mission import FieldLeg, FieldMission, plan_mission_in_field
 from glideplan.missions.headings import (
     HeadingPlan,
     StillAirCost,
@@ -16,6 +17,8 @@ from glideplan.missions.route import Route
 from glideplan.missions.straight_legs import StraightLegList, straight_leg_list
 
 __all__ = [
+    "FieldLeg",
+    "FieldMission",
     "HeadingPlan",
     "MissionLeg",
     "MissionPlan",
@@ -30,6 +33,7 @@ __all__ = [
     "headings_cost",
     "optimise_headings",
     "plan_mission",
+    "plan_mission_in_field",
     "point_at_next_headings",
     "straight_leg_list",
 ]

@@ -51,6 +51,10 @@ class MissionLeg:
         assert self.solution.path is not None
         return self.solution.path
 
+    @property
+    def word(self) -> str:
+        return self.solution.word
+
 
 @dataclass(frozen=True, eq=False)
 class Track:
@@ -93,6 +97,15 @@ class MissionPlan:
     def headings_deg(self) -> list[float]:
         """Compass bearing (deg) at each waypoint, chosen or given."""
         return [float(b) for b in np.atleast_1d(heading_to_compass(self.headings))]
+
+    def track_spacing(self, tolerance: float) -> float:
+        """Sample spacing (m) whose arcs leave their chords by <= 1 % of `tolerance`.
+
+        Sagitta s^2 / (8 R_ground) with R_ground = R (1 - w/v)^2 the tightest ground turn.
+        """
+        w = 0.0 if self.wind is None else self.wind[0]
+        r_ground = self.radius * (1.0 - w / self.speed) ** 2
+        return min(self.radius / 10.0, math.sqrt(0.08 * r_ground * tolerance))
 
     def track(self, spacing: float | None = None) -> Track:
         """Samples of the whole track every `spacing` metres of flight (default R / 10)."""

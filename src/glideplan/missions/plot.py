@@ -7,13 +7,16 @@ from typing import Any
 
 import numpy as np
 
+from glideplan.missions.field_mission import FieldMission
 from glideplan.missions.plan import MissionPlan
 from glideplan.missions.straight_legs import StraightLegList
 
 __all__ = ["plot_mission"]
 
 
-def plot_mission(plan: MissionPlan, legs: StraightLegList | None = None) -> Any:
+def plot_mission(
+    plan: MissionPlan | FieldMission, legs: StraightLegList | None = None
+) -> Any:
     """A figure of `plan`: axes in degrees (lon, lat) for geographic routes, else metres."""
     import matplotlib
 
@@ -32,7 +35,7 @@ def plot_mission(plan: MissionPlan, legs: StraightLegList | None = None) -> Any:
         lat, lon = proj.to_geographic(x, y)
         return lon, lat
 
-    span = max(float(np.ptp(track.x)), float(np.ptp(track.y)), plan.radius)
+    span = max(float(np.ptp(track.x)), float(np.ptp(track.y)), plan.radius or 0.0)
     arrow = 0.06 * span
     tx, ty = xy(track.x, track.y)
     ax.plot(tx, ty, "-", color="tab:blue", lw=1.6, label="planned track")
@@ -43,8 +46,9 @@ def plot_mission(plan: MissionPlan, legs: StraightLegList | None = None) -> Any:
     wx, wy = xy(r.x, r.y)
     ax.plot(wx, wy, "o", color="k", ms=6, label="waypoints", zorder=5)
     hx, hy = xy(r.x + arrow * np.cos(plan.headings), r.y + arrow * np.sin(plan.headings))
+    given = ~r.free if plan.radius is not None else np.zeros(r.n, dtype=bool)  # field: free
     for i in range(r.n):
-        color = "tab:red" if r.free[i] else "tab:green"
+        color = "tab:green" if given[i] else "tab:red"
         ax.annotate("", xy=(hx[i], hy[i]), xytext=(wx[i], wy[i]),
                     arrowprops={"arrowstyle": "->", "color": color, "lw": 1.6}, zorder=6)
         ax.annotate(f"{r.names[i]}\n{plan.headings_deg[i]:.0f}\N{DEGREE SIGN}",
@@ -52,7 +56,7 @@ def plot_mission(plan: MissionPlan, legs: StraightLegList | None = None) -> Any:
     for leg in plan.legs:
         sel = np.nonzero(track.leg == leg.index)[0]
         mid = sel[len(sel) // 2]
-        ax.annotate(f"{leg.index + 1}: {leg.solution.word} {leg.length_m:.0f} m",
+        ax.annotate(f"{leg.index + 1}: {leg.word} {leg.length_m:.0f} m",
                     (tx[mid], ty[mid]), fontsize=7, color="tab:blue",
                     bbox={"boxstyle": "round,pad=0.15", "fc": "white", "alpha": 0.7, "lw": 0})
     ax.plot([], [], color="tab:red", label="chosen heading")
@@ -67,10 +71,14 @@ def plot_mission(plan: MissionPlan, legs: StraightLegList | None = None) -> Any:
         ax.set_aspect("equal")
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
-    wind = "" if plan.wind is None else (
-        f", wind {plan.wind[0]:g} m/s from {plan.wind[1]:g}\N{DEGREE SIGN}")
+    if plan.radius is None:
+        how = "through the current field"
+    else:
+        wind = "" if plan.wind is None else (
+            f", wind {plan.wind[0]:g} m/s from {plan.wind[1]:g}\N{DEGREE SIGN}")
+        how = f"R = {plan.radius:g} m{wind}"
     ax.set_title(f"mission: {r.n} waypoints, {plan.total_length_m:.0f} m, "
-                 f"{plan.total_duration_s / 3600:.2f} h (R = {plan.radius:g} m{wind})")
+                 f"{plan.total_duration_s / 3600:.2f} h ({how})")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize=8)
     return fig

@@ -6,7 +6,7 @@ plan is exported as a polyline whose every point of the planned track lies withi
 the vertices a Douglas-Peucker split of the dense track selects (the track sample farthest
 from the current chord is added until every sample is within the tolerance). The samples are
 spaced so that an arc between two samples leaves its chord by at most 1 % of the tolerance
-(sagitta s^2 / (8 R_ground) with R_ground = R (1 - w/v)^2 the tightest ground turn).
+(`MissionPlan.track_spacing`); a route through a current field uses the router's samples.
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ import itertools
 import math
 import re
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -22,6 +23,9 @@ from numpy.typing import NDArray
 from glideplan.errors import InvalidParameterError
 from glideplan.geodesy import heading_to_compass
 from glideplan.missions.plan import MissionPlan
+
+if TYPE_CHECKING:
+    from glideplan.missions.field_mission import FieldMission
 
 __all__ = ["StraightLegList", "segment_distances", "straight_leg_list"]
 
@@ -78,14 +82,14 @@ def _safe(name: str) -> str:
     return re.sub(r"[^A-Za-z0-9_]+", "_", name).strip("_") or "WP"
 
 
-def straight_leg_list(plan: MissionPlan, max_deviation: float) -> StraightLegList:
+def straight_leg_list(
+    plan: MissionPlan | FieldMission, max_deviation: float
+) -> StraightLegList:
     """The straight-leg waypoint list of `plan` within `max_deviation` (m) of its track."""
     tol = float(max_deviation)
     if not (math.isfinite(tol) and tol > 0.0):
         raise InvalidParameterError("max-deviation", max_deviation, "must be finite and > 0 (m)")
-    w = 0.0 if plan.wind is None else plan.wind[0]
-    r_ground = plan.radius * (1.0 - w / plan.speed) ** 2
-    spacing = min(plan.radius / 10.0, math.sqrt(0.08 * r_ground * tol))
+    spacing = plan.track_spacing(tol)
     tr = plan.track(spacing)
     names: list[str] = []
     xs: list[float] = []

@@ -7,16 +7,19 @@ arrays of (start, goal) poses at once, the smallest root of
     F_W(tau) = L_W(start -> g(tau)) - tau,   g(tau) = (goal - w tau, psi_goal)
 
 in units where R = 1 and v = 1 (REFERENCE_NOTES 3.4), for the six words W, by scanning tau
-from the lower bound |goal - start| / (1 + |w|) (ground speed <= v + |w|) in steps of
+from the lower bound where |goal - start - w tau| = tau (no path is shorter than the straight
+line to the virtual target) in steps of
 `step` and bisecting the first cell where any word's F_W (on the branch through the cell's
-left end: L_W jumps by 2 pi where an arc wraps) changes sign. A root closer than `step` to
-another may be missed, which only overestimates the time; the final legs are planned with the
-planner itself.
+left end: L_W jumps by 2 pi where an arc wraps) changes sign; as in the planner, a root must
+make F_W itself vanish (a jump of L_W across zero is not an arrival), else the scan goes on.
+A root closer than `step` to another may be missed, which only overestimates the time; the
+final legs are planned (and verified) with the planner itself.
 """
 
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -68,38 +71,60 @@ def convected_times(
     lo *= 1.0 - 1e-12
     hi = (dist + 2.0 + 2.0 * TWO_PI) / (1.0 - wm)
     out = np.full(m, np.inf)
-    active = np.arange(m)
-    tau = lo.copy()
-    f_prev = _f(s, g, w, tau)
-    done0 = np.any(f_prev <= 1e-12, axis=1)  # arrival at the lower bound (straight downwind)
+    f_lo = _f(s, g, w, lo)
+    done0 = np.any(f_lo <= 1e-12, axis=1)  # arrival at the lower bound (straight downwind)
     out[done0] = lo[done0]
-    keep = ~done0
-    active, tau, f_prev = active[keep], tau[keep], f_prev[keep]
-    # the cell [a, b] where each query first crosses zero, bisected all together at the end
-    cell_a = np.full(m, np.nan)
-    cell_b = np.full(m, np.nan)
-    cell_f = np.full((m, 6), np.nan)
-    cell_x = np.zeros((m, 6), dtype=bool)
+    active = np.nonzero(~done0)[0]
+    tau, f_prev = lo[active], f_lo[active]
+    # Rounds: scan every open query to its first cell where some F_W changes sign, bisect
+    # all those cells together, keep valid roots; the others resume scanning after the cell.
     while active.size:
-        t_next = np.minimum(tau + step, hi[active])
+        cells = _scan(s, g, w, active, tau, f_prev, hi[active], step)
+        rows, cell_a, cell_b, cell_f, cell_x, f_b = cells
+        if rows.size == 0:
+            break
+        roots = _roots(s[rows], g[rows], w, cell_a, cell_b, cell_f, cell_x)
+        ok = np.isfinite(roots)
+        out[rows[ok]] = roots[ok]
+        again = ~ok & (cell_b < hi[rows])
+        active, tau, f_prev = rows[again], cell_b[again], f_b[again]
+    return out * radius / speed
+
+
+def _scan(
+    s: NDArray[np.float64],
+    g: NDArray[np.float64],
+    w: NDArray[np.float64],
+    active: NDArray[np.intp],
+    tau: NDArray[np.float64],
+    f_prev: NDArray[np.float64],
+    hi: NDArray[np.float64],
+    step: float,
+) -> tuple[NDArray[Any], ...]:
+    """March each open query in steps of `step` to the first cell where a word's F_W (or its
+    branch through the cell's left end) becomes <= 0: (rows, a, b, F(a), crossing words,
+    F(b))."""
+    out_rows, out_a, out_b, out_fa, out_x, out_fb = [], [], [], [], [], []
+    while active.size:
+        t_next = np.minimum(tau + step, hi)
         f_next = _f(s[active], g[active], w, t_next)
         with np.errstate(invalid="ignore"):
             jumps = np.round((f_next - f_prev) / TWO_PI)
             cross = (f_prev > 0.0) & ((f_next - TWO_PI * jumps <= 0.0) | (f_next <= 0.0))
         hit = np.any(cross, axis=1)
-        rows = active[hit]
-        cell_a[rows], cell_b[rows] = tau[hit], t_next[hit]
-        cell_f[rows], cell_x[rows] = f_prev[hit], cross[hit]
-        keep = ~(hit | (t_next >= hi[active]))
-        active, tau, f_prev = active[keep], t_next[keep], f_next[keep]
-    found = np.nonzero(np.any(cell_x, axis=1))[0]
-    if found.size:
-        out[found] = _bisect(s[found], g[found], w, cell_a[found], cell_b[found],
-                             cell_f[found], cell_x[found])
-    return out * radius / speed
+        out_rows.append(active[hit])
+        out_a.append(tau[hit])
+        out_b.append(t_next[hit])
+        out_fa.append(f_prev[hit])
+        out_x.append(cross[hit])
+        out_fb.append(f_next[hit])
+        keep = ~hit & (t_next < hi)
+        active, tau, f_prev, hi = active[keep], t_next[keep], f_next[keep], hi[keep]
+    return (np.concatenate(out_rows), np.concatenate(out_a), np.concatenate(out_b),
+            np.concatenate(out_fa), np.concatenate(out_x), np.concatenate(out_fb))
 
 
-def _bisect(
+def _roots(
     s: NDArray[np.float64],
     g: NDArray[np.float64],
     w: NDArray[np.float64],
@@ -109,9 +134,17 @@ def _bisect(
     words: NDArray[np.bool_],
     iterations: int = 36,
 ) -> NDArray[np.float64]:
-    """Smallest root in [a, b] over the crossing words (bisection on each word's branch, all
-    (query, word) pairs in one vectorised evaluation per step)."""
+    """Smallest valid root in each cell [a, b] over the crossing words, else inf.
+
+    Bisection on two branches of each word's F_W (as the wind planner's `_polish`): unwrapped
+    relative to F(a) (a root just before an arc wraps) and F_W itself (a root after a wrap);
+    a root is valid only if F_W itself vanishes there (|F| <= 1e-7 max(1, tau)), so a jump of
+    L_W by 2 pi across zero is not taken for an arrival.
+    """
     rows, ks = np.nonzero(words)
+    rows = np.concatenate([rows, rows])
+    ks = np.concatenate([ks, ks])
+    unwrap = np.arange(rows.size) < rows.size // 2
     lo, hi, f0 = a[rows].copy(), b[rows].copy(), fa[rows, ks]
     sr, gr = s[rows], g[rows]
     pick = np.arange(rows.size)
@@ -119,10 +152,13 @@ def _bisect(
         mid = 0.5 * (lo + hi)
         f = _f(sr, gr, w, mid)[pick, ks]
         with np.errstate(invalid="ignore"):
-            branch = f - TWO_PI * np.round((f - f0) / TWO_PI)
+            branch = np.where(unwrap, f - TWO_PI * np.round((f - f0) / TWO_PI), f)
             right = (branch <= 0.0) | ~np.isfinite(f)
         hi = np.where(right, mid, hi)
         lo = np.where(right, lo, mid)
+    f_end = _f(sr, gr, w, hi)[pick, ks]
+    with np.errstate(invalid="ignore"):
+        valid = np.abs(f_end) <= 1e-7 * np.maximum(1.0, hi)
     best = np.full(s.shape[0], np.inf)
-    np.minimum.at(best, rows, hi)
+    np.minimum.at(best, rows[valid], hi[valid])
     return best

@@ -27,9 +27,9 @@ from numpy.typing import ArrayLike
 from glideplan.errors import InvalidParameterError
 from glideplan.path import Path
 from glideplan.planning import PlannerOutput, Problem, register_planner
-from glideplan.pose import Pose
+from glideplan.pose import TWO_PI, Pose
 from glideplan.segments import Arc, Segment, Straight
-from glideplan.solution import Candidate
+from glideplan.solution import Candidate, Status
 from glideplan.validation import check_finite_array, check_in_range, check_positive
 from glideplan.vehicles.dubins_car import DubinsCar
 
@@ -57,7 +57,6 @@ _DIRECTIONS: dict[str, tuple[int, int, int]] = {
     "LRL": (1, -1, 1),
 }
 
-TWO_PI = 2.0 * math.pi
 _INV_2PI = 1.0 / TWO_PI
 # Angles within _SNAP turns below a multiple of 2 pi count as that multiple: a heading change of
 # -1e-17 rad from rounding is a zero-length arc, not a full circle (6e-11 rad at most).
@@ -462,12 +461,12 @@ def _candidates(
     for k, word in enumerate(WORDS):
         info: dict[str, Any] = {"radius": radius}
         if np.isnan(table[k, 0]):
-            cands.append(Candidate(word, "", math.inf, None, "infeasible", info))
+            cands.append(Candidate(word, "", math.inf, None, Status.INFEASIBLE, info))
             continue
         path = _build_path(problem.start, word, table[k], radius, vehicle.speed, "B")
         info["segment_lengths"] = [float(v) for v in table[k]]
         cost = path.length if objective == "length" else path.length / vehicle.speed
-        cands.append(Candidate(word, path.family, cost, path, "feasible", info))
+        cands.append(Candidate(word, path.family, cost, path, Status.FEASIBLE, info))
     extras = {
         "radius": radius,
         "nominal_radius": vehicle.turn_radius,

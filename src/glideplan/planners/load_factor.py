@@ -33,12 +33,13 @@ from glideplan.path import Path
 from glideplan.planners.direct import ControlSystem, DirectResult, solve_direct
 from glideplan.planners.direct.guesses import dubins_guesses
 from glideplan.planning import PlannerOutput, Problem, register_planner
-from glideplan.pose import Pose
-from glideplan.solution import Candidate
+from glideplan.pose import TWO_PI, Pose
+from glideplan.solution import Candidate, Status
 from glideplan.vehicles.load_factor_glider import LoadFactorGlider
 
 __all__ = [
     "FORMULATIONS",
+    "MAX_GOAL_DISTANCE",
     "control_system",
     "guess_radii",
     "initial_guesses",
@@ -47,7 +48,11 @@ __all__ = [
 ]
 
 FORMULATIONS = ("bank", "load-factor")
-TWO_PI = 2.0 * math.pi
+# The direct method's reach (nondimensional lengths, i.e. units of the glider's length
+# scale): the first mesh of `n_intervals` intervals spreads over the whole path, and beyond
+# this distance its refinement to 640 intervals takes minutes (1000 units: over 10 min
+# here; 300 units: about 8 s). Farther goals are refused up front.
+MAX_GOAL_DISTANCE = 300.0
 
 
 @functools.lru_cache(maxsize=32)
@@ -245,6 +250,14 @@ def plan_load_factor(
     goal = problem.goal
     if math.hypot(goal.x, goal.y) < 1e-12 and abs(goal.heading) < 1e-12:
         return PlannerOutput(candidates=(), message="the goal is the start: nothing to fly")
+    distance = math.hypot(goal.x, goal.y) / glider.length_scale
+    if distance > MAX_GOAL_DISTANCE:
+        raise InvalidParameterError(
+            "goal",
+            float(f"{distance:.6g}"),
+            f"distance from the start must be at most {MAX_GOAL_DISTANCE:g} length units "
+            "for the load-factor direct method (farther, its mesh refinement takes minutes)",
+        )
     res = solve_load_factor(
         glider,
         problem.goal,
@@ -265,7 +278,7 @@ def plan_load_factor(
     }
     if not res.ok:
         cands = tuple(
-            Candidate(s.label, "D", math.inf, None, "failed", {"ipopt": s.status})
+            Candidate(s.label, "D", math.inf, None, Status.FAILED, {"ipopt": s.status})
             for s in res.starts
         )
         return PlannerOutput(
@@ -288,7 +301,7 @@ def plan_load_factor(
         path.family,
         cost,
         path,
-        "feasible",
+        Status.FEASIBLE,
         {"collocation_cost": res.cost, "start": res.stats.get("best_start")},
     )
     others = tuple(
@@ -297,7 +310,7 @@ def plan_load_factor(
             "D",
             s.cost,
             None,
-            "local" if math.isfinite(s.cost) else "failed",
+            Status.LOCAL if math.isfinite(s.cost) else Status.FAILED,
             {"start": s.index, "coarse_mesh_cost": s.cost if math.isfinite(s.cost) else None},
         )
         for s in res.starts

@@ -20,19 +20,19 @@ Corollary A.2: with an unknown bounded disturbance eps v on top of the known win
 F_A with the feasible radius R0' = R0 (1 + eps)^2 keeps the path trackable, provided
 w + eps v < v.
 
-Over ground the path is made of `TrochoidArc` and `DriftingStraight` segments: an air-frame
-arc or straight plus the drift w t. They report `drift = (wx, wy)`, so `glideplan.verify`
+Over ground the path is made of `TrochoidArc` and `DriftingStraight` segments
+(`glideplan.segments.drifting`, re-exported here): an air-frame arc or straight plus the
+drift w t. They report `drift = (wx, wy)`, so `glideplan.verify`
 integrates the inertial dynamics (A.4) along their controls. Their `length` is the air-relative
 distance flown (v times the duration); `ground_length` is the length of the ground track.
 """
 
 from __future__ import annotations
 
-import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -48,10 +48,10 @@ from glideplan.planners.dubins import (
     word_directions,
 )
 from glideplan.planning import PlannerOutput, Problem, register_planner
-from glideplan.pose import Pose
-from glideplan.segments import Arc, Segment, Straight, _check_direction
-from glideplan.solution import Candidate
-from glideplan.validation import check_finite, check_in_range, check_nonnegative, check_positive
+from glideplan.pose import TWO_PI, Pose
+from glideplan.segments import DriftingStraight, Segment, TrochoidArc
+from glideplan.solution import Candidate, Status
+from glideplan.validation import check_finite, check_in_range, check_positive
 from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
 
 __all__ = [
@@ -63,8 +63,6 @@ __all__ = [
     "virtual_target_residual",
 ]
 
-TWO_PI = 2.0 * math.pi
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(24)
 # Grid step for bracketing the roots of F_W, in units of R / v. F_W changes by at most about
 # (1 + w |grad L_W|) per unit; a pair of roots closer than this could be missed (measure-zero).
 _GRID_STEP = 0.05
@@ -77,191 +75,6 @@ _MAX_GRID_POINTS = 4_000_000
 # Arrival times beyond this (units of R / v) are refused: the end position's rounding error,
 # about 1e-16 per unit of distance flown times a few hundred operations, would pass 1e-6 R.
 _MAX_TAU = 1e9
-
-
-# ----- segments over ground ---------------------------------------------------------------
-
-
-def _map_drift(drift: tuple[float, float], frame: Pose, reflect: bool) -> tuple[float, float]:
-    wx, wy = drift
-    if reflect:
-        wy = -wy
-    c, s = math.cos(frame.heading), math.sin(frame.heading)
-    return (c * wx - s * wy, s * wx + c * wy)
-
-
-def _check_drift(drift: Any) -> tuple[float, float]:
-    try:
-        wx, wy = drift
-    except (TypeError, ValueError):
-        raise InvalidParameterError("drift", drift, "must be a pair (wx, wy) in m/s") from None
-    return (check_finite("drift x", wx), check_finite("drift y", wy))
-
-
-class _Drifting(Segment):
-    """Shared parts of the segments flown in a steady uniform wind."""
-
-    constant_controls: ClassVar[bool] = True
-    drift: tuple[float, float]
-    speed: float
-
-    @property
-    def length(self) -> float:
-        return self.speed * self.duration
-
-    def time_at_length(self, s: ArrayLike) -> np.ndarray:
-        return np.asarray(s, dtype=float) / self.speed
-
-    @functools.cached_property
-    def _air_segment(self) -> Arc | Straight:
-        """The same manoeuvre in the air-relative frame F_A (no drift); built once."""
-        raise NotImplementedError
-
-    def states(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Ground position (air-frame position plus drift w t) and heading at local times t."""
-        tt = np.asarray(t, dtype=float)
-        x, y, h = self._air_segment.states(tt)
-        return x + self.drift[0] * tt, y + self.drift[1] * tt, h
-
-    def controls(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-        return self._air_segment.controls(t)
-
-    @property
-    def ground_length(self) -> float:
-        """Length of the ground track (m), by Gauss-Legendre quadrature of the ground speed."""
-        if self.duration <= 0.0:
-            return 0.0
-        half = 0.5 * self.duration
-        t = half * (_GL_X + 1.0)
-        v, _u = self.controls(t)
-        h = self.states(t)[2]
-        gx = v * np.cos(h) + self.drift[0]
-        gy = v * np.sin(h) + self.drift[1]
-        return float(half * np.hypot(gx, gy) @ _GL_W)
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            **super().to_dict(),
-            "speed": self.speed,
-            "drift": list(self.drift),
-            "ground_length": self.ground_length,
-        }
-
-
-@dataclass(frozen=True)
-class TrochoidArc(_Drifting):
-    """A maximum-rate turn flown in a steady wind: an air-frame circle of `radius` (m) through
-    heading change `angle` (rad) at airspeed `speed` (m/s), drifting with `drift` (m/s) — a
-    trochoid over ground (Techy & Woolsey 2009; dissertation §3.2)."""
-
-    start: Pose
-    angle: float
-    radius: float
-    direction: int
-    speed: float = 1.0
-    drift: tuple[float, float] = (0.0, 0.0)
-    label: str = "B"
-
-    kind: ClassVar[str] = "trochoid_arc"
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "angle", check_nonnegative("angle", self.angle))
-        object.__setattr__(self, "radius", check_positive("radius", self.radius))
-        object.__setattr__(self, "direction", _check_direction(self.direction))
-        object.__setattr__(self, "speed", check_positive("speed", self.speed))
-        object.__setattr__(self, "drift", _check_drift(self.drift))
-
-    @property
-    def duration(self) -> float:
-        return self.radius * self.angle / self.speed
-
-    @property
-    def turn_rate(self) -> float:
-        """Signed turn rate (rad/s)."""
-        return self.direction * self.speed / self.radius
-
-    @functools.cached_property
-    def _air_segment(self) -> Arc:
-        return Arc(self.start, self.angle, self.radius, self.direction, self.speed, self.label)
-
-    @property
-    def end(self) -> Pose:
-        s, r, d, T = self.start, self.radius, self.direction, self.duration
-        h = s.heading + d * self.angle
-        return Pose(
-            s.x + d * r * (math.sin(h) - math.sin(s.heading)) + self.drift[0] * T,
-            s.y - d * r * (math.cos(h) - math.cos(s.heading)) + self.drift[1] * T,
-            h,
-        )
-
-    def transformed(self, frame: Pose, reflect: bool = False) -> TrochoidArc:
-        return TrochoidArc(
-            self.start.from_frame(frame, reflect),
-            self.angle,
-            self.radius,
-            -self.direction if reflect else self.direction,
-            self.speed,
-            _map_drift(self.drift, frame, reflect),
-            self.label,
-        )
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            **super().to_dict(),
-            "angle": self.angle,
-            "radius": self.radius,
-            "turn_rate": self.turn_rate,
-        }
-
-
-@dataclass(frozen=True)
-class DriftingStraight(_Drifting):
-    """A straight flown at constant heading and airspeed `speed` (m/s) for an air-relative
-    distance `length_m` (m), drifting with `drift` (m/s): a straight over ground along
-    v (cos psi, sin psi) + w."""
-
-    start: Pose
-    length_m: float
-    speed: float = 1.0
-    drift: tuple[float, float] = (0.0, 0.0)
-    label: str = "S"
-
-    kind: ClassVar[str] = "drifting_straight"
-
-    @property
-    def direction(self) -> int:  # type: ignore[override]
-        return 0
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "length_m", check_nonnegative("length", self.length_m))
-        object.__setattr__(self, "speed", check_positive("speed", self.speed))
-        object.__setattr__(self, "drift", _check_drift(self.drift))
-
-    @property
-    def duration(self) -> float:
-        return self.length_m / self.speed
-
-    @functools.cached_property
-    def _air_segment(self) -> Straight:
-        return Straight(self.start, self.length_m, self.speed, self.label)
-
-    @property
-    def end(self) -> Pose:
-        s, T = self.start, self.duration
-        return Pose(
-            s.x + self.length_m * math.cos(s.heading) + self.drift[0] * T,
-            s.y + self.length_m * math.sin(s.heading) + self.drift[1] * T,
-            s.heading,
-        )
-
-    def transformed(self, frame: Pose, reflect: bool = False) -> DriftingStraight:
-        return DriftingStraight(
-            self.start.from_frame(frame, reflect),
-            self.length_m,
-            self.speed,
-            _map_drift(self.drift, frame, reflect),
-            self.label,
-        )
 
 
 # ----- the Dubins words for one virtual target (unit radius, start at the origin) ----------
@@ -559,7 +372,7 @@ def plan_wind(problem: Problem, *, disturbance_ratio: float = 0.0) -> PlannerOut
     for k, word in enumerate(WORDS):
         info: dict[str, Any] = {"radius": sol.radius}
         if not math.isfinite(sol.times[k]):
-            cands.append(Candidate(word, "", math.inf, None, "infeasible", info))
+            cands.append(Candidate(word, "", math.inf, None, Status.INFEASIBLE, info))
             continue
         path = convected_dubins_path(
             problem.start,
@@ -570,7 +383,7 @@ def plan_wind(problem: Problem, *, disturbance_ratio: float = 0.0) -> PlannerOut
             wind=wind,
         )
         info["air_segment_lengths"] = [float(s) for s in sol.segment_lengths[k]]
-        cands.append(Candidate(word, path.family, float(sol.times[k]), path, "feasible", info))
+        cands.append(Candidate(word, path.family, float(sol.times[k]), path, Status.FEASIBLE, info))
     extras = {
         "radius": sol.radius,
         "nominal_radius": vehicle.turn_radius,

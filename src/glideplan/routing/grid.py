@@ -179,6 +179,21 @@ class CurrentSampler:
                 self._stacked.pop(next(iter(self._stacked)))
         return self._stacked[k]
 
+    def points_multi(self, t: FloatArray, x: FloatArray, y: FloatArray) -> FloatArray:
+        """(cx, cy) at points with their own times t (grouped by time bracket: few groups)."""
+        lv = self.levels
+        if lv.size == 1:
+            return interp_grid(self.level_stacked(0), self.grid, x, y)
+        ks = np.clip(np.searchsorted(lv, t, side="right") - 1, 0, lv.size - 2)
+        w = np.clip((t - lv[ks]) / (lv[ks + 1] - lv[ks]), 0.0, 1.0)
+        out = np.empty((2, np.size(x)))
+        for k in np.unique(ks):
+            sel = ks == k
+            a = interp_grid(self.level_stacked(int(k)), self.grid, x[sel], y[sel])
+            b = interp_grid(self.level_stacked(int(k) + 1), self.grid, x[sel], y[sel])
+            out[:, sel] = (1 - w[sel]) * a + w[sel] * b
+        return out
+
     def points(self, t: float, x: FloatArray, y: FloatArray, gradient: bool = False) -> FloatArray:
         """Values at points (x, y) at time t: rows cx, cy (and the 4 derivatives), bilinear."""
         k, w = self.bracket(t)

@@ -223,6 +223,7 @@ def propagate_front(
         closest = float(np.min(np.hypot(xx[reached_mask] - gx, yy[reached_mask] - gy)))
     else:
         closest = math.hypot(gx, gy)
+    closest = min(closest, math.hypot(gx, gy))  # at the start, t0, it is this far
     if goal_time is not None:
         closest = 0.0
     return FrontResult(arrival, goal_time, steps, float(reached_mask.mean()), closest)

@@ -25,7 +25,7 @@ from numpy.typing import NDArray
 
 from glideplan.routing.grid import CurrentSampler
 
-__all__ = ["ShootingResult", "direct_refinement", "zermelo_shooting"]
+__all__ = ["ShootingResult", "direct_refinement", "polyline_refinement", "zermelo_shooting"]
 
 FloatArray = NDArray[np.float64]
 
@@ -158,14 +158,10 @@ def _fly_controls(sampler: CurrentSampler, speed: float, t0: float, nodes: Float
 
 def _points_multi_time(sampler: CurrentSampler, t: FloatArray, x: FloatArray,
                        y: FloatArray) -> FloatArray:
-    """Current (2, m) at points whose times are few distinct values (grouped by time)."""
+    """Current (2, m) at points with their own times."""
     if sampler.levels.size == 1 or np.ptp(t) == 0.0:
         return sampler.points(float(t[0]), x, y)
-    out = np.empty((2, x.size))
-    for tv in np.unique(t):
-        sel = t == tv
-        out[:, sel] = sampler.points(float(tv), x[sel], y[sel])
-    return out
+    return sampler.points_multi(t, x, y)
 
 
 def direct_refinement(
@@ -176,8 +172,8 @@ def direct_refinement(
     grid_t: FloatArray,
     grid_heading: FloatArray,
     duration: float,
-    nodes: int = 12,
-    steps: int = 100,
+    nodes: int = 10,
+    steps: int = 64,
     tol_m: float = 1.0,
     clearance: FloatArray | None = None,
     margin: float = 0.0,
@@ -260,3 +256,125 @@ def direct_refinement(
             return ShootingResult(False, tt, tt * 0, tt * 0, heading, T, sol.nit,
                                   "direct method's track comes too close to land")
     return ShootingResult(True, tt, track[:, 0], track[:, 1], heading, T, sol.nit, "converged")
+
+
+def _polyline_time(sampler: CurrentSampler, speed: float, t0: float, px: FloatArray,
+                   py: FloatArray, sub: int) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Time to fly polylines (m sets of n+1 vertices: px, py (m, n+1)) holding each piece.
+
+    Each edge is split into `sub` pieces flown with the crab angle that keeps the line: along
+    speed s = sqrt(V^2 - c_n^2) + c_t at the piece's midpoint and time (c from the grid; land
+    counts as still water, the clearance constraint keeps the path off it). An impossible
+    piece (|c_n| >= V or s <= 0) costs as if s = V / 100. Returns total times (m,), piece
+    times (m, pieces + 1) and water headings (m, pieces).
+    """
+    m, n1 = px.shape
+    f = (np.arange(sub) + 0.5) / sub
+    dx, dy = np.diff(px, axis=1), np.diff(py, axis=1)
+    length = np.hypot(dx, dy) / sub
+    ux = np.where(length > 0, dx / np.maximum(np.hypot(dx, dy), 1e-12), 1.0)
+    uy = np.where(length > 0, dy / np.maximum(np.hypot(dx, dy), 1e-12), 0.0)
+    t = np.full(m, t0)
+    times = [t.copy()]
+    heads = []
+    for e in range(n1 - 1):
+        for k in range(sub):
+            mx = px[:, e] + f[k] * dx[:, e]
+            my = py[:, e] + f[k] * dy[:, e]
+            # Midpoint time from the previous piece's speed (predictor): t + L / (2 V).
+            c = sampler.points_multi(t + 0.5 * length[:, e] / speed, mx, my)
+            c = np.where(np.isfinite(c), c, 0.0)
+            ct = c[0] * ux[:, e] + c[1] * uy[:, e]
+            cn = -c[0] * uy[:, e] + c[1] * ux[:, e]
+            root = np.sqrt(np.maximum(speed * speed - cn * cn, 0.0))
+            along = np.maximum(root + ct, 0.01 * speed)
+            wx, wy = along * ux[:, e] - c[0], along * uy[:, e] - c[1]
+            heads.append(np.arctan2(wy, wx))
+            t = t + length[:, e] / along
+            times.append(t.copy())
+    return t - t0, np.stack(times, axis=1), np.stack(heads, axis=1)
+
+
+def polyline_refinement(
+    sampler: CurrentSampler,
+    speed: float,
+    t0: float,
+    goal_xy: tuple[float, float],
+    grid_x: FloatArray,
+    grid_y: FloatArray,
+    clearance: FloatArray,
+    margin: float,
+    edges: int = 16,
+    sub: int = 3,
+) -> ShootingResult:
+    """Minimise the time along a polyline start -> goal over its interior vertices (SLSQP).
+
+    Space collocation: the route is a polyline of `edges` edges, each flown holding the line
+    with a crab angle; the objective is the arrival time; every vertex and piece midpoint
+    keeps a clearance >= `margin` from land nodes. Start and goal are fixed by construction,
+    so there is no endpoint constraint to satisfy; derivatives by forward differences with
+    all perturbed polylines flown together. Started from the grid route resampled by length.
+    """
+    from scipy.optimize import minimize
+
+    from glideplan.routing.grid import interp_grid
+
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(grid_x), np.diff(grid_y)))])
+    sq = np.linspace(0.0, s[-1], edges + 1)
+    vx, vy = np.interp(sq, s, grid_x), np.interp(sq, s, grid_y)
+    vx[0], vy[0], vx[-1], vy[-1] = 0.0, 0.0, goal_xy[0], goal_xy[1]
+    z0 = np.concatenate([vx[1:-1], vy[1:-1]])
+    n_in = edges - 1
+    scale = s[-1] / edges
+    eps = 1e-4 * scale
+    h = sampler.grid.spacing
+    cache: dict[bytes, tuple[FloatArray, ...]] = {}
+
+    def polylines(zs: FloatArray) -> tuple[FloatArray, FloatArray]:
+        m = zs.shape[0]
+        px = np.concatenate([np.zeros((m, 1)), zs[:, :n_in], np.full((m, 1), goal_xy[0])], 1)
+        py = np.concatenate([np.zeros((m, 1)), zs[:, n_in:], np.full((m, 1), goal_xy[1])], 1)
+        return px, py
+
+    def evaluate(z: FloatArray) -> tuple[FloatArray, ...]:
+        key = z.tobytes()
+        if key not in cache:
+            zs = np.repeat(z[None, :], z.size + 1, axis=0)
+            zs[1:] += eps * np.eye(z.size)
+            px, py = polylines(zs)
+            total, _, _ = _polyline_time(sampler, speed, t0, px, py, sub)
+            # Clearance at vertices and edge midpoints.
+            qx = np.concatenate([px[:, 1:-1], 0.5 * (px[:, 1:] + px[:, :-1])], axis=1)
+            qy = np.concatenate([py[:, 1:-1], 0.5 * (py[:, 1:] + py[:, :-1])], axis=1)
+            cl = interp_grid(clearance[None], sampler.grid, qx.ravel(), qy.ravel())[0]
+            cl = (np.where(np.isfinite(cl), cl, -h).reshape(qx.shape) - margin) / h
+            tref = total[0]
+            cache.clear()
+            cache[key] = (np.array([tref]), (total[1:] - tref) / eps, cl[0],
+                          ((cl[1:] - cl[:1]) / eps).T)
+        return cache[key]
+
+    t_first = float(evaluate(z0 / scale * scale)[0][0])
+    sol = minimize(
+        lambda z: evaluate(z * scale)[0][0] / t_first, z0 / scale,
+        jac=lambda z: evaluate(z * scale)[1] * scale / t_first, method="SLSQP",
+        constraints=[{"type": "ineq", "fun": lambda z: evaluate(z * scale)[2],
+                      "jac": lambda z: evaluate(z * scale)[3] * scale}],
+        options={"maxiter": 60, "ftol": 1e-9},
+    )
+    z = sol.x * scale
+    px, py = polylines(z[None, :])
+    total, times, heads = _polyline_time(sampler, speed, t0, px, py, sub)
+    cl = evaluate(z)[2]
+    if np.any(cl < -0.5 * margin / h):
+        return ShootingResult(False, times[0], px[0], py[0], heads[0], float(total[0]), sol.nit,
+                              "polyline comes too close to land")
+    # Track at piece ends; headings per piece, held (repeat the last at the end).
+    f = np.linspace(0.0, 1.0, sub + 1)[1:]
+    tx = [0.0] + [float(px[0, e] + fk * (px[0, e + 1] - px[0, e]))
+                  for e in range(edges) for fk in f]
+    ty = [0.0] + [float(py[0, e] + fk * (py[0, e + 1] - py[0, e]))
+                  for e in range(edges) for fk in f]
+    hd = np.concatenate([heads[0], heads[0, -1:]])
+    return ShootingResult(True, times[0], np.array(tx), np.array(ty), hd, float(total[0]),
+                          sol.nit, "converged")

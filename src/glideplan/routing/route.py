@@ -154,7 +154,11 @@ def route(
     from glideplan.routing.backtrack import backtrack
     from glideplan.routing.grid import CurrentSampler, build_grid
     from glideplan.routing.levelset import propagate_front, start_disk_radius
-    from glideplan.routing.refine import direct_refinement, zermelo_shooting
+    from glideplan.routing.refine import (
+        direct_refinement,
+        polyline_refinement,
+        zermelo_shooting,
+    )
     from glideplan.routing.verify import integrate_headings, straight_line_duration
 
     clock = {"start": time.perf_counter()}
@@ -230,21 +234,27 @@ def route(
         shot = zermelo_shooting(sampler, speed, t0, goal_xy, theta0, grid_T, tol_m=tol)
         if not shot.converged:
             land = sampler.land()
-            clearance = None
             if np.any(land):
                 from scipy.ndimage import distance_transform_edt
 
-                clearance = distance_transform_edt(~land) * grid.spacing
-            shot = direct_refinement(sampler, speed, t0, goal_xy, g.t, g.heading, grid_T,
-                                     tol_m=max(0.05 * grid.spacing, 1.0), clearance=clearance,
-                                     margin=grid.spacing)
-            shot_name = "direct-shooting"
+                # Signed: distance to the nearest land node outside, minus the distance to
+                # the nearest water node inside (a gradient everywhere for the optimiser).
+                clearance = (distance_transform_edt(~land) - distance_transform_edt(land)) \
+                    * grid.spacing
+                shot = polyline_refinement(sampler, speed, t0, goal_xy, g.x, g.y, clearance,
+                                           margin=grid.spacing)
+                shot_name = "polyline-collocation"
+            else:
+                shot = direct_refinement(sampler, speed, t0, goal_xy, g.t, g.heading, grid_T,
+                                         tol_m=max(0.05 * grid.spacing, 1.0))
+                shot_name = "direct-shooting"
         else:
             shot_name = "zermelo-shooting"
         lap("refine")
         if shot.converged:
             refined_T = shot.duration
-            flown_r = integrate_headings(fld, proj, speed, shot.t, shot.heading, goal_xy)
+            flown_r = integrate_headings(fld, proj, speed, shot.t, shot.heading, goal_xy,
+                                         hold=shot_name == "polyline-collocation")
             lap("verify_refined")
             if flown_r.on_land or flown_r.left_field:
                 note = "refinement rejected: its track crosses land or leaves the field"

@@ -66,8 +66,13 @@ def integrate_headings(
     heading: FloatArray,
     goal_xy: tuple[float, float],
     samples: int = 400,
+    hold: bool = False,
 ) -> FlownRoute:
-    """Fly heading(t) (linear between nodes) from the start (0, 0) at t[0] until t[-1]."""
+    """Fly heading(t) from the start (0, 0) at t[0] until t[-1].
+
+    Headings are linear between nodes, or held from each node to the next with `hold`
+    (piecewise-constant controls; the integrator restarts at every node).
+    """
     from scipy.integrate import solve_ivp
 
     hd = np.unwrap(np.asarray(heading, dtype=float))
@@ -75,7 +80,10 @@ def integrate_headings(
     land = [False]
 
     def rhs(s: float, z: FloatArray) -> FloatArray:
-        h = float(np.interp(s, tt, hd))
+        if hold:
+            h = float(hd[min(max(int(np.searchsorted(tt, s, side="right")) - 1, 0), hd.size - 1)])
+        else:
+            h = float(np.interp(s, tt, hd))
         try:
             cx, cy = local_current(field_, proj, s, z[0], z[1])
         except InvalidParameterError as exc:
@@ -86,17 +94,29 @@ def integrate_headings(
         return np.array([speed * math.cos(h) + cx[0], speed * math.sin(h) + cy[0]])
 
     duration = float(tt[-1] - tt[0])
-    t_eval = np.linspace(tt[0], tt[-1], samples)
-    try:
-        sol = solve_ivp(rhs, (tt[0], tt[-1]), np.zeros(2), method="RK45", rtol=1e-8,
-                        atol=1e-3, t_eval=t_eval, max_step=max(duration / 100.0, 1e-6))
-    except _OffField as exc:
-        return FlownRoute(tt, np.zeros(1), np.zeros(1), land[0], str(exc), math.inf)
-    if not sol.success:
-        return FlownRoute(tt, np.zeros(1), np.zeros(1), land[0], sol.message, math.inf)
-    x, y = sol.y
+    pieces = [(tt[0], tt[-1])] if not hold else list(zip(tt[:-1], tt[1:], strict=True))
+    z = np.zeros(2)
+    ts_out, xs_out, ys_out = [np.array([tt[0]])], [np.zeros(1)], [np.zeros(1)]
+    for a, b in pieces:
+        if b <= a:
+            continue
+        n_eval = max(2, int(samples * (b - a) / max(duration, 1e-12)) + 1)
+        try:
+            sol = solve_ivp(rhs, (a, b), z, method="RK45", rtol=1e-8, atol=1e-3,
+                            t_eval=np.linspace(a, b, n_eval),
+                            max_step=max(min(duration / 100.0, b - a), 1e-6))
+        except _OffField as exc:
+            return FlownRoute(tt, np.zeros(1), np.zeros(1), land[0], str(exc), math.inf)
+        if not sol.success:
+            return FlownRoute(tt, np.zeros(1), np.zeros(1), land[0], sol.message, math.inf)
+        z = sol.y[:, -1]
+        ts_out.append(sol.t[1:])
+        xs_out.append(sol.y[0, 1:])
+        ys_out.append(sol.y[1, 1:])
+    x, y = np.concatenate(xs_out), np.concatenate(ys_out)
+    sol_t = np.concatenate(ts_out)
     err = math.hypot(x[-1] - goal_xy[0], y[-1] - goal_xy[1])
-    return FlownRoute(sol.t, x, y, land[0], None, err)
+    return FlownRoute(sol_t, x, y, land[0], None, err)
 
 
 def straight_line_duration(

@@ -135,6 +135,27 @@ def run_final(
             safety_height=safety,
             title=title,
         )
+    elif not math.isfinite(row["altitude_loss"]):
+        # no airspeed makes progress against this wind: no path to plan
+        loss = math.inf
+        data.update(
+            altitude_loss_m=None,
+            speed_to_fly_kmh=None,
+            duration_s=None,
+            word="",
+            track={"lat": [], "lon": [], "alt": []},
+            endpoint_error=None,
+            straight=straight,
+        )
+        drawing = FinalGlideDrawing(
+            x=np.array([0.0, gx]),
+            y=np.array([0.0, gy]),
+            distance=np.array([0.0, dist]),
+            altitude=np.array([alt0, np.nan]),
+            goal_elevation=elev1,
+            safety_height=safety,
+            title=title,
+        )
     else:
         data_arr, drawing = _arrival(
             polar,

@@ -34,13 +34,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from glideplan.errors import InvalidParameterError
+from glideplan.pose import TWO_PI
 from glideplan.simulation.disturbances import DisturbanceStream
 from glideplan.simulation.guidance import PathArrays
 from glideplan.validation import check_in_range, check_nonnegative, check_positive
 
 __all__ = ["FollowResult", "FollowerSettings", "finish_line_error", "follow_paths"]
-
-TWO_PI = 2.0 * math.pi
 
 
 @dataclass(frozen=True)

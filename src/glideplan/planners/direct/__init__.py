@@ -13,12 +13,12 @@ with analytic initial-guess paths. Minimum-time Dubins car to (4, 3, pi/2) (T* =
 ...     controls_from=lambda v, u: u[:, None])
 >>> guess = Path((Straight(Pose(), 4.0), Arc(Pose(4.0, 0.0, 0.0), math.pi / 2, 3.0, 1)))
 >>> result = solve_direct(Pose(4.0, 3.0, math.pi / 2), car, guesses=[guess])
->>> result.status, round(result.cost, 3)
-('solved', 5.176)
+>>> print(result.status, round(result.cost, 3))
+solved 5.176
 
 Start is always the origin; the heading at the goal is matched modulo 2 pi (the guess's final
 heading picks the branch); the final time is free. Each guess is one start; the best is kept
-after mesh refinement. Failures come back as `status="failed"` with `path=None`.
+after mesh refinement. Failures come back as `status=Status.FAILED` with `path=None`.
 
 For SI models pass `length_scale` and `time_scale` (e.g. R_stf and R_stf / v_stf for the
 chapter 5 glider) so the NLP is well scaled; `DirectResult.cost` is the collocation cost on the

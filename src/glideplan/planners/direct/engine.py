@@ -14,13 +14,13 @@ from glideplan.errors import InvalidParameterError
 from glideplan.path import Path
 from glideplan.planners.direct.collocation import SCHEMES, Transcription, build_transcription
 from glideplan.planners.direct.system import ControlSystem
-from glideplan.pose import Pose, wrap_to_pi
+from glideplan.pose import TWO_PI, Pose, wrap_to_pi
 from glideplan.segments import Sampled
+from glideplan.solution import Status
 from glideplan.validation import check_nonnegative, check_positive
 
 __all__ = ["DirectResult", "StartResult", "fly_controls", "retime", "solve_direct"]
 
-TWO_PI = 2.0 * math.pi
 _OK_STATUSES = {"Solve_Succeeded", "Solved_To_Acceptable_Level"}
 _GL6_X, _GL6_W = np.polynomial.legendre.leggauss(6)
 
@@ -54,15 +54,16 @@ class StartResult:
 class DirectResult:
     """Outcome of `solve_direct`.
 
-    `status` is "solved" or "failed"; `path` (one `Sampled` segment from the origin) is None
-    on failure; `cost` is the collocation cost on the final mesh (inf on failure); `stats`
-    holds iterations, seconds, mesh sizes and the cost on each mesh, starts tried and
-    succeeded, and the endpoint error of the returned path's controls; `starts` has one
-    `StartResult` (unpacks as (cost, status)) per guess; `controls` the dense control history
-    by name (plus "t", "speed", "turn_rate") along the returned path.
+    `status` is `Status.SOLVED` or `Status.FAILED` ("solved" / "failed"); `path` (one
+    `Sampled` segment from the origin) is None on failure; `cost` is the collocation cost on
+    the final mesh (inf on failure); `stats` holds iterations, seconds, mesh sizes and the
+    cost on each mesh, starts tried and succeeded, and the endpoint error of the returned
+    path's controls; `starts` has one `StartResult` (unpacks as (cost, status)) per guess;
+    `controls` the dense control history by name (plus "t", "speed", "turn_rate") along the
+    returned path; `warnings` what the caller must pass on (a failed re-timing).
     """
 
-    status: str
+    status: Status
     path: Path | None
     cost: float
     stats: dict[str, Any]
@@ -74,7 +75,7 @@ class DirectResult:
 
     @property
     def ok(self) -> bool:
-        return self.status == "solved" and self.path is not None
+        return self.status is Status.SOLVED and self.path is not None
 
 
 @dataclass
@@ -416,7 +417,7 @@ class _Deadline:
         stats.update(iterations=iterations, seconds=time.perf_counter() - self.t_start)
         stats["time_limit_reached"] = True
         return DirectResult(
-            "failed",
+            Status.FAILED,
             None,
             math.inf,
             stats,
@@ -570,7 +571,7 @@ def solve_direct(
         stats.update(iterations=iterations, seconds=time.perf_counter() - t_start)
         statuses = sorted({s.status for s in starts})
         return DirectResult(
-            "failed",
+            Status.FAILED,
             None,
             math.inf,
             stats,
@@ -629,5 +630,5 @@ def solve_direct(
     )
     warnings = (out_info["retime_failed"],) if "retime_failed" in out_info else ()
     return DirectResult(
-        "solved", path, best.cost, stats, tuple(starts), controls, message, warnings
+        Status.SOLVED, path, best.cost, stats, tuple(starts), controls, message, warnings
     )

@@ -8,8 +8,12 @@ steady uniform wind, losing altitude at the turning polar's rate w_phi(V) = n^{3
 the known-wind planner's paths (`glideplan.planners.wind`, trochoids over ground), and, like
 every planner, verified by `plan()` integrating the controls through the wind.
 
-Not done: a chapter 5 style synthesis with drift (the families BSB, BBBB, B_ms, B_stall^4 with
-the wind's extra constant in the Hamiltonian); the direct method is the only solver here.
+For chapter 5's small-bank model (sink independent of bank, turn rate <= u_max) the BSB family
+with drift is synthesised (`synthesis.py`: the wind adds a constant to the Hamiltonian, so the
+families keep their shape and the straight flies MacCready's headwind speed) and the direct
+method checks it. Not done: BBBB, B_ms and B_stall^4 with drift, and any synthesis for the
+turning polar (its extremals are those of chapter 6, not chapter 5); there the direct method
+is the solver.
 """
 
 from __future__ import annotations
@@ -18,6 +22,7 @@ import math
 import time
 from typing import Any
 
+from glideplan.errors import InvalidParameterError
 from glideplan.path import Path
 from glideplan.planners.final_glide.direct import (
     ArrivalResult,
@@ -27,17 +32,22 @@ from glideplan.planners.final_glide.direct import (
     lead_in_straight,
     solve_arrival,
 )
-from glideplan.planners.final_glide.segment import DriftingSampled
+from glideplan.planners.final_glide.segment import DriftingSampled, DriftingSegment
 from glideplan.planners.final_glide.start_heading import best_start_heading, straight_turn_arrival
+from glideplan.planners.final_glide.synthesis import BSBDrift, bsb_with_drift
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import Pose
-from glideplan.solution import Candidate
+from glideplan.solution import Candidate, Status
+from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider
 from glideplan.vehicles.sailplane import Sailplane
 
 __all__ = [
     "ArrivalResult",
+    "BSBDrift",
     "DriftingSampled",
+    "DriftingSegment",
     "best_start_heading",
+    "bsb_with_drift",
     "control_system",
     "guess_paths",
     "guess_speed_and_radius",
@@ -72,16 +82,26 @@ def plan_final_glide(
     """Minimum altitude loss (+ MC x time) to the goal pose; the candidate's cost is the
     altitude loss (m) of the returned path. Extras: `warm_starts` (word and altitude loss of
     each known-wind guess). With `approach`, a far glide's long first straight is flown at
-    the MacCready speed (`lead_in_straight`) and the direct method solves the approach."""
+    the MacCready speed (`lead_in_straight`) and the direct method solves the approach.
+
+    For the chapter 5 small-bank model (`turning_polar=False` with `turn_rate_max`, MC = 0)
+    the BSB synthesis with drift (`synthesis.bsb_with_drift`) adds its candidates; the direct
+    method, started independently from the known-wind guesses, is the check (extras
+    `synthesis_cost` / `direct_cost`); `plan()` returns the cheapest verified candidate.
+    (Seeding the direct method with the synthesis path makes it ring: a BSB's first arc can
+    be shorter than one mesh interval.)"""
     vehicle = problem.vehicle
     assert isinstance(vehicle, Sailplane)
     psi_w = vehicle.wind_direction - problem.frame.heading
     wind = (vehicle.wind_speed * math.cos(psi_w), vehicle.wind_speed * math.sin(psi_w))
     t0 = time.perf_counter()
+    synth = _synthesis(problem.goal, vehicle, wind, mc)
+    t_synth = time.perf_counter() - t0
     lead = lead_in_straight(problem.goal, vehicle, wind, mc=mc) if approach else ()
     gate = lead[-1].end if lead else Pose()
+    local = problem.goal.relative_to(gate)
     res = solve_arrival(
-        problem.goal.relative_to(gate),
+        local,
         vehicle,
         _rotate(wind, -gate.heading),
         mc=mc,
@@ -92,14 +112,31 @@ def plan_final_glide(
         k: v for k, v in res.direct.stats.items() if isinstance(v, (int, float, str, bool))
     }
     stats["solve_seconds"] = time.perf_counter() - t0
+    stats["synthesis_seconds"] = t_synth
     stats["starts"] = [s.to_dict() for s in res.direct.starts]
-    extras = {
+    extras: dict[str, Any] = {
         "warm_starts": [
             {"word": g.word, "altitude_loss": g.with_vehicle(vehicle).cost("altitude")}
             for g in res.guesses
         ]
     }
+    cands = [
+        Candidate(
+            c.word,
+            "BSB",
+            c.cost,
+            c.path.with_vehicle(vehicle),
+            Status.FEASIBLE,
+            {"theta": c.theta, "straight_speed": c.speed, "lam": c.lam},
+        )
+        for c in synth
+    ]
+    if synth:
+        extras["synthesis_cost"] = synth[0].cost
+        extras["synthesis_word"] = synth[0].word
     if res.path is None:
+        if cands:
+            return PlannerOutput(tuple(cands), stats, "the direct check failed", extras)
         return PlannerOutput(
             (), stats, res.direct.message or "IPOPT failed", extras, solver_failed=True
         )
@@ -110,12 +147,46 @@ def plan_final_glide(
         path = Path((*lead, *path.segments), vehicle)
     stats["lead_in_straight_m"] = lead[-1].length if lead else 0.0
     word = seg.turn_word(0.05 * float(vehicle.max_turn_rate(vehicle.polar.v_best_glide)))
-    cand = Candidate(
-        word,
-        "direct",
-        path.cost("altitude"),
-        path,
-        "feasible",
-        {"collocation_cost": res.direct.cost, "mc": mc},
+    cost = path.cost("altitude")
+    extras["direct_cost"] = cost
+    # the engine's own endpoint error of the controls it returns (after re-timing): when
+    # re-timing failed (controls ringing around a turn shorter than a mesh interval) the
+    # path misses the goal and is not offered
+    miss = float(res.direct.stats.get("endpoint_error", {}).get("position", 0.0))
+    warnings: tuple[str, ...] = ()
+    if miss > 1e-6 * max(1.0, vehicle.length_scale):
+        warnings = (
+            f"the direct method's controls miss the goal by {miss:.3g} m (re-timing failed); "
+            "its path is not offered" + (", the synthesis is" if cands else ""),
+        )
+        if not cands:
+            return PlannerOutput((), stats, warnings[0], extras, solver_failed=True)
+        return PlannerOutput(tuple(cands), stats, "", extras, warnings=warnings)
+    cands.append(
+        Candidate(
+            word,
+            "direct",
+            cost,
+            path,
+            Status.FEASIBLE,
+            {"collocation_cost": res.direct.cost, "mc": mc},
+        )
     )
-    return PlannerOutput((cand,), stats, res.direct.message, extras)
+    return PlannerOutput(tuple(cands), stats, res.direct.message, extras)
+
+
+def _synthesis(
+    goal: Pose, vehicle: Sailplane, wind: tuple[float, float], mc: float
+) -> list[BSBDrift]:
+    """BSB-with-drift candidates when the vehicle is chapter 5's glider (else none)."""
+    if vehicle.turning_polar or vehicle.turn_rate_max is None or mc != 0.0:
+        return []
+    p = vehicle.polar
+    # the bank limit must allow u_max at every speed, or the B arcs are not admissible
+    if float(vehicle.max_turn_rate(p.v_max)) < vehicle.turn_rate_max * (1 - 1e-12):
+        return []
+    try:
+        glider = QuadraticPolarGlider(p.a, p.b, p.c, p.v_min, p.v_max, vehicle.turn_rate_max)
+    except InvalidParameterError:  # the polar breaks Assumptions 5.2.1-5.2.4
+        return []
+    return bsb_with_drift(goal, glider, wind)

@@ -77,6 +77,27 @@ def _system(
     def controls_from(v: np.ndarray, u: np.ndarray) -> np.ndarray:
         return np.stack([v, np.arctan(u * v / GRAVITY)], axis=-1)
 
+    if not turning_polar and turn_rate_max is not None:
+        # chapter 5's glider: controls (V, u) in a box, as in `plan min-altitude --method
+        # direct` (a bound on g tan(phi) / V as a nonlinear constraint makes the controls ring
+        # around short bang arcs); the bank limit is a constraint only where it binds
+        tan_max = math.tan(bank_max)
+
+        def turn_bank(q: ca.SX) -> list:
+            if GRAVITY * tan_max / polar.v_max >= turn_rate_max:
+                return []
+            return [(q[1] * q[0] / GRAVITY, -tan_max, tan_max)]
+
+        return ControlSystem(
+            name="sailplane-small-bank",
+            control_names=("airspeed", "turn_rate"),
+            lower=(polar.v_min, -turn_rate_max),
+            upper=(polar.v_max, turn_rate_max),
+            kinematics=lambda q: (q[0], q[1]),
+            cost_rate=cost,
+            path_constraints=turn_bank,
+        )
+
     return ControlSystem(
         name="sailplane-turning-polar" if turning_polar else "sailplane-small-bank",
         control_names=("airspeed", "bank"),

@@ -10,9 +10,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from glideplan.pose import Pose, to_world
-from glideplan.segments import Sampled
+from glideplan.segments import Sampled, Segment
 
-__all__ = ["DriftingSampled"]
+__all__ = ["DriftingSampled", "DriftingSegment"]
 
 
 @dataclass(frozen=True)
@@ -81,3 +81,67 @@ class DriftingSampled(Sampled):
 
     def to_dict(self) -> dict[str, Any]:
         return {**super().to_dict(), "drift": list(self.drift), "ground_length": self.ground_length}
+
+
+@dataclass(frozen=True)
+class DriftingSegment(Segment):
+    """Any air-frame segment flown in a steady wind: ground states = air states + drift t.
+
+    `air` starts at this segment's ground start pose; its controls are the controls flown.
+    `glideplan.verify` integrates them with the `drift` added to the velocity (eq. A.4).
+    """
+
+    air: Segment
+    drift: tuple[float, float] = (0.0, 0.0)
+
+    kind: ClassVar[str] = "drifting"
+
+    @property
+    def start(self) -> Pose:  # type: ignore[override]
+        return self.air.start
+
+    @property
+    def label(self) -> str:  # type: ignore[override]
+        return self.air.label
+
+    @property
+    def direction(self) -> int:  # type: ignore[override]
+        return self.air.direction
+
+    @property
+    def constant_controls(self) -> bool:  # type: ignore[override]
+        return bool(getattr(self.air, "constant_controls", False))
+
+    @property
+    def length(self) -> float:
+        return self.air.length
+
+    @property
+    def duration(self) -> float:
+        return self.air.duration
+
+    def breakpoints(self) -> np.ndarray:
+        return self.air.breakpoints()
+
+    def controls(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+        return self.air.controls(t)
+
+    def states(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        tt = np.asarray(t, dtype=float)
+        x, y, h = self.air.states(tt)
+        return x + self.drift[0] * tt, y + self.drift[1] * tt, h
+
+    def time_at_length(self, s: ArrayLike) -> np.ndarray:
+        return self.air.time_at_length(s)
+
+    def transformed(self, frame: Pose, reflect: bool = False) -> DriftingSegment:
+        wx, wy = self.drift
+        if reflect:
+            wy = -wy
+        c, s = math.cos(frame.heading), math.sin(frame.heading)
+        return DriftingSegment(
+            self.air.transformed(frame, reflect), (c * wx - s * wy, s * wx + c * wy)
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        return {**self.air.to_dict(), "kind": self.kind, "drift": list(self.drift)}

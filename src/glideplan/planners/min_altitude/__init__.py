@@ -95,7 +95,7 @@ from glideplan.planners.min_altitude.reporting import dubins_reference, flight_p
 from glideplan.planners.min_altitude.synthesis import DEFAULT_GRID, synthesize
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.segments import Sampled
-from glideplan.solution import Candidate
+from glideplan.solution import Candidate, Status
 from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider
 
 __all__ = [
@@ -196,5 +196,5 @@ def plan_min_altitude_direct(
     seg = path.segments[0]
     word = seg.turn_word(0.05 * glider.u_max) if isinstance(seg, Sampled) else path.word
     info = {"collocation_cost": res.cost}
-    cand = Candidate(word, "direct", path.cost("altitude"), path, "feasible", info)
+    cand = Candidate(word, "direct", path.cost("altitude"), path, Status.FEASIBLE, info)
     return PlannerOutput((cand,), stats, "", extras, warnings=res.warnings)

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from glideplan.pose import Pose
+from glideplan.pose import TWO_PI, Pose
 from glideplan.segments import Arc, HeadingSpeedArc, Segment, Straight
 from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider
 
@@ -44,7 +44,6 @@ __all__ = [
     "straight_change",
 ]
 
-TWO_PI = 2.0 * math.pi
 SATURATED_LABEL = "Bsat"  # the constant-speed piece of a B arc whose speed is clipped
 
 

@@ -9,7 +9,7 @@ import numpy as np
 from glideplan.path import Path
 from glideplan.planners.dubins import dubins_path
 from glideplan.pose import Pose
-from glideplan.solution import Candidate
+from glideplan.solution import Candidate, Status
 from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider
 
 __all__ = ["dubins_reference", "flight_profile"]
@@ -26,7 +26,7 @@ def dubins_reference(start: Pose, goal: Pose, glider: QuadraticPolarGlider) -> C
         return None
     path = path.with_vehicle(glider)
     cost = path.duration * glider.w_stf
-    return Candidate(path.word, "Dubins", cost, path, "feasible", {"speed": glider.v_stf})
+    return Candidate(path.word, "Dubins", cost, path, Status.FEASIBLE, {"speed": glider.v_stf})
 
 
 def flight_profile(path: Path, n: int = 201) -> dict[str, Any]:

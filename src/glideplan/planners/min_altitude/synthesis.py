@@ -45,14 +45,13 @@ from glideplan.planners.min_altitude.extremals import (
     straight_segment,
 )
 from glideplan.planners.min_altitude.families import FAMILIES, Family
-from glideplan.pose import Pose
+from glideplan.pose import TWO_PI, Pose, mod_2pi
 from glideplan.segments import Segment
-from glideplan.solution import Candidate
+from glideplan.solution import Candidate, Status
 from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider
 
 __all__ = ["DEFAULT_GRID", "synthesize"]
 
-TWO_PI = 2.0 * math.pi
 DEFAULT_GRID = (40, 64)  # chain solver: switch-angle x first-arc samples
 _MIRROR = str.maketrans("LR", "RL")
 _S_MIN = 0.5 * math.pi + 1e-4  # s -> pi/2 is lambda -> infinity (bang-bang speed)
@@ -114,7 +113,9 @@ def synthesize(
             info = {"orientation": task.word, **found.info}
             if task.reflect and "angles" in info:  # solvers report the L-first mirror image
                 info["angles"] = [-a for a in info["angles"]]
-            out.append(Candidate(path.word, task.family.name, found.cost, path, "feasible", info))
+            out.append(
+                Candidate(path.word, task.family.name, found.cost, path, Status.FEASIBLE, info)
+            )
     return _unique(out)
 
 
@@ -170,7 +171,7 @@ def _unique(cands: list[Candidate]) -> tuple[Candidate, ...]:
 
 def _wrap(angle: np.ndarray | float, low: np.ndarray | float) -> np.ndarray:
     """angle modulo 2 pi, into [low, low + 2 pi)."""
-    return np.mod(np.asarray(angle) - low, TWO_PI) + low
+    return np.asarray(mod_2pi(np.asarray(angle) - low)) + low
 
 
 # ----- BSB: all roots of a quartic in e^{i alpha} -------------------------------------------

@@ -20,7 +20,7 @@ from glideplan.planners.direct.guesses import dubins_guesses
 from glideplan.planners.min_time.synthesis import extremal_path, normalised_goal, synthesize
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import Pose
-from glideplan.solution import Candidate
+from glideplan.solution import Candidate, Status
 from glideplan.vehicles.variable_speed_car import VariableSpeedCar
 from glideplan.words import run_word
 
@@ -199,5 +199,5 @@ def plan_time_optimal_direct(
     seg = path.segments[0]
     family, word = classify_controls(vehicle, seg.t, seg.speed, seg.turn_rate)
     info = {"collocation_cost": res.cost, "classified_family": family}
-    cand = Candidate(word, family, path.duration, path, "feasible", info)
+    cand = Candidate(word, family, path.duration, path, Status.FEASIBLE, info)
     return PlannerOutput((cand,), stats, warnings=res.warnings)

@@ -27,11 +27,11 @@ import math
 import numpy as np
 
 from glideplan.planners.min_time.geometry import compose
+from glideplan.pose import TWO_PI, wrap_to_pi
 
 __all__ = ["cheapest_fixed_turn_rate", "reach_distance", "support"]
 
 PI = math.pi
-TWO_PI = 2.0 * PI
 _SAMPLES = 96
 
 
@@ -66,6 +66,7 @@ def _support_point(omega: float, delta: float) -> tuple[np.ndarray, list[tuple[f
 def reach_distance(gp: np.ndarray, delta: float) -> tuple[float, float]:
     """max over omega of (w . g' - h(omega)) (= dist(g', S) when > 0) and the maximiser."""
     from scipy.optimize import minimize_scalar  # SciPy is imported where used (start-up time)
+
     om = np.arange(_SAMPLES) * (TWO_PI / _SAMPLES)
     phi = gp[0] * np.cos(om) + gp[1] * np.sin(om) - support(om, delta)
     i = int(np.argmax(phi))
@@ -195,7 +196,7 @@ def cheapest_fixed_turn_rate(
         best = [("B", 0.0)]
     out = [(lab, direction, ang) for lab, ang in best]
     pe, he = compose(out, rho, ())
-    err = max(math.hypot(pe[0] - goal[0], pe[1] - goal[1]), abs((he - goal[2] + PI) % TWO_PI - PI))
+    err = max(math.hypot(pe[0] - goal[0], pe[1] - goal[1]), abs(float(wrap_to_pi(he - goal[2]))))
     if err > 1e-8:
         return None
     return out, total, k

@@ -21,8 +21,6 @@ __all__ = [
     "tangent",
 ]
 
-TWO_PI = 2.0 * np.pi
-
 
 def tangent(h: np.ndarray) -> np.ndarray:
     """Unit vectors (cos h, sin h), shape h.shape + (2,)."""

@@ -55,6 +55,7 @@ from glideplan.planners.min_time.table import (
     long_form,
     rigid_types,
 )
+from glideplan.pose import TWO_PI, mod_2pi, wrap_to_pi
 
 __all__ = [
     "Extremal",
@@ -65,7 +66,6 @@ __all__ = [
 ]
 
 PI = math.pi
-TWO_PI = 2.0 * PI
 _EY = np.array([0.0, 1.0])
 _RANGE_TOL = 1e-9  # how far outside a parameter range a root may fall and be clipped
 _END_TOL = 1e-8  # normalised endpoint error accepted for a solution
@@ -151,7 +151,7 @@ def _finish(
     moves = piece_moves(first, "first", d1, u1, a) + middle + piece_moves(last, "last", d2, u2, a)
     moves_f: tuple[Move, ...] = tuple((lab, d, float(x)) for lab, d, x in moves)
     p, h = compose(moves_f, rho, ())
-    dh = (float(h) - goal[2] + PI) % TWO_PI - PI
+    dh = float(wrap_to_pi(float(h) - goal[2]))
     err = max(float(np.hypot(*(p - goal[:2]))), abs(dh))
     if err > _END_TOL:
         return None
@@ -288,7 +288,7 @@ def _goal_offsets(st: _Stack, goal: np.ndarray) -> np.ndarray:
 
 def _wrap_range(u: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """u mod 2 pi clipped into [0, hi] (within tolerance) and the mask of those inside."""
-    u = np.mod(u, TWO_PI)
+    u = np.asarray(mod_2pi(u))
     u = np.where(u > TWO_PI - _RANGE_TOL, u - TWO_PI, u)
     ok = (u >= -_RANGE_TOL) & (u <= hi + _RANGE_TOL)
     return np.clip(u, 0.0, hi), ok
@@ -325,12 +325,12 @@ def _coef_roots_batch(coef: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     rows = np.repeat(np.arange(n), m)
     z = z.ravel()
     keep = np.abs(np.abs(z) - 1.0) < 1e-4
-    rows, a = rows[keep], np.mod(np.angle(z[keep]), TWO_PI)
+    rows, a = rows[keep], np.asarray(mod_2pi(np.angle(z[keep])))
     scale = np.max(np.abs(coef), axis=-1)[rows]
     for _ in range(3):  # Newton polish on f itself
         f, df = _trig_eval(coef[rows], a)
         safe = np.abs(df) > 1e-14 * scale
-        a = np.mod(a - np.where(safe, f / np.where(safe, df, 1.0), 0.0), TWO_PI)
+        a = np.asarray(mod_2pi(a - np.where(safe, f / np.where(safe, df, 1.0), 0.0)))
     return rows, a
 
 

@@ -29,7 +29,7 @@ from glideplan.planners.min_time.table import (
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import Pose
 from glideplan.segments import Arc, Segment, Straight
-from glideplan.solution import Candidate
+from glideplan.solution import Candidate, Status
 from glideplan.vehicles.variable_speed_car import VariableSpeedCar
 
 __all__ = [
@@ -228,7 +228,7 @@ def _candidate(ext: Extremal, vehicle: VariableSpeedCar) -> Candidate:
         info["violates"] = violated  # strict sub-optimality bounds (4.22), (4.24)
     if ext.ctype.group == "umax":
         info["speed_profile"] = "not unique: every profile of this heading change takes this time"
-    return Candidate(path.word, path.family, ext.cost / vehicle.u_max, path, "feasible", info)
+    return Candidate(path.word, path.family, ext.cost / vehicle.u_max, path, Status.FEASIBLE, info)
 
 
 @register_planner(

@@ -1,0 +1,299 @@
+"""`glideplan explore` in a real browser: Debian's Chromium driven by Playwright.
+
+One server (in-process, threaded, on a free port of 127.0.0.1) and one browser serve every
+test of the module. The reference for each displayed cost is `glideplan.plan()` called here
+for the same inputs (built from the URL's values, independently of the page's own parsing);
+the reference for an error message is the CLI's one-line message for the same bad value.
+Screenshots of each planner family go to the test's temporary output directory.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import os
+import pathlib
+import socket
+import time
+from collections.abc import Iterator
+from typing import Any
+from urllib.parse import parse_qsl, urlparse
+
+import pytest
+
+CHROMIUM = "/usr/bin/chromium"
+if not os.path.exists(CHROMIUM):
+    pytest.skip(f"Chromium is not installed at {CHROMIUM}", allow_module_level=True)
+playwright_api = pytest.importorskip("playwright.sync_api", reason="playwright is not installed")
+
+from glideplan import (  # noqa: E402
+    DubinsCar,
+    DubinsCarInWind,
+    LoadFactorGlider,
+    Pose,
+    VariableSpeedCar,
+    plan,
+)
+from glideplan.vehicles import QuadraticPolarGlider  # noqa: E402
+
+ARGS = [
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--no-first-run",
+    "--disable-quic",
+]
+# JavaScript: the main figure's frame on the page and its data ranges.
+FRAME_JS = """() => {
+  const found = [];
+  const walk = (v) => {
+    if (v.frame && v.model.x_range && v.frame.bbox.width > 300) found.push(v);
+    for (const c of (v.child_views || [])) walk(c);
+  };
+  for (const r of Bokeh.index.roots) walk(r);
+  const v = found[0];
+  const b = v.canvas_view.el.getBoundingClientRect();
+  return {left: b.left + v.frame.bbox.left, top: b.top + v.frame.bbox.top,
+          w: v.frame.bbox.width, h: v.frame.bbox.height,
+          x0: v.model.x_range.start, x1: v.model.x_range.end,
+          y0: v.model.y_range.start, y1: v.model.y_range.end};
+}"""
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+@pytest.fixture(scope="module")
+def server() -> Iterator[str]:
+    from glideplan.explore.server import serve
+
+    port = _free_port()
+    srv = serve(port, "127.0.0.1", show=False, threaded=True)
+    deadline = time.monotonic() + 20.0
+    while time.monotonic() < deadline:
+        try:
+            socket.create_connection(("127.0.0.1", port), timeout=0.5).close()
+            break
+        except OSError:
+            time.sleep(0.1)
+    yield f"http://127.0.0.1:{port}"
+    srv.stop()
+
+
+@pytest.fixture(scope="module")
+def requests_seen() -> list[str]:
+    return []
+
+
+@pytest.fixture(scope="module")
+def browser_context(requests_seen: list[str]) -> Iterator[Any]:
+    with playwright_api.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+        context = browser.new_context(viewport={"width": 1500, "height": 1000}, accept_downloads=True)
+        context.on("request", lambda r: requests_seen.append(r.url))
+        yield context
+        context.close()
+        browser.close()
+
+
+@pytest.fixture(scope="module")
+def shots(tmp_path_factory: pytest.TempPathFactory) -> pathlib.Path:
+    return tmp_path_factory.mktemp("explore_screenshots")
+
+
+def _wait_result(page: Any, previous: str | None = None, timeout: float = 60.0) -> str:
+    """The displayed cost once the page has finished planning (and differs from `previous`)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        busy = page.locator(".gp-busy").count()
+        cost = page.locator(".gp-cost").first.inner_text() if page.locator(".gp-cost").count() else ""
+        if not busy and cost and cost != "n/a" and cost != previous:
+            return str(cost)
+        time.sleep(0.1)
+    raise AssertionError(f"no result within {timeout} s (last cost {cost!r})")
+
+
+def _open(context: Any, url: str) -> Any:
+    page = context.new_page()
+    page.goto(url)
+    page.wait_for_selector(".gp-cost", timeout=60_000)
+    return page
+
+
+def _query(page: Any) -> dict[str, str]:
+    return dict(parse_qsl(urlparse(page.evaluate("() => location.href")).query))
+
+
+def _pose(text: str) -> Pose:
+    x, y, h = (float(v) for v in text.split(","))
+    return Pose(x, y, math.radians(h))
+
+
+def _floats(text: str) -> list[float]:
+    return [float(v) for v in text.split(",")]
+
+
+def _reference(q: dict[str, str]) -> float:
+    """`plan()` for the inputs of a URL query, built here from the CLI-named values."""
+    planner = q["planner"]
+    goal = _pose(q["goal"])
+    start = _pose(q.get("start", "0,0,0"))
+    if planner == "dubins":
+        v: Any = DubinsCar(float(q["speed"]), float(q["radius"]))
+        return plan(start, goal, v, "length").cost
+    if planner == "wind":
+        w, d = _floats(q["wind"])
+        v = DubinsCarInWind(float(q["speed"]), float(q["radius"]), w, math.radians(d))
+        return plan(start, goal, v).cost
+    if planner == "time-optimal":
+        v = VariableSpeedCar(float(q["v_min"]), float(q["v_max"]), float(q["u_max"]))
+        return plan(start, goal, v, "time", "synthesis").cost
+    if planner == "min-altitude":
+        a, b, c = _floats(q["polar"])
+        v = QuadraticPolarGlider(a, b, c, float(q["v_stall"]), float(q["v_max"]), float(q["u_max"]))
+        return plan(start, goal, v, "altitude", "synthesis").cost
+    if planner == "load-factor":
+        v = LoadFactorGlider(
+            float(q["l_over_d"]), float(q["v_min"]), float(q["v_max"]), float(q["n_max"])
+        )
+        return plan(start, goal, v, "altitude", "direct", max_starts=int(q["max_starts"])).cost
+    raise AssertionError(planner)
+
+
+FAMILIES = {
+    "dubins": "planner=dubins&goal=4,3,90&radius=1",
+    "wind": "planner=wind&goal=4,-2,135&speed=1&radius=1&wind=0.5,30",
+    "time-optimal": "planner=time-optimal&goal=0.5,1.5,200&v_min=0.3&v_max=1&u_max=1",
+    "min-altitude": "planner=min-altitude&goal=300,-250,180",
+    "load-factor": "planner=load-factor&goal=3,2,60&max_starts=1",
+}
+
+
+@pytest.mark.parametrize("family", list(FAMILIES))
+def test_cost_matches_plan(family: str, server: str, browser_context: Any, shots: pathlib.Path):
+    """The page's `gp-cost` equals `plan()` for the inputs in its URL (1e-6 relative)."""
+    page = _open(browser_context, f"{server}/?{FAMILIES[family]}")
+    try:
+        cost = float(_wait_result(page))
+        q = _query(page)
+        assert q["planner"] == family
+        ref = _reference(q)
+        assert cost == pytest.approx(ref, rel=1e-6)
+        assert page.locator(".gp-word").first.inner_text().strip()
+        assert len(page.locator(".gp-cost").first.inner_text().replace(".", "").lstrip("0")) >= 7
+        page.screenshot(path=str(shots / f"explore_{family}.png"), full_page=True)
+    finally:
+        page.close()
+
+
+def test_drag_goal_updates_cost_and_url(server: str, browser_context: Any, shots: pathlib.Path):
+    """Dragging the goal with the mouse moves it (URL) and re-plans (cost = plan() there)."""
+    page = _open(browser_context, f"{server}/?planner=dubins&goal=4,3,90&radius=1")
+    try:
+        before = _wait_result(page)
+        f = page.evaluate(FRAME_JS)
+
+        def screen(x: float, y: float) -> tuple[float, float]:
+            sx = f["left"] + (x - f["x0"]) / (f["x1"] - f["x0"]) * f["w"]
+            sy = f["top"] + (f["y1"] - y) / (f["y1"] - f["y0"]) * f["h"]
+            return sx, sy
+
+        sx, sy = screen(4.0, 3.0)
+        tx, ty = screen(1.5, -2.0)
+        page.mouse.move(sx, sy)
+        page.mouse.down()
+        for k in range(1, 9):
+            page.mouse.move(sx + (tx - sx) * k / 8, sy + (ty - sy) * k / 8)
+        page.mouse.up()
+        after = float(_wait_result(page, previous=before))
+        q = _query(page)
+        goal = _pose(q["goal"])
+        assert goal.x == pytest.approx(1.5, abs=0.1) and goal.y == pytest.approx(-2.0, abs=0.1)
+        assert math.degrees(goal.heading) == pytest.approx(90.0)  # a drag keeps the heading
+        assert after == pytest.approx(_reference(q), rel=1e-6)
+        assert after != pytest.approx(float(before), rel=1e-3)
+        page.screenshot(path=str(shots / "explore_dubins_dragged.png"), full_page=True)
+    finally:
+        page.close()
+
+
+def test_bad_value_shows_cli_message(server: str, browser_context: Any, cli_error: Any):
+    """A bad radius shows the CLI's one-line message in `gp-error`, and no result."""
+    page = _open(browser_context, f"{server}/?planner=dubins&goal=4,3,90&radius=1")
+    try:
+        _wait_result(page)
+        box = page.locator(".gp-input-radius input")
+        box.fill("-1")
+        box.press("Enter")
+        page.wait_for_selector(".gp-error", timeout=20_000)
+        shown = page.locator(".gp-error").first.inner_text().strip()
+        line = cli_error("plan", "dubins", "--goal", "4", "3", "90", "--radius", "-1")
+        assert line == f"glideplan: error: {shown}"
+        assert page.locator(".gp-cost").first.inner_text() == "n/a"
+        assert _query(page)["radius"] == "-1"
+    finally:
+        page.close()
+
+
+def test_slow_planner_shows_busy(server: str, browser_context: Any):
+    """A direct method shows `gp-busy` while it works; the page still answers meanwhile."""
+    page = _open(browser_context, f"{server}/?planner=time-optimal-direct&goal=2,1,90")
+    try:
+        page.wait_for_selector(".gp-busy", timeout=20_000)
+        assert page.evaluate("() => 1 + 1") == 2  # the page's thread is free
+        cost = float(_wait_result(page))
+        q = _query(page)
+        v = VariableSpeedCar(float(q["v_min"]), float(q["v_max"]), float(q["u_max"]))
+        assert cost == pytest.approx(plan(Pose(), _pose(q["goal"]), v, "time", "direct").cost, rel=1e-6)
+    finally:
+        page.close()
+
+
+def test_downloads_read_back(server: str, browser_context: Any, run_cli: Any, tmp_path: pathlib.Path):
+    """JSON as `plan --json` prints it, the CSV read by `csv`, the PNG read by Matplotlib."""
+    page = _open(browser_context, f"{server}/?planner=dubins&goal=4,3,90&radius=1")
+    try:
+        _wait_result(page)
+        files = {}
+        for label in ("JSON", "CSV", "PNG"):
+            with page.expect_download(timeout=30_000) as info:
+                page.get_by_role("button", name=label).click()
+            target = tmp_path / info.value.suggested_filename
+            info.value.save_as(target)
+            files[label] = target
+    finally:
+        page.close()
+    data = json.loads(files["JSON"].read_text())
+    code, out, _ = run_cli("plan", "dubins", "--goal", "4", "3", "90", "--radius", "1", "--json")
+    ref = json.loads(out)
+    assert code == 0
+    ignore = {"stats"}  # wall-clock times
+    assert {k: v for k, v in data.items() if k not in ignore} == {
+        k: v for k, v in ref.items() if k not in ignore
+    }
+    rows = list(csv.DictReader(io.StringIO(files["CSV"].read_text())))
+    assert float(rows[-1]["x"]) == pytest.approx(4.0, abs=1e-9)
+    assert float(rows[-1]["y"]) == pytest.approx(3.0, abs=1e-9)
+    assert float(rows[-1]["cost"]) == pytest.approx(ref["cost"], rel=1e-9)
+    from matplotlib.image import imread
+
+    img = imread(files["PNG"])
+    assert img.shape[0] > 300 and img.shape[1] > 300
+
+
+def test_every_request_stays_local(server: str, requests_seen: list[str]):
+    """No request leaves 127.0.0.1: scripts and style sheets are served by the app itself."""
+    # runs last in this module: the other tests have loaded every page by now
+    assert requests_seen
+    for url in requests_seen:
+        parsed = urlparse(url[len("blob:") :] if url.startswith("blob:") else url)
+        if parsed.scheme == "data":
+            continue
+        assert parsed.hostname == "127.0.0.1", url
