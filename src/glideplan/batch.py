@@ -133,9 +133,9 @@ def _run_dask(fn: Callable[[T], R], items: list[T], scheduler: Any, bar: _Progre
         for fut in as_completed(futures):
             i = index[fut.key]
             if fut.status == "error":
-                exc = fut.exception()
+                err = fut.exception()
                 client.cancel(futures)
-                raise _tag(exc, i) from None
+                raise _tag(err, i) from None
             results[i] = fut.result()
             done += 1
             bar.update(done)

@@ -268,6 +268,8 @@ def plan(
         raise InvalidParameterError(
             "vehicle", vehicle, "must be a glideplan vehicle model (e.g. DubinsCar(1.0, 1.0))"
         )
+    if not isinstance(verify, bool):
+        raise InvalidParameterError("verify", verify, "must be True or False")
     if not isinstance(tolerance, (int, float)) or isinstance(tolerance, bool):
         raise InvalidParameterError("tolerance", tolerance, "must be a real number")
     if not 0.0 < tolerance < 1.0:

@@ -235,7 +235,11 @@ def plot_solution(solution: Solution, ax: Any = None, *, candidates: bool = Fals
             lw=2.4,
             color="black",
             zorder=3,
-            label=f"optimal {word} ({solution.family or '-'}), {solution.cost:.5g} {cost_u}",
+            label=(
+                f"optimal {word} ({solution.family or '-'}), {solution.cost:.5g} {cost_u}"
+                if solution.path.length > 0.0
+                else f"zero-length path (start = goal), 0 {cost_u}"
+            ),
         )
         drawn.append(solution.path)
     switches = solution.path is not None and len(solution.path.segments) > 1

@@ -182,3 +182,16 @@ def test_nondimensional_glider_figure_uses_l_ref():
     g = LoadFactorGlider()
     assert length_unit(g) == "l_ref" and cost_unit("altitude", g) == "l_ref"
     assert length_unit(dg1001m()) == "m" and cost_unit("time", VariableSpeedCar()) == "s"
+
+
+def test_design_valve_says_the_bladder_curve_is_assumed(run_cli):
+    """Issue 10 sec. 3: the valve sizes rest on an unpublished p_blad(V), and say so."""
+    import json
+
+    from glideplan.design.valves import ASSUMED_BLADDER_CURVE_NOTE
+
+    assert "assumed" in ASSUMED_BLADDER_CURVE_NOTE and "p_blad(V)" in ASSUMED_BLADDER_CURVE_NOTE
+    code, out, _ = run_cli("design", "valve", "--json")
+    assert code == 0 and json.loads(out)["note"] == ASSUMED_BLADDER_CURVE_NOTE
+    code, out, _ = run_cli("design", "valve", "--volume-l", "1")
+    assert code == 0 and "assumed (unpublished" in " ".join(out.split())

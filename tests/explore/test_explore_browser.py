@@ -96,7 +96,9 @@ def requests_seen() -> list[str]:
 def browser_context(requests_seen: list[str]) -> Iterator[Any]:
     with playwright_api.sync_playwright() as p:
         browser = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
-        context = browser.new_context(viewport={"width": 1500, "height": 1000}, accept_downloads=True)
+        context = browser.new_context(
+            viewport={"width": 1500, "height": 1000}, accept_downloads=True
+        )
         context.on("request", lambda r: requests_seen.append(r.url))
         yield context
         context.close()
@@ -108,16 +110,29 @@ def shots(tmp_path_factory: pytest.TempPathFactory) -> pathlib.Path:
     return tmp_path_factory.mktemp("explore_screenshots")
 
 
-def _wait_result(page: Any, previous: str | None = None, timeout: float = 60.0) -> str:
+@pytest.fixture(scope="module")
+def dubins_page(server: str, browser_context: Any) -> Iterator[Any]:
+    """One Dubins page shared by the tests that drive it (cost, downloads, drag, bad value)."""
+    page = _open(browser_context, f"{server}/?" + FAMILIES["dubins"])
+    yield page
+    page.close()
+
+
+def _wait_result(page: Any, previous: str | None = None, timeout: float = 40.0) -> str:
     """The displayed cost once the page has finished planning (and differs from `previous`)."""
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         busy = page.locator(".gp-busy").count()
-        cost = page.locator(".gp-cost").first.inner_text() if page.locator(".gp-cost").count() else ""
+        cost = (
+            page.locator(".gp-cost").first.inner_text() if page.locator(".gp-cost").count() else ""
+        )
         if not busy and cost and cost != "n/a" and cost != previous:
             return str(cost)
         time.sleep(0.1)
-    raise AssertionError(f"no result within {timeout} s (last cost {cost!r})")
+    status = (
+        page.locator(".gp-status").first.inner_text() if page.locator(".gp-status").count() else ""
+    )
+    raise AssertionError(f"no result within {timeout} s (cost {cost!r}, status {status!r})")
 
 
 def _open(context: Any, url: str) -> Any:
@@ -177,9 +192,12 @@ FAMILIES = {
 
 
 @pytest.mark.parametrize("family", list(FAMILIES))
-def test_cost_matches_plan(family: str, server: str, browser_context: Any, shots: pathlib.Path):
+def test_cost_matches_plan(
+    family: str, server: str, browser_context: Any, dubins_page: Any, shots: pathlib.Path
+):
     """The page's `gp-cost` equals `plan()` for the inputs in its URL (1e-6 relative)."""
-    page = _open(browser_context, f"{server}/?{FAMILIES[family]}")
+    shared = family == "dubins"
+    page = dubins_page if shared else _open(browser_context, f"{server}/?{FAMILIES[family]}")
     try:
         cost = float(_wait_result(page))
         q = _query(page)
@@ -190,86 +208,21 @@ def test_cost_matches_plan(family: str, server: str, browser_context: Any, shots
         assert len(page.locator(".gp-cost").first.inner_text().replace(".", "").lstrip("0")) >= 7
         page.screenshot(path=str(shots / f"explore_{family}.png"), full_page=True)
     finally:
-        page.close()
+        if not shared:
+            page.close()
 
 
-def test_drag_goal_updates_cost_and_url(server: str, browser_context: Any, shots: pathlib.Path):
-    """Dragging the goal with the mouse moves it (URL) and re-plans (cost = plan() there)."""
-    page = _open(browser_context, f"{server}/?planner=dubins&goal=4,3,90&radius=1")
-    try:
-        before = _wait_result(page)
-        f = page.evaluate(FRAME_JS)
-
-        def screen(x: float, y: float) -> tuple[float, float]:
-            sx = f["left"] + (x - f["x0"]) / (f["x1"] - f["x0"]) * f["w"]
-            sy = f["top"] + (f["y1"] - y) / (f["y1"] - f["y0"]) * f["h"]
-            return sx, sy
-
-        sx, sy = screen(4.0, 3.0)
-        tx, ty = screen(1.5, -2.0)
-        page.mouse.move(sx, sy)
-        page.mouse.down()
-        for k in range(1, 9):
-            page.mouse.move(sx + (tx - sx) * k / 8, sy + (ty - sy) * k / 8)
-        page.mouse.up()
-        after = float(_wait_result(page, previous=before))
-        q = _query(page)
-        goal = _pose(q["goal"])
-        assert goal.x == pytest.approx(1.5, abs=0.1) and goal.y == pytest.approx(-2.0, abs=0.1)
-        assert math.degrees(goal.heading) == pytest.approx(90.0)  # a drag keeps the heading
-        assert after == pytest.approx(_reference(q), rel=1e-6)
-        assert after != pytest.approx(float(before), rel=1e-3)
-        page.screenshot(path=str(shots / "explore_dubins_dragged.png"), full_page=True)
-    finally:
-        page.close()
-
-
-def test_bad_value_shows_cli_message(server: str, browser_context: Any, cli_error: Any):
-    """A bad radius shows the CLI's one-line message in `gp-error`, and no result."""
-    page = _open(browser_context, f"{server}/?planner=dubins&goal=4,3,90&radius=1")
-    try:
-        _wait_result(page)
-        box = page.locator(".gp-input-radius input")
-        box.fill("-1")
-        box.press("Enter")
-        page.wait_for_selector(".gp-error", timeout=20_000)
-        shown = page.locator(".gp-error").first.inner_text().strip()
-        line = cli_error("plan", "dubins", "--goal", "4", "3", "90", "--radius", "-1")
-        assert line == f"glideplan: error: {shown}"
-        assert page.locator(".gp-cost").first.inner_text() == "n/a"
-        assert _query(page)["radius"] == "-1"
-    finally:
-        page.close()
-
-
-def test_slow_planner_shows_busy(server: str, browser_context: Any):
-    """A direct method shows `gp-busy` while it works; the page still answers meanwhile."""
-    page = _open(browser_context, f"{server}/?planner=time-optimal-direct&goal=2,1,90")
-    try:
-        page.wait_for_selector(".gp-busy", timeout=20_000)
-        assert page.evaluate("() => 1 + 1") == 2  # the page's thread is free
-        cost = float(_wait_result(page))
-        q = _query(page)
-        v = VariableSpeedCar(float(q["v_min"]), float(q["v_max"]), float(q["u_max"]))
-        assert cost == pytest.approx(plan(Pose(), _pose(q["goal"]), v, "time", "direct").cost, rel=1e-6)
-    finally:
-        page.close()
-
-
-def test_downloads_read_back(server: str, browser_context: Any, run_cli: Any, tmp_path: pathlib.Path):
+def test_downloads_read_back(dubins_page: Any, run_cli: Any, tmp_path: pathlib.Path):
     """JSON as `plan --json` prints it, the CSV read by `csv`, the PNG read by Matplotlib."""
-    page = _open(browser_context, f"{server}/?planner=dubins&goal=4,3,90&radius=1")
-    try:
-        _wait_result(page)
-        files = {}
-        for label in ("JSON", "CSV", "PNG"):
-            with page.expect_download(timeout=30_000) as info:
-                page.get_by_role("button", name=label).click()
-            target = tmp_path / info.value.suggested_filename
-            info.value.save_as(target)
-            files[label] = target
-    finally:
-        page.close()
+    page = dubins_page
+    _wait_result(page)
+    files = {}
+    for label in ("JSON", "CSV", "PNG"):
+        with page.expect_download(timeout=30_000) as info:
+            page.get_by_role("button", name=label).click()
+        target = tmp_path / info.value.suggested_filename
+        info.value.save_as(target)
+        files[label] = target
     data = json.loads(files["JSON"].read_text())
     code, out, _ = run_cli("plan", "dubins", "--goal", "4", "3", "90", "--radius", "1", "--json")
     ref = json.loads(out)
@@ -286,6 +239,76 @@ def test_downloads_read_back(server: str, browser_context: Any, run_cli: Any, tm
 
     img = imread(files["PNG"])
     assert img.shape[0] > 300 and img.shape[1] > 300
+
+
+def test_drag_goal_updates_cost_and_url(dubins_page: Any, shots: pathlib.Path):
+    """Dragging the goal with the mouse moves it (URL) and re-plans (cost = plan() there)."""
+    page = dubins_page
+    before = _wait_result(page)
+    assert _pose(_query(page)["goal"]) == _pose("4,3,90")
+    f = page.evaluate(FRAME_JS)
+
+    def screen(x: float, y: float) -> tuple[float, float]:
+        sx = f["left"] + (x - f["x0"]) / (f["x1"] - f["x0"]) * f["w"]
+        sy = f["top"] + (f["y1"] - y) / (f["y1"] - f["y0"]) * f["h"]
+        return sx, sy
+
+    sx, sy = screen(4.0, 3.0)
+    tx, ty = screen(1.5, -2.0)
+    page.mouse.move(sx, sy)
+    page.mouse.down()
+    for k in range(1, 9):
+        page.mouse.move(sx + (tx - sx) * k / 8, sy + (ty - sy) * k / 8)
+    page.mouse.up()
+    after = float(_wait_result(page, previous=before))
+    q = _query(page)
+    goal = _pose(q["goal"])
+    assert goal.x == pytest.approx(1.5, abs=0.1) and goal.y == pytest.approx(-2.0, abs=0.1)
+    assert math.degrees(goal.heading) == pytest.approx(90.0)  # a drag keeps the heading
+    assert after == pytest.approx(_reference(q), rel=1e-6)
+    assert after != pytest.approx(float(before), rel=1e-3)
+    page.screenshot(path=str(shots / "explore_dubins_dragged.png"), full_page=True)
+
+
+def test_bad_value_shows_cli_message(dubins_page: Any, cli_error: Any):
+    """A bad radius shows the CLI's one-line message in `gp-error`, and no result."""
+    page = dubins_page
+    _wait_result(page)
+    box = page.locator(".gp-input-radius input")
+    box.fill("-1")
+    box.press("Enter")
+    page.wait_for_selector(".gp-error", timeout=20_000)
+    shown = page.locator(".gp-error").first.inner_text().strip()
+    line = cli_error("plan", "dubins", "--goal", "4", "3", "90", "--radius", "-1")
+    assert line == f"glideplan: error: {shown}"
+    assert page.locator(".gp-cost").first.inner_text() == "n/a"
+    assert _query(page)["radius"] == "-1"
+
+
+def test_slow_planner_shows_busy(server: str, browser_context: Any):
+    """A direct method shows `gp-busy` while it works; the page still answers meanwhile."""
+    page = _open(
+        browser_context,
+        f"{server}/?planner=time-optimal-direct&goal=2,1.5,90&synthesis_starts=1",
+    )
+    try:
+        first = _wait_result(page)
+        box = page.locator(".gp-input-goal input")
+        box.fill("2.5,1.5,90")
+        box.press("Enter")
+        page.wait_for_selector(".gp-busy", timeout=20_000)
+        assert page.evaluate("() => 1 + 1") == 2  # the page's thread is free
+        cost = float(_wait_result(page, previous=first))
+        q = _query(page)
+        v = VariableSpeedCar(float(q["v_min"]), float(q["v_max"]), float(q["u_max"]))
+        opts = {
+            "n_intervals": int(q["n_intervals"]),
+            "synthesis_starts": int(q["synthesis_starts"]),
+        }
+        ref = plan(Pose(), _pose(q["goal"]), v, "time", "direct", **opts).cost
+        assert cost == pytest.approx(ref, rel=1e-6)
+    finally:
+        page.close()
 
 
 def test_every_request_stays_local(server: str, requests_seen: list[str]):

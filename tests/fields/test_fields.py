@@ -92,9 +92,10 @@ def test_grib_descending_latitude(tmp_path):
     f = open_field(path)
     assert f.info["variables"] == ["u10", "v10"]
     assert str(f.epoch)[:13] == "2026-01-01T00"
-    u, v = f.velocity([0.0, 20000.0], [29.3, 30.7], [-40.6, -39.2])
-    np.testing.assert_allclose(u, linear_u(np.array([0.0, 2e4]), np.array([29.3, 30.7]),
-                                           np.array([-40.6, -39.2])), atol=2e-5)
+    tq, laq, loq = np.array([0.0, 2e4]), np.array([29.3, 30.7]), np.array([-40.6, -39.2])
+    u, v = f.velocity(tq, laq, loq)
+    np.testing.assert_allclose(u, linear_u(tq, laq, loq), atol=2e-5)
+    np.testing.assert_allclose(v, linear_v(tq, laq, loq), atol=2e-5)
 
 
 def test_depth_average_trapezoid():

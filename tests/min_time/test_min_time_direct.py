@@ -1,10 +1,11 @@
 """The synthesis against the independent direct method (method="direct").
 
-The direct answer is a real path: its controls, flown exactly (`integrate_path`), end at a
-pose within its endpoint error of the goal, in `direct.cost` seconds (the path's duration).
-The synthesis to that actual end pose is the optimum there, so it can be no slower: the only
-tolerance is the accuracy of the two numbers compared (integration rtol 1e-11 on the end
-pose, round-off on the durations), 1e-9 relative. Random goals (hundreds, with both start
+The direct answer is a real path: its controls, flown exactly (`fly_linear_controls` in
+conftest.py: exact quadrature of the piecewise-linear controls), end at a pose within its
+endpoint error of the goal, in `direct.cost` seconds (the path's duration). The synthesis to
+that actual end pose is the optimum there, so it can be no slower: the only tolerance is the
+accuracy of the numbers compared (the end pose to ~1e-15, round-off on the durations, the
+synthesis's root finding), 1e-9 relative. Random goals (hundreds, with both start
 sets) are checked by `benchmarks/min_time_vs_direct.py` (`make validate`), which also runs
 the goals that were parametrised here before.
 """
@@ -16,7 +17,6 @@ import pytest
 
 from glideplan import InvalidParameterError, Pose, VariableSpeedCar, plan
 from glideplan.planners.min_time.direct import classify_controls
-from glideplan.verify import integrate_path
 
 # the example of Table 4.3, a goal behind the start, and the optimum C B T B C that the
 # types of (4.26) leave out; plus one random goal in [-3, 3]^2
@@ -33,7 +33,7 @@ DIRECT_ACCURACY = 1e-3
 
 
 @pytest.mark.parametrize("goal", GOALS, ids=lambda g: f"{g[0]:.2f},{g[1]:.2f},{g[2]:.2f},r{g[3]}")
-def test_synthesis_never_above_direct(goal):
+def test_synthesis_never_above_direct(goal, fly_linear_controls):
     x, y, h, rho = goal
     car = VariableSpeedCar(rho, 1.0, 1.0)
     syn = plan(Pose(), Pose(x, y, h), car)
@@ -41,7 +41,7 @@ def test_synthesis_never_above_direct(goal):
     direct = plan(Pose(), Pose(x, y, h), car, method="direct", synthesis_starts=0)
     assert syn.ok and direct.ok
     assert direct.endpoint_error.max < 1e-6
-    reached = integrate_path(direct.path).end
+    reached = fly_linear_controls(direct.path)
     assert plan(Pose(), reached, car).cost <= direct.cost * (1 + 1e-9)
     assert direct.cost <= syn.cost * (1 + DIRECT_ACCURACY) or direct.family != syn.family
 

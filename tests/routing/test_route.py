@@ -155,6 +155,6 @@ def test_unreachable_reports_best_distance():
     """
     r = route(UniformField(-0.4, 0.0), (30.0, -40.0), (30.0, -39.7), V, cells=60)
     assert r.status == "unreachable" and r.duration_s is None
-    gx = float(LocalProjection(30.0, -40.0).to_local(30.0, -39.7)[0])
-    assert r.best_distance_m == pytest.approx(gx, rel=1e-9)
+    gx, gy = LocalProjection(30.0, -40.0).to_local(30.0, -39.7)
+    assert r.best_distance_m == pytest.approx(math.hypot(gx, gy), rel=1e-9)
     assert r.straight_line_duration_s is None

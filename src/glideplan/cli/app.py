@@ -118,10 +118,13 @@ def _reflow(text: str | None) -> str | None:
     """Join the lines of each help paragraph (Rich would keep docstring line breaks)."""
     if not text:
         return text
-    paragraphs = text.split("\n\n")
-    return "\n\n".join(
-        p if p.lstrip().startswith("\b") else " ".join(p.split()) for p in paragraphs
-    )
+    def keep(p: str) -> bool:  # \b paragraphs (Click's "no rewrap") and lists stay as written
+        lines = [line.strip() for line in p.strip().splitlines()]
+        return p.lstrip().startswith("\b") or any(
+            line[:2] in ("- ", "* ") or line.split(".")[0].isdigit() for line in lines
+        )
+
+    return "\n\n".join(p if keep(p) else " ".join(p.split()) for p in text.split("\n\n"))
 
 
 def _polish(command: Any) -> Any:

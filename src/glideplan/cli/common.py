@@ -216,5 +216,7 @@ def emit_solution(
 
         save_figure(plot_solution(solution, candidates=plot_candidates), str(plot_file))
         announce(f"wrote {plot_file}", json_out)
+    elif plot_file is not None:
+        print_warnings([f"no path to draw: {plot_file} not written"])
     if not solution.ok:
         raise PlanningError(f"{solution.planner}: {solution.status.value}: {solution.message}")

@@ -14,6 +14,7 @@ from glideplan.cli.common import (
     emit_solution,
     flag_names,
     parse_pose,
+    print_warnings,
     solving,
     time_limit_option,
 )
@@ -107,8 +108,15 @@ def plan_load_factor_command(
             ),
         )
     if plot is not None and solution.ok:
-        from glideplan.figures.ch6 import draw_solution
+        if "controls" in solution.extras:
+            from glideplan.figures.ch6 import draw_solution
 
-        draw_solution(solution, plot)
+            draw_solution(solution, plot)
+        else:  # no control history (start = goal): the path figure
+            from glideplan.plotting import plot_solution, save_figure
+
+            save_figure(plot_solution(solution), str(plot))
         announce(f"wrote {plot}", json_out)
+    elif plot is not None:
+        print_warnings([f"no path to draw: {plot} not written"])
     emit_solution(solution, json_out, None)

@@ -14,6 +14,7 @@ from glideplan.cli.common import (
     emit_solution,
     flag_names,
     parse_pose,
+    print_warnings,
     solving,
     time_limit_option,
 )
@@ -147,6 +148,8 @@ def plan_min_altitude_command(
 
             draw_solution(solution, plot)
             announce(f"wrote {plot}", json_out)
+    elif plot is not None:
+        print_warnings([f"no path to draw: {plot} not written"])
     emit_solution(solution, json_out, None, extra=extra)
 
 

@@ -26,7 +26,9 @@ def parse_depart(text: str | None) -> Any:
     try:
         when = dt.datetime.fromisoformat(text.strip())
     except ValueError:
-        raise InvalidParameterError("--depart", text, "must be ISO 8601 (2026-01-01T06:00Z)") from None
+        raise InvalidParameterError(
+            "--depart", text, "must be ISO 8601 (2026-01-01T06:00Z)"
+        ) from None
     if when.tzinfo is not None:
         when = when.astimezone(dt.UTC).replace(tzinfo=None)
     return np.datetime64(when, "ms")
@@ -93,7 +95,9 @@ def route_command(
         if not all(math.isfinite(v) for v in val):
             raise InvalidParameterError(name, val, "latitude/longitude must be finite")
         if abs(val[0]) > 90 or not -180 <= val[1] <= 360:
-            raise InvalidParameterError(name, val, "latitude in [-90, 90], longitude in [-180, 360]")
+            raise InvalidParameterError(
+                name, val, "latitude in [-90, 90], longitude in [-180, 360]"
+            )
     if resolution is not None and not (math.isfinite(resolution) and resolution > 0):
         raise InvalidParameterError("--resolution", resolution, "must be finite and > 0 (m)")
     if radius is not None and not (math.isfinite(radius) and radius > 0):
@@ -107,14 +111,14 @@ def route_command(
         raise InvalidParameterError("--field", None, "give --field FILE or --example double-gyre")
     when = parse_depart(depart)
 
-    from glideplan.fields import double_gyre, open_field
+    from glideplan.fields import FlowField, double_gyre, open_field
 
     if example is not None:
         if example not in _EXAMPLES:
             raise InvalidParameterError("--example", example, f"must be one of {_EXAMPLES}")
         if depth_range is not None:
             raise InvalidParameterError("--depth-range", depth_range, "needs --field files")
-        flow = double_gyre()
+        flow: FlowField = double_gyre()
         source: dict[str, Any] = {"file": None, "example": example}
     else:
         assert field is not None

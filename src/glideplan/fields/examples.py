@@ -49,7 +49,8 @@ def double_gyre(
         v = math.pi * amplitude * np.cos(math.pi * f) * np.sin(math.pi * y) * dfdx
         return u * scale, v * scale
 
-    extent = Extent(lat0, lat0 + length_m / m_per_deg_lat, lon0, lon0 + 2 * length_m / m_per_deg_lon)
+    extent = Extent(lat0, lat0 + length_m / m_per_deg_lat, lon0,
+                    lon0 + 2 * length_m / m_per_deg_lon)
     return AnalyticField(
         fn=fn, extent=extent, epoch=EXAMPLE_EPOCH, name="double-gyre",
         extra={"length_m": length_m, "max_speed": max_speed, "period_s": 2 * math.pi / omega * ts},

@@ -61,7 +61,7 @@ def to_seconds(t: Any, epoch: np.datetime64 | None) -> FloatArray:
     if np.issubdtype(a.dtype, np.datetime64):
         if epoch is None:
             raise InvalidParameterError("time", t, "this field has no calendar: give seconds")
-        return (a - epoch) / np.timedelta64(1, "s")  # type: ignore[no-any-return]
+        return (a - epoch) / np.timedelta64(1, "s")
     try:
         out = np.asarray(a, dtype=float)
     except (TypeError, ValueError):
@@ -143,7 +143,7 @@ class FlowField:
         """ISO 8601 of t seconds since epoch (or 't=...s' without a calendar)."""
         if self.epoch is None:
             return f"t={t:g}s"
-        return str(self.epoch + np.timedelta64(int(round(t * 1e3)), "ms"))[:19] + "Z"
+        return str(self.epoch + np.timedelta64(round(t * 1e3), "ms"))[:19] + "Z"
 
     def describe(self) -> dict[str, Any]:
         """JSON-ready description: kind, variables, extent, time span."""
@@ -161,7 +161,7 @@ class UniformField(FlowField):
 
     u: float = 0.0
     v: float = 0.0
-    epoch: np.datetime64 | None = None  # type: ignore[assignment]
+    epoch: np.datetime64 | None = None
 
     def __post_init__(self) -> None:
         for name in ("u", "v"):
@@ -184,9 +184,9 @@ class AnalyticField(FlowField):
     """A field given by fn(t, lat, lon) -> (u, v), t in seconds since `epoch`."""
 
     fn: Callable[[FloatArray, FloatArray, FloatArray], tuple[ArrayLike, ArrayLike]]
-    extent: Extent | None = None  # type: ignore[assignment]
-    time_span: tuple[float, float] | None = None  # type: ignore[assignment]
-    epoch: np.datetime64 | None = None  # type: ignore[assignment]
+    extent: Extent | None = None
+    time_span: tuple[float, float] | None = None
+    epoch: np.datetime64 | None = None
     name: str = "analytic"
     extra: Mapping[str, Any] = field(default_factory=dict)
 
@@ -224,8 +224,8 @@ class GriddedField(FlowField):
     lon: FloatArray
     u: FloatArray
     v: FloatArray
-    epoch: np.datetime64 | None = None  # type: ignore[assignment]
-    info: Mapping[str, Any] = field(default_factory=dict)  # type: ignore[assignment]
+    epoch: np.datetime64 | None = None
+    info: Mapping[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         shape = (self.times.size, self.lat.size, self.lon.size)

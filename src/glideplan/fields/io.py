@@ -108,16 +108,16 @@ def depth_average(profile: np.ndarray, depths: np.ndarray, z0: float, z1: float)
         k = int(np.clip(np.searchsorted(z, zq, side="right") - 1, 0, z.size - 2))
         w = (zq - z[k]) / (z[k + 1] - z[k])
         if w <= 0.0:
-            return prof[k]  # type: ignore[no-any-return]
+            return prof[k]
         if w >= 1.0:
-            return prof[k + 1]  # type: ignore[no-any-return]
-        return (1.0 - w) * prof[k] + w * prof[k + 1]  # type: ignore[no-any-return]
+            return prof[k + 1]
+        return (1.0 - w) * prof[k] + w * prof[k + 1]
 
     inner = (z > z0) & (z < z1)
     zs = np.concatenate([[z0], z[inner], [z1]])
     vals = np.concatenate([at(z0)[None], prof[inner], at(z1)[None]], axis=0)
     dz = np.diff(zs).reshape((-1,) + (1,) * (vals.ndim - 1))
-    return (0.5 * dz * (vals[1:] + vals[:-1])).sum(axis=0) / (z1 - z0)  # type: ignore[no-any-return]
+    return (0.5 * dz * (vals[1:] + vals[:-1])).sum(axis=0) / (z1 - z0)
 
 
 def _normalise_lon(lon: np.ndarray) -> np.ndarray:

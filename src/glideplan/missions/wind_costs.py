@@ -111,6 +111,9 @@ def _scan(
         with np.errstate(invalid="ignore"):
             jumps = np.round((f_next - f_prev) / TWO_PI)
             cross = (f_prev > 0.0) & ((f_next - TWO_PI * jumps <= 0.0) | (f_next <= 0.0))
+            # a word that ends or starts inside the cell: a root may lie next to its boundary
+            cross |= (f_prev > 0.0) & np.isnan(f_next)
+            cross |= np.isnan(f_prev) & (f_next <= 0.0)
         hit = np.any(cross, axis=1)
         out_rows.append(active[hit])
         out_a.append(tau[hit])
@@ -138,6 +141,8 @@ def _roots(
 
     Bisection on two branches of each word's F_W (as the wind planner's `_polish`): unwrapped
     relative to F(a) (a root just before an arc wraps) and F_W itself (a root after a wrap);
+    where the word does not exist at one end, the root is sought between its boundary and the
+    other end;
     a root is valid only if F_W itself vanishes there (|F| <= 1e-7 max(1, tau)), so a jump of
     L_W by 2 pi across zero is not taken for an arrival.
     """
@@ -146,6 +151,8 @@ def _roots(
     ks = np.concatenate([ks, ks])
     unwrap = np.arange(rows.size) < rows.size // 2
     lo, hi, f0 = a[rows].copy(), b[rows].copy(), fa[rows, ks]
+    nan_left = np.isnan(f0)  # the word appears inside the cell: missing counts as "before"
+    unwrap &= ~nan_left
     sr, gr = s[rows], g[rows]
     pick = np.arange(rows.size)
     for _ in range(iterations):
@@ -153,7 +160,8 @@ def _roots(
         f = _f(sr, gr, w, mid)[pick, ks]
         with np.errstate(invalid="ignore"):
             branch = np.where(unwrap, f - TWO_PI * np.round((f - f0) / TWO_PI), f)
-            right = (branch <= 0.0) | ~np.isfinite(f)
+            missing = ~np.isfinite(f)
+            right = np.where(nan_left, (branch <= 0.0) & ~missing, (branch <= 0.0) | missing)
         hi = np.where(right, mid, hi)
         lo = np.where(right, lo, mid)
     f_end = _f(sr, gr, w, hi)[pick, ks]

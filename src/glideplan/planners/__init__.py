@@ -20,6 +20,7 @@ PLANNER_MODULES: dict[str, tuple[str, ...]] = {
     "VariableSpeedCar": ("min_time",),
     "QuadraticPolarGlider": ("min_altitude",),
     "LoadFactorGlider": ("load_factor",),
+    "Sailplane": ("final_glide",),
 }
 
 _loaded_all = False

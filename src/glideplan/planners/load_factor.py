@@ -34,6 +34,7 @@ from glideplan.planners.direct import ControlSystem, DirectResult, solve_direct
 from glideplan.planners.direct.guesses import dubins_guesses
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import TWO_PI, Pose
+from glideplan.segments import Sampled
 from glideplan.solution import Candidate, Status
 from glideplan.vehicles.load_factor_glider import LoadFactorGlider
 
@@ -161,7 +162,8 @@ def initial_guesses(
     if max_starts is None:
         return [c[3] for c in cands]
     seen: set[tuple[str, int]] = set()
-    first, rest = [], []
+    first: list[tuple[float, str, int, Path]] = []
+    rest: list[tuple[float, str, int, Path]] = []
     for c in cands:
         key = (c[1], c[2])
         (rest if key in seen else first).append(c)
@@ -205,6 +207,8 @@ def solve_load_factor(
 def control_history(glider: LoadFactorGlider, path: Path) -> dict[str, np.ndarray]:
     """Arc length, speed, load factor, bank angle (rad) and turn direction at the path's nodes."""
     seg = path.segments[0]
+    if not isinstance(seg, Sampled):
+        raise InvalidParameterError("path", seg.kind, "must be a direct-method (sampled) path")
     t, v, u = seg.t, seg.speed, seg.turn_rate
     s = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(t))])
     return {
@@ -289,6 +293,7 @@ def plan_load_factor(
             solver_failed=True,
             warnings=res.warnings,
         )
+    assert res.path is not None  # a solved DirectResult carries its path
     path = res.path.with_vehicle(glider)
     hist = control_history(glider, path)
     arcs = classify_controls(

@@ -70,7 +70,7 @@ def _waypoints(x: FloatArray, y: FloatArray, spacing: float) -> FloatArray:
     s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x), np.diff(y)))])
     keep = np.concatenate([[True], np.diff(s) > 0])
     s, x, y = s[keep], x[keep], y[keep]
-    n = max(int(math.ceil(s[-1] / spacing)), 1)
+    n = max(math.ceil(s[-1] / spacing), 1)
     sq = np.linspace(0.0, s[-1], n + 1)
     wx, wy = np.interp(sq, s, x), np.interp(sq, s, y)
     d = min(spacing / 2, s[-1] / 4)

@@ -110,7 +110,8 @@ def build_grid(
     else:
         inside = np.ones(lat.shape, dtype=bool)
     cos_g, sin_g = local_rotation(proj, lat, lon)
-    return RouteGrid(proj, xs, ys, lat, lon, cos_g, sin_g, inside, h)
+    return RouteGrid(proj, np.asarray(xs, dtype=float), np.asarray(ys, dtype=float), lat, lon,
+                     cos_g, sin_g, inside, h)
 
 
 @dataclass(eq=False)
@@ -138,7 +139,7 @@ class CurrentSampler:
         elif _is_steady(field_):
             levels = np.array([t0])
         else:
-            n = max(int(math.ceil((t1 - t0) / sample_dt)), 1)
+            n = max(math.ceil((t1 - t0) / sample_dt), 1)
             levels = t0 + np.arange(n + 1) * ((t1 - t0) / n)
         return cls(grid, field_, levels)
 
@@ -221,10 +222,22 @@ class CurrentSampler:
         b = self.level(k + 1)
         return (1 - w) * a[0] + w * b[0], (1 - w) * a[1] + w * b[1]
 
+    def box_at(self, t: float, i0: int, i1: int, j0: int, j1: int) -> tuple[
+        FloatArray, FloatArray
+    ]:
+        """(cx, cy) on the sub-grid [i0:i1, j0:j1] at time t (linear between levels)."""
+        k, w = self.bracket(t)
+        a = self.level(k)
+        if w == 0.0 or self.levels.size == 1:
+            return a[0][i0:i1, j0:j1], a[1][i0:i1, j0:j1]
+        b = self.level(k + 1)
+        return ((1 - w) * a[0][i0:i1, j0:j1] + w * b[0][i0:i1, j0:j1],
+                (1 - w) * a[1][i0:i1, j0:j1] + w * b[1][i0:i1, j0:j1])
+
     def land(self) -> NDArray[np.bool_]:
         """Nodes where the current is NaN at the first level, or outside the field."""
         cx, _ = self.level(0)
-        return ~np.isfinite(cx)  # type: ignore[no-any-return]
+        return ~np.isfinite(cx)
 
 
 def interp_grid(a: FloatArray, grid: RouteGrid, x: FloatArray, y: FloatArray) -> FloatArray:
@@ -251,7 +264,7 @@ def interp_grid(a: FloatArray, grid: RouteGrid, x: FloatArray, y: FloatArray) ->
          + wy * ((1 - wx) * flat[:, k + nx] + wx * flat[:, k + nx + 1]))
     if out_of.any():
         v[:, out_of] = np.nan
-    return v  # type: ignore[no-any-return]
+    return v
 
 
 def _is_steady(field_: Any) -> bool:

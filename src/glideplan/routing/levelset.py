@@ -62,7 +62,8 @@ def _bilinear(a: FloatArray, grid: RouteGrid, x: float, y: float) -> float:
 
 
 def _minmod(a: FloatArray, b: FloatArray) -> FloatArray:
-    return np.where(a * b > 0.0, np.where(np.abs(a) < np.abs(b), a, b), 0.0)
+    # sign-agreeing smaller magnitude, else 0: (sign a + sign b) / 2 * min(|a|, |b|)
+    return 0.5 * (np.sign(a) + np.sign(b)) * np.minimum(np.abs(a), np.abs(b))  # type: ignore[no-any-return]
 
 
 def _rate(p: FloatArray, lb: NDArray[np.bool_], ux: FloatArray, uy: FloatArray, speed: float,
@@ -73,31 +74,42 @@ def _rate(p: FloatArray, lb: NDArray[np.bool_], ux: FloatArray, uy: FloatArray, 
     2003, §3.3); second differences that touch land are dropped (first order there).
     """
     pe = np.pad(p, 2, mode="edge")
-    le = np.pad(lb, 2, mode="edge")
+    any_land = bool(lb.any())
+    le = np.pad(lb, 2, mode="edge") if any_land else None
     out = []
+    h2 = h * h
     for axis in (1, 0):
-        def sh(a: NDArray[Any], k: int) -> NDArray[Any]:
-            return a[2:-2, 2 + k:a.shape[1] - 2 + k] if axis == 1 else \
-                a[2 + k:a.shape[0] - 2 + k, 2:-2]
+        def sh(a: NDArray[Any], k: int, axis: int = axis) -> NDArray[Any]:
+            if axis == 1:
+                return a[2:-2, 2 + k:a.shape[1] - 2 + k]
+            return a[2 + k:a.shape[0] - 2 + k, 2:-2]
+
         c, m1, p1, m2, p2 = sh(pe, 0), sh(pe, -1), sh(pe, 1), sh(pe, -2), sh(pe, 2)
-        lc, lm1, lp1, lm2, lp2 = sh(le, 0), sh(le, -1), sh(le, 1), sh(le, -2), sh(le, 2)
-        d2c = np.where(lm1 | lc | lp1, 0.0, (p1 - 2 * c + m1) / h**2)
-        d2m = np.where(lm2 | lm1 | lc, 0.0, (c - 2 * m1 + m2) / h**2)
-        d2p = np.where(lc | lp1 | lp2, 0.0, (p2 - 2 * p1 + c) / h**2)
+        d2c = (p1 - 2 * c + m1) / h2
+        d2m = (c - 2 * m1 + m2) / h2
+        d2p = (p2 - 2 * p1 + c) / h2
+        if le is not None:
+            lc, lm1, lp1, lm2, lp2 = sh(le, 0), sh(le, -1), sh(le, 1), sh(le, -2), sh(le, 2)
+            d2c = np.where(lm1 | lc | lp1, 0.0, d2c)
+            d2m = np.where(lm2 | lm1 | lc, 0.0, d2m)
+            d2p = np.where(lc | lp1 | lp2, 0.0, d2p)
+        else:
+            lm1 = lp1 = None
         dm = (c - m1) / h + 0.5 * h * _minmod(d2m, d2c)
         dp = (p1 - c) / h - 0.5 * h * _minmod(d2c, d2p)
         out.append((dm, dp, lm1, lp1))
     (dxm, dxp, lw, le_), (dym, dyp, ls, ln) = out
     grad = np.sqrt(np.maximum(dxm, 0.0) ** 2 + np.minimum(dxp, 0.0) ** 2
                    + np.maximum(dym, 0.0) ** 2 + np.minimum(dyp, 0.0) ** 2)
-    # Advection: upwind, never across land (fall back to the other side, else 0).
-    axm = np.where(lw, np.where(le_, 0.0, dxp), dxm)
-    axp = np.where(le_, np.where(lw, 0.0, dxm), dxp)
-    aym = np.where(ls, np.where(ln, 0.0, dyp), dym)
-    ayp = np.where(ln, np.where(ls, 0.0, dym), dyp)
-    adv = (np.maximum(ux, 0.0) * axm + np.minimum(ux, 0.0) * axp
-           + np.maximum(uy, 0.0) * aym + np.minimum(uy, 0.0) * ayp)
-    return speed * grad + adv  # type: ignore[no-any-return]
+    if lw is not None and le_ is not None and ls is not None and ln is not None:
+        # Advection: upwind, never across land (fall back to the other side, else 0).
+        dxm, dxp = (np.where(lw, np.where(le_, 0.0, dxp), dxm),
+                    np.where(le_, np.where(lw, 0.0, dxm), dxp))
+        dym, dyp = (np.where(ls, np.where(ln, 0.0, dyp), dym),
+                    np.where(ln, np.where(ls, 0.0, dym), dyp))
+    adv = (np.maximum(ux, 0.0) * dxm + np.minimum(ux, 0.0) * dxp
+           + np.maximum(uy, 0.0) * dym + np.minimum(uy, 0.0) * dyp)
+    return speed * grad + adv
 
 
 def start_disk_radius(grid: RouteGrid, land: NDArray[np.bool_],
@@ -121,8 +133,8 @@ def _disk_time(x: FloatArray, y: FloatArray, c: FloatArray, speed: float) -> Flo
     pc = x * c[0] + y * c[1]
     pp = x * x + y * y
     if a <= 1e-12 * speed * speed:
-        return np.sqrt(pp) / speed  # type: ignore[no-any-return]
-    return (-pc + np.sqrt(pc * pc + a * pp)) / a  # type: ignore[no-any-return]
+        return np.sqrt(pp) / speed
+    return (-pc + np.sqrt(pc * pc + a * pp)) / a
 
 
 def propagate_front(
@@ -140,7 +152,7 @@ def propagate_front(
     ny, nx = grid.shape
     xx, yy = np.meshgrid(grid.x, grid.y)
     band = 6.0 * h
-    cx0, cy0 = sampler.at(t0)
+    cx0, _cy0 = sampler.at(t0)
     land0 = ~np.isfinite(cx0)
     gx, gy = goal_xy
     if start_radius is None:
@@ -165,12 +177,10 @@ def propagate_front(
     gi = int(np.clip(round((gy - grid.y[0]) / h), 1, ny - 2))
     extra_after = -1  # steps to run after the goal is reached (fills T around it)
     stall, last_reached, steady = 0, int(inside0.sum()), sampler.levels.size == 1
-    stall_limit = int(math.ceil(20.0 / cfl))
+    stall_limit = math.ceil(20.0 / cfl)
     phi_goal_old = _bilinear(phi, grid, gx, gy)
     while t < t_max:
-        cx, cy = sampler.at(t)
-        land = ~np.isfinite(cx)
-        # Active box: the band plus a margin of 2 nodes.
+        # Active box: the band plus a margin of 3 nodes.
         rows = np.nonzero(np.any(np.abs(phi) < band, axis=1))[0]
         cols = np.nonzero(np.any(np.abs(phi) < band, axis=0))[0]
         if rows.size == 0:
@@ -178,9 +188,10 @@ def propagate_front(
         i0, i1 = max(rows[0] - 3, 0), min(rows[-1] + 4, ny)
         j0, j1 = max(cols[0] - 3, 0), min(cols[-1] + 4, nx)
         p = phi[i0:i1, j0:j1]
-        lb = land[i0:i1, j0:j1]
-        ux = np.where(lb, 0.0, cx[i0:i1, j0:j1])
-        uy = np.where(lb, 0.0, cy[i0:i1, j0:j1])
+        cx, cy = sampler.box_at(t, i0, i1, j0, j1)
+        lb = ~np.isfinite(cx)
+        ux = np.where(lb, 0.0, cx)
+        uy = np.where(lb, 0.0, cy)
         cmax = float(np.max(np.abs(ux)) + np.max(np.abs(uy))) if ux.size else 0.0
         dt = cfl * h / (speed + cmax)
         rate = _rate(p, lb, ux, uy, speed, h)
@@ -203,14 +214,15 @@ def propagate_front(
             if phi_goal <= 0.0:
                 goal_time = t - dt + dt * phi_goal_old / (phi_goal_old - phi_goal) \
                     if phi_goal_old > 0 else t
-                extra_after = int(math.ceil(4.0 / cfl))
+                extra_after = math.ceil(4.0 / cfl)
             phi_goal_old = phi_goal
         else:
             extra_after -= 1
             around = arrival[gi - 1:gi + 2, gj - 1:gj + 2]
-            if extra_after <= 0 and np.all(np.isfinite(around) | land[gi - 1:gi + 2, gj - 1:gj + 2]):
+            near_land = land0[gi - 1:gi + 2, gj - 1:gj + 2]
+            if extra_after <= 0 and np.all(np.isfinite(around) | near_land):
                 break
-            if extra_after < -int(math.ceil(40.0 / cfl)):
+            if extra_after < -math.ceil(40.0 / cfl):
                 break
         if steady and goal_time is None:
             reached = int(np.count_nonzero(np.isfinite(arrival)))

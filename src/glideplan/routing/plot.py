@@ -30,10 +30,14 @@ def plot_route(result: RouteResult, field_: FlowField, filename: str | pathlib.P
         la0, la1, lo0, lo1 = la0 - pad_la, la1 + pad_la, lo0 - pad_lo, lo1 + pad_lo
     else:
         la0, la1, lo0, lo1 = -1.0, 1.0, -1.0, 1.0
+    centre = 0.0 if ext is None else 0.5 * (ext.lon_min + ext.lon_max)
+
+    def frame(lon_deg: Any) -> Any:  # the field's longitude frame (0..360 or -180..180)
+        return centre + np.mod(np.asarray(lon_deg) - centre + 180.0, 360.0) - 180.0
+
     if ext is not None:
         la0, la1 = max(la0, ext.lat_min), min(la1, ext.lat_max)
-        lo_shift = ext.lon_min + np.mod(np.array([lo0, lo1]) - ext.lon_min, 360.0)
-        lo0, lo1 = max(float(lo_shift[0]), ext.lon_min), min(float(lo_shift[1]), ext.lon_max)
+        lo0, lo1 = max(float(frame(lo0)), ext.lon_min), min(float(frame(lo1)), ext.lon_max)
     lat = np.linspace(la0, la1, arrows)
     lon = np.linspace(lo0, lo1, arrows)
     LA, LO = np.meshgrid(lat, lon, indexing="ij")
@@ -43,11 +47,11 @@ def plot_route(result: RouteResult, field_: FlowField, filename: str | pathlib.P
         if np.any(land):
             ax.contourf(LO, LA, land.astype(float), levels=[0.5, 1.5], colors=["0.8"])
         ax.quiver(LO, LA, np.where(land, 0, u), np.where(land, 0, v), color="0.5")
-    except ValueError:
+    except ValueError:  # a field that cannot be drawn here: draw the track alone
         pass
     kwargs: dict[str, Any] = {"color": "C3", "lw": 2, "label": f"route ({result.method})"}
     if result.lat.size:
-        lon_t = result.lon if ext is None else ext.lon_min + np.mod(result.lon - ext.lon_min, 360)
+        lon_t = frame(result.lon)
         ax.plot(lon_t, result.lat, **kwargs)
         ax.plot(lon_t[0], result.lat[0], "go", label="start")
         ax.plot(lon_t[-1], result.lat[-1], "ks", label="goal")

@@ -69,7 +69,7 @@ def _fly(sampler: CurrentSampler, speed: float, t0: float, duration: float,
         if not np.all(np.isfinite(z[:, 0])):
             break
         out.append(z)
-    return t0 + dt * np.arange(len(out)), np.stack(out)
+    return np.asarray(t0 + dt * np.arange(len(out)), dtype=float), np.stack(out)
 
 
 def zermelo_shooting(
@@ -133,7 +133,7 @@ def _fly_controls(sampler: CurrentSampler, speed: float, t0: float, nodes: Float
     def heading(f: float) -> FloatArray:
         k = min(int(f * (n - 1)), n - 2)
         w = f * (n - 1) - k
-        return (1 - w) * nodes[:, k] + w * nodes[:, k + 1]  # type: ignore[no-any-return]
+        return (1 - w) * nodes[:, k] + w * nodes[:, k + 1]
 
     def vel(f: float, zz: FloatArray) -> FloatArray:
         th = heading(f)
@@ -185,9 +185,9 @@ def direct_refinement(
     the unknowns are the headings and T / T_grid. With `clearance` (distance to the nearest
     land node on the grid, m) every other track point keeps clearance >= `margin`.
     """
-    from glideplan.routing.grid import interp_grid
-
     from scipy.optimize import minimize
+
+    from glideplan.routing.grid import interp_grid
 
     goal = np.asarray(goal_xy, dtype=float)
     frac = (grid_t - grid_t[0]) / (grid_t[-1] - grid_t[0])
@@ -211,7 +211,7 @@ def direct_refinement(
             jac = ((ends[1:] - ends[0]) / eps).T
             scale = speed * duration
             out: tuple[FloatArray, ...] = (res / scale, jac / scale)
-            if land and ok:
+            if clearance is not None and ok:
                 pts = tracks[1:-1:2]  # (k, 2, m+1)
                 cl = interp_grid(clearance[None], sampler.grid, pts[:, 0].ravel(),
                                  pts[:, 1].ravel())[0].reshape(pts.shape[0], -1)
@@ -250,7 +250,7 @@ def direct_refinement(
     if err > tol_m:
         return ShootingResult(False, tt, tt * 0, tt * 0, heading, T, sol.nit,
                               f"direct method missed the goal by {err:.1f} m")
-    if land:
+    if clearance is not None:
         cl = interp_grid(clearance[None], sampler.grid, track[:, 0], track[:, 1])[0]
         if np.any(~np.isfinite(cl) | (cl < 0.5 * margin)):
             return ShootingResult(False, tt, tt * 0, tt * 0, heading, T, sol.nit,

@@ -69,7 +69,7 @@ class RouteResult:
     def arrive(self) -> np.datetime64 | None:
         if self.depart is None or self.duration_s is None:
             return None
-        return self.depart + np.timedelta64(int(round(self.duration_s * 1e3)), "ms")
+        return self.depart + np.timedelta64(round(self.duration_s * 1e3), "ms")
 
     def to_dict(self) -> dict[str, Any]:
         """The CLI's JSON object (keys of issue 12)."""
@@ -206,7 +206,7 @@ def route(
     stats.update(steps=front.steps, reached_fraction=round(front.reached_fraction, 4),
                  field_levels_evaluated=sampler.evaluations)
     lap("front")
-    depart_dt = None if fld.epoch is None else fld.epoch + np.timedelta64(int(round(t0 * 1e3)),
+    depart_dt = None if fld.epoch is None else fld.epoch + np.timedelta64(round(t0 * 1e3),
                                                                            "ms")
     info = fld.describe()
     if front.goal_time is None:

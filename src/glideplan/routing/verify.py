@@ -14,6 +14,7 @@ the along speed is <= 0, or the line crosses land.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -94,7 +95,7 @@ def integrate_headings(
         return np.array([speed * math.cos(h) + cx[0], speed * math.sin(h) + cy[0]])
 
     duration = float(tt[-1] - tt[0])
-    pieces = [(tt[0], tt[-1])] if not hold else list(zip(tt[:-1], tt[1:], strict=True))
+    pieces = [(tt[0], tt[-1])] if not hold else list(itertools.pairwise(tt))
     z = np.zeros(2)
     ts_out, xs_out, ys_out = [np.array([tt[0]])], [np.zeros(1)], [np.zeros(1)]
     for a, b in pieces:

@@ -99,16 +99,30 @@ class HeadingSpeedArc(Segment):
         return self.speed_at_heading(h), np.full_like(tt, self.direction * self.turn_rate)
 
     def time_at_length(self, s: ArrayLike) -> np.ndarray:
+        """Local time at arc length s: the root of S(t) = s, with S increasing (dS/dt = v > 0).
+
+        Bracketed in [0, duration] and solved elementwise by SciPy (Chandrupatla's method);
+        lengths outside [0, length] map to the ends.
+        """
+        from scipy.optimize import elementwise  # imported where used (start-up time)
+
         target = np.asarray(s, dtype=float)
         d, u = self.direction, self.turn_rate
         h0 = np.array(self.start.heading)
         s0 = self._S(h0)
-        t = target / self.v0
-        for _ in range(30):  # Newton on s(t) - target; ds/dt = v > 0 and s is smooth
-            h = self.start.heading + d * u * t
-            f = d * (self._S(h) - s0) / u - target
-            t = np.clip(t - f / self.speed_at_heading(h), 0.0, self.duration)
-        return t
+        out = np.where(target <= 0.0, 0.0, self.duration)
+        inside = (target > 0.0) & (target < self.length)
+        if not np.any(inside):
+            return out
+
+        def excess(t: np.ndarray, want: np.ndarray) -> np.ndarray:
+            return d * (self._S(self.start.heading + d * u * t) - s0) / u - want
+
+        res = elementwise.find_root(excess, (0.0, self.duration), args=(target[inside],))
+        if not np.all(res.success):  # pragma: no cover - a valid bracket always converges
+            raise RuntimeError("arc length to time: the root search did not converge")
+        out[inside] = res.x
+        return out
 
     def transformed(self, frame: Pose, reflect: bool = False) -> HeadingSpeedArc:
         theta = -self.theta if reflect else self.theta

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -28,7 +29,8 @@ class Sampled(Segment):
     """A segment given by nodes from a direct method: times (s), states and controls.
 
     Controls are interpolated linearly between nodes; states by cubic Hermite interpolation
-    using the kinematics as derivatives. `t` starts at 0 and increases strictly.
+    (`scipy.interpolate.CubicHermiteSpline`) using the kinematics as derivatives. `t` starts
+    at 0 and increases strictly.
     """
 
     t: np.ndarray
@@ -80,22 +82,21 @@ class Sampled(Segment):
         tt = np.asarray(t, dtype=float)
         return np.interp(tt, self.t, self.speed), np.interp(tt, self.t, self.turn_rate)
 
+    @functools.cached_property
+    def _spline(self) -> Any:
+        """The cubic Hermite interpolant of (x, y, heading) with the kinematics as slopes."""
+        from scipy.interpolate import CubicHermiteSpline  # imported where used (start-up)
+
+        values = np.stack([self.x, self.y, self.heading])
+        slopes = np.stack(
+            [self.speed * np.cos(self.heading), self.speed * np.sin(self.heading), self.turn_rate]
+        )
+        return CubicHermiteSpline(self.t, values, slopes, axis=1)
+
     def states(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         tt = np.clip(np.asarray(t, dtype=float), 0.0, self.duration)
-        k = np.clip(np.searchsorted(self.t, tt, side="right") - 1, 0, self.t.size - 2)
-        h = self.t[k + 1] - self.t[k]
-        tau = (tt - self.t[k]) / h
-        h00 = 2 * tau**3 - 3 * tau**2 + 1
-        h10 = tau**3 - 2 * tau**2 + tau
-        h01 = -2 * tau**3 + 3 * tau**2
-        h11 = tau**3 - tau**2
-        vx = self.speed * np.cos(self.heading)
-        vy = self.speed * np.sin(self.heading)
-
-        def herm(p: np.ndarray, dp: np.ndarray) -> np.ndarray:
-            return h00 * p[k] + h10 * h * dp[k] + h01 * p[k + 1] + h11 * h * dp[k + 1]
-
-        return herm(self.x, vx), herm(self.y, vy), herm(self.heading, self.turn_rate)
+        x, y, h = self._spline(tt)
+        return x, y, h
 
     @property
     def end(self) -> Pose:

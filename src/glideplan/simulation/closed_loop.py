@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -131,6 +132,11 @@ def finish_line_error(
             p0[m, 0], p0[m, 1], p1[m, 0], p1[m, 1], a0[m], a1[m], e[m, 0], e[m, 1]
         )[1]
     return crossed, error
+
+
+def _kept(mask: np.ndarray, *arrays: np.ndarray) -> list[Any]:
+    """The rows of each array where `mask` holds (compacting the live vehicles)."""
+    return [arr[mask] for arr in arrays]
 
 
 def follow_paths(
@@ -292,11 +298,9 @@ def follow_paths(
             # finished vehicles ride along (masked) until compacting pays off
             if n_live < 0.9 * live.size or n_live < 256:
                 keep = live
-                ids, x, y, cp, sp, varpi, a_prev = (
-                    arr[keep] for arr in (ids, x, y, cp, sp, varpi, a_prev)
-                )
-                xf, yf, cf, sf, tmax, rw = (arr[keep] for arr in (xf, yf, cf, sf, tmax, rw))
-                length, arm, s_breaks, base = (arr[keep] for arr in (length, arm, s_breaks, base))
+                ids, x, y, cp, sp, varpi, a_prev = _kept(keep, ids, x, y, cp, sp, varpi, a_prev)
+                xf, yf, cf, sf, tmax, rw = _kept(keep, xf, yf, cf, sf, tmax, rw)
+                length, arm, s_breaks, base = _kept(keep, length, arm, s_breaks, base)
                 live = np.ones(n_live, dtype=bool)
     tracks = np.stack(track_list) if record else None
     return FollowResult(error=error, crossed=crossed, time=t_end, tracks=tracks)

@@ -243,8 +243,8 @@ def tradespace_ratio(x: Any, y: Any, psi1: Any, eps: Any) -> np.ndarray:
         raise InvalidParameterError("eps", eps, "must lie in [0, 1)")
     xb, yb, hb, eb = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (x, y, psi1)), e)
     goals = np.stack([xb, yb, hb], axis=-1)
-    d_opt = dubins_distance(np.zeros(3), goals, 1.0)
-    d_feas = dubins_distance(np.zeros(3), goals, feasible_radius(1.0, eb))
+    d_opt = np.asarray(dubins_distance(np.zeros(3), goals, 1.0))
+    d_feas = np.asarray(dubins_distance(np.zeros(3), goals, feasible_radius(1.0, eb)))
     return _ratio(d_feas, d_opt)
 
 

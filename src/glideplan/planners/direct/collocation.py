@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
@@ -133,7 +133,7 @@ class Transcription:
         nodes = self.mesh(fractions)
         tq = np.clip(np.asarray(tau, dtype=float).reshape(-1), 0.0, 1.0)
         # Radau controls live on (tau_k, tau_k+1]: a mesh node belongs to the interval it ends
-        side = "left" if self.scheme == "radau" else "right"
+        side: Literal["left", "right"] = "left" if self.scheme == "radau" else "right"
         k = np.clip(np.searchsorted(nodes, tq, side=side) - 1, 0, self.n_intervals - 1)
         h = np.diff(nodes)[k]
         s = (tq - nodes[k]) / h
@@ -253,7 +253,7 @@ def _build(
         U = ca.SX.sym("U", m, nc)
         H3 = ca.repmat(h, N_STATES, 1)
         cols = []
-        J = 0
+        J = ca.SX(0.0)
         Lall = cost(U)  # 1 x N d
         for j in range(d):
             zj = Z[:, j + 1 : j + 2 + (N - 1) * d : d]
@@ -288,7 +288,10 @@ def _build(
     penalty = smooth * ca.sumsqr(dU)
     nlp = {"x": w, "p": p, "f": J / Js + penalty, "g": ca.vertcat(*g_parts)}
     objective = ca.Function("objective", [w, p], [J])
-    opts = {"print_time": False, "ipopt": {**DEFAULT_IPOPT, **dict(ipopt_options)}}
+    opts: dict[str, Any] = {
+        "print_time": False,
+        "ipopt": {**DEFAULT_IPOPT, **dict(ipopt_options)},
+    }
     solver = ca.nlpsol(f"direct_{scheme.replace('-', '_')}_{N}", "ipopt", nlp, opts)
     return Transcription(
         system=system,

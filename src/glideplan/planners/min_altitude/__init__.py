@@ -75,6 +75,7 @@ extracted text omits; they, and B_ms, reach only a measure-zero set of goals.
 from __future__ import annotations
 
 import time
+from typing import Any
 
 from glideplan.planners.min_altitude.direct import (
     control_system,
@@ -122,6 +123,7 @@ __all__ = [
 
 
 def _reference_extras(problem: Problem) -> dict[str, object]:
+    assert isinstance(problem.vehicle, QuadraticPolarGlider)
     ref = dubins_reference(problem.start, problem.goal, problem.vehicle)
     if ref is None:
         return {"dubins_cost": None, "dubins_word": ""}
@@ -139,6 +141,7 @@ def _reference_extras(problem: Problem) -> dict[str, object]:
 def plan_min_altitude(problem: Problem) -> PlannerOutput:
     """Every candidate of the extended sufficient set (section 5.8); extras: `dubins_cost`
     (altitude loss of the Dubins path at v_stf, m) and `dubins_word`."""
+    assert isinstance(problem.vehicle, QuadraticPolarGlider)
     t0 = time.perf_counter()
     cands = synthesize(problem.goal, problem.vehicle)
     seconds = time.perf_counter() - t0
@@ -180,7 +183,9 @@ def plan_min_altitude_direct(
         n_intervals=n_intervals,
         time_limit=time_limit,
     )
-    stats = {k: v for k, v in res.stats.items() if isinstance(v, (int, float, str, bool))}
+    stats: dict[str, Any] = {
+        k: v for k, v in res.stats.items() if isinstance(v, (int, float, str, bool))
+    }
     stats["starts"] = [s.to_dict() for s in res.starts]
     extras = _reference_extras(problem)
     if not res.ok or res.path is None:

@@ -60,7 +60,7 @@ class Change:
 
 
 def _arrays(*values: ArrayLike) -> list[np.ndarray]:
-    return np.broadcast_arrays(*(np.asarray(q, dtype=float) for q in values))
+    return list(np.broadcast_arrays(*(np.asarray(q, dtype=float) for q in values)))
 
 
 # ----- appendix C.1: literal closed forms --------------------------------------------------

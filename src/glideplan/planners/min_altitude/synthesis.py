@@ -178,6 +178,8 @@ def _wrap(angle: np.ndarray | float, low: np.ndarray | float) -> np.ndarray:
 
 
 def _solve_bsb(goal: Pose, st: _Setup, fam: Family, word: str) -> list[_Found]:
+    from scipy.optimize import newton  # imported where used (start-up time)
+
     g, kern, lam, u = st.glider, st.kern, st.lam_s, st.glider.u_max
     sa = 1.0 if word[0] == "L" else -1.0
     sg = 1.0 if word[2] == "L" else -1.0
@@ -216,12 +218,17 @@ def _solve_bsb(goal: Pose, st: _Setup, fam: Family, word: str) -> list[_Found]:
     for z in roots:
         if not abs(abs(z) - 1.0) < 1e-4:
             continue
-        a0 = float(np.angle(z))
-        for _ in range(6):
-            val, der = gfun(a0)
-            if der == 0.0:
-                break
-            a0 -= val / der
+        # polish the polynomial root (SciPy's Newton; a failure leaves a residual, checked)
+        a0 = float(
+            newton(
+                lambda a: gfun(a)[0],
+                float(np.angle(z)),
+                fprime=lambda a: gfun(a)[1],
+                tol=1e-15,
+                maxiter=20,
+                disp=False,
+            )
+        )
         if abs(gfun(a0)[0]) > 1e-9 * st.scale:
             continue
         a0 = float(_wrap(a0, 0.0))

@@ -20,6 +20,7 @@ from glideplan.planners.direct.guesses import dubins_guesses
 from glideplan.planners.min_time.synthesis import extremal_path, normalised_goal, synthesize
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import Pose
+from glideplan.segments import Sampled
 from glideplan.solution import Candidate, Status
 from glideplan.vehicles.variable_speed_car import VariableSpeedCar
 from glideplan.words import run_word
@@ -197,6 +198,7 @@ def plan_time_optimal_direct(
         )
     path = res.path.with_vehicle(vehicle)
     seg = path.segments[0]
+    assert isinstance(seg, Sampled)  # the direct engine returns one sampled segment
     family, word = classify_controls(vehicle, seg.t, seg.speed, seg.turn_rate)
     info = {"collocation_cost": res.cost, "classified_family": family}
     cand = Candidate(word, family, path.duration, path, Status.FEASIBLE, info)

@@ -48,7 +48,7 @@ def circle_center(p: np.ndarray, h: np.ndarray, direction: int, radius: float) -
 
 
 def compose(
-    moves: Sequence[tuple[str, int, np.ndarray]],
+    moves: Sequence[tuple[str, int, np.ndarray | float]],
     rho: float,
     shape: tuple[int, ...],
     start: tuple[np.ndarray, np.ndarray] | None = None,

@@ -250,7 +250,7 @@ def _stack(key: str, rho: float) -> _Stack:
         h10.append(_affine(g0[1][0], g1[1][0]))
         he.append(_affine(g0[2][0], g1[2][0]))
         eta.append(_affine(g0[3][0], g1[3][0]))
-    common = dict(
+    common: dict[str, Any] = dict(
         items=items,
         d1=d1,
         d2=d2,
@@ -413,10 +413,10 @@ def _solve_tttt(goal: np.ndarray, rho: float, key: str = "TTTT") -> list[Extrema
     out = []
     seen: set[tuple[int, float]] = set()
     for i in np.nonzero(good)[0]:
-        key = (int(rows[i]), round(float(a[i]), 9))
-        if key in seen:
+        branch = (int(rows[i]), round(float(a[i]), 9))
+        if branch in seen:
             continue
-        seen.add(key)
+        seen.add(branch)
         t, first, last = st.items[rows[i]]
         ai = float(a[i])
         middle: list[tuple[str, int, Any]] = []

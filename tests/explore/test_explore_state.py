@@ -1,0 +1,155 @@
+"""The explorer without a browser: its planner catalogue, URL state, messages and figure data.
+
+References: the planner registry and the Typer commands of `glideplan plan` (the names the
+page must use), `plan()` for costs, the CLI's one-line messages, and the partition map
+of `glideplan.studies.maps` against the optimal word of `plan()`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from glideplan import DubinsCar, Pose, plan, registered_planners
+from glideplan.explore.catalog import build_catalog, planner_key
+from glideplan.explore.solve import partition_image, solve_view
+from glideplan.explore.state import initial_state, state_from_query, state_to_query
+
+# registry key -> `glideplan plan` command of the built-in planners
+CLI_COMMANDS = {
+    "dubins": "dubins",
+    "wind": "wind",
+    "time-optimal": "time-optimal",
+    "time-optimal-direct": "time-optimal",
+    "min-altitude": "min-altitude",
+    "min-altitude-direct": "min-altitude",
+    "load-factor": "load-factor",
+}
+
+
+@pytest.fixture(scope="module")
+def catalog():
+    return build_catalog()
+
+
+def test_every_registered_planner_is_offered(catalog):
+    """One entry per registered (planner, objective, method), with a readable label."""
+    specs = {(planner_key(s.name), s.objective, s.method) for s in registered_planners()}
+    offered = {(planner_key(e.spec.name), e.objective, e.method) for e in catalog.entries}
+    assert offered == specs
+    assert len(set(catalog.keys)) == len(catalog.entries)
+    assert all(e.label and e.label != e.key for e in catalog.entries)
+
+
+def _cli_options(command: str) -> set[str]:
+    import typer
+
+    from glideplan.cli.app import app, load_commands, plan_app
+
+    load_commands()
+    group = typer.main.get_command(app).commands["plan"]  # type: ignore[attr-defined]
+    assert plan_app is not None
+    return {o for p in group.commands[command].params for o in p.opts}
+
+
+@pytest.mark.parametrize("key", sorted(CLI_COMMANDS))
+def test_vehicle_inputs_are_named_like_cli_options(key, catalog):
+    """Each vehicle input of a built-in planner is an option of its `glideplan plan` command."""
+    entry = catalog.get(key)
+    options = _cli_options(CLI_COMMANDS[key])
+    names = {p.flag for p in entry.parameters if p.target == "vehicle"}
+    assert names <= options, names - options
+
+
+def test_url_round_trip_and_defaults(catalog):
+    """A state survives its URL; the issue's example URL sets the goal and the radius."""
+    st = state_from_query(catalog, "planner=dubins&goal=4,3,90&radius=2&eps=0.1&partition=1")
+    assert (st.planner, st.goal, st.values["radius"], st.values["eps"]) == (
+        "dubins",
+        "4,3,90",
+        "2",
+        "0.1",
+    )
+    assert st.partition and st.candidates
+    again = state_from_query(catalog, state_to_query(catalog, st))
+    assert again == st
+    wind = state_from_query(catalog, "planner=wind&objective=time&wind=0.5,30")
+    assert wind.planner == "wind" and wind.values["wind"] == "0.5,30"
+    assert state_from_query(catalog, "planner=dubins&objective=time").planner == "dubins/time"
+    for entry in catalog.entries:
+        assert state_from_query(catalog, state_to_query(catalog, initial_state(entry))).planner == (
+            entry.key
+        )
+
+
+def test_cost_and_word_match_plan(catalog):
+    """`solve_view` shows plan()'s cost with 10 significant digits and its word."""
+    view = solve_view(catalog, state_from_query(catalog, "planner=dubins&goal=4,3,90&radius=1"))
+    ref = plan(Pose(0, 0, 0), Pose(4, 3, math.pi / 2), DubinsCar(1.0, 1.0))
+    assert float(view.cost_text) == pytest.approx(ref.cost, rel=1e-9)
+    assert view.word == ref.word
+    feasible = [c for c in ref.candidates if c.feasible]
+    assert len([x for x in view.candidates["xs"] if len(x)]) == len(feasible)
+    assert view.path["x"][-1] == pytest.approx(4.0, abs=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("query", "name", "cli_args"),
+    [
+        (
+            "planner=dubins&radius=-1",
+            "radius",
+            ("dubins", "--goal", "4", "3", "90", "--radius", "-1"),
+        ),
+        (
+            "planner=dubins&radius=1&eps=2",
+            "eps",
+            ("dubins", "--goal", "4", "3", "90", "--radius", "1", "--eps", "2"),
+        ),
+        (
+            "planner=time-optimal&v_min=2&v_max=1&u_max=1",
+            "v_min",
+            (
+                "time-optimal",
+                "--goal",
+                "4",
+                "3",
+                "90",
+                "--v-min",
+                "2",
+                "--v-max",
+                "1",
+                "--u-max",
+                "1",
+            ),
+        ),
+    ],
+)
+def test_bad_input_gives_the_cli_line(catalog, cli_error, query, name, cli_args):
+    """The message under an input is the CLI's one-line message for the same value."""
+    view = solve_view(catalog, state_from_query(catalog, query + "&goal=4,3,90"))
+    assert not view.ok
+    assert cli_error("plan", *cli_args) == f"glideplan: error: {view.errors[name]}"
+
+
+def test_bad_text_is_named(catalog):
+    view = solve_view(catalog, state_from_query(catalog, "planner=dubins&goal=4,x,90&radius=abc"))
+    assert set(view.errors) == {"goal", "radius"}
+    assert view.errors["radius"].startswith("--radius='abc'")
+
+
+def test_partition_background_agrees_with_plan(catalog):
+    """The partition map's word at a goal is plan()'s optimal word there (away from borders)."""
+    view = solve_view(catalog, state_from_query(catalog, "planner=dubins&goal=4,3,90&radius=1"))
+    assert view.request is not None
+    img = partition_image(view.request, (-6.0, 6.0, -6.0, 6.0), n=121)
+    assert img is not None and img["image"].shape == (121, 121)
+    from glideplan.explore.solve import _WORD_COLOURS
+
+    # the pixel at the goal (4, 3): column (4 + 6) / 12 * 120, row (3 + 6) / 12 * 120
+    pixel = img["image"][90, 100]
+    colour = np.array([*_WORD_COLOURS[view.word], 70], dtype=np.uint8).view(np.uint32)[0]
+    assert view.word == "LSL" and pixel == colour
+    assert "LSL" in img["labels"]["text"]
