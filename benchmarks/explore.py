@@ -39,7 +39,9 @@ def main() -> None:
     from glideplan.explore.app import Explorer
 
     rng = np.random.default_rng(15)
-    print(f"{'planner':<14} {'page (ms)':>10} {'plan() (ms)':>12} {'overhead':>9} {'budget':>7}  verdict")
+    print(
+        f"{'planner':<14} {'page (ms)':>10} {'plan() (ms)':>12} {'overhead':>9} {'budget':>7}  verdict"
+    )
     failed = False
     for name, query, scale, budget in CASES:
         page = Explorer(query=dict(parse_qsl(query)), sync=True)
@@ -69,8 +71,10 @@ def main() -> None:
             f"{name:<14} {med_page:>10.1f} {med_plan:>12.1f} {med_page - med_plan:>9.1f} "
             f"{budget:>7.0f}  {'PASS' if ok else 'FAIL'}"
         )
-    print("\npeer figures: none (the issue's budgets only); medians over "
-          f"{args.goals} goals, machine load affects every number")
+    print(
+        "\npeer figures: none (the issue's budgets only); medians over "
+        f"{args.goals} goals, machine load affects every number"
+    )
     if failed:
         raise SystemExit(1)
 

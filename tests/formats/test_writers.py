@@ -215,3 +215,22 @@ def test_geojson_and_csv(exported):
                                _coords(legs), atol=1e-9)
     assert all(0 <= float(r["heading_deg"]) < 360 for r in rows)
     assert not math.isnan(float(rows[0]["heading_deg"]))
+
+
+def test_carry_through_the_vehicle_files(tmp_path):
+    """A waypoint 0.00004' below a whole degree is written as the next degree, 00.0000'
+    (FORMATS.md), in both the Slocum and the Seaglider file, and decodes within DDMM precision."""
+    from glideplan.missions import Route
+
+    lat = 40 + 59.99996 / 60
+    lon = -(70 + 59.99996 / 60)
+    route = Route.from_geographic(["P", "Q"], [lat, lat + 0.01], [lon, lon + 0.01])
+    plan = plan_mission(route, speed=1.0, radius=50.0)
+    files, _ = export_mission(plan, tmp_path, ("slocum", "seaglider"),
+                                 ExportOptions(max_deviation=5.0))
+    goto = pathlib.Path(files["slocum"][0])
+    assert "-7100.0000   4100.0000" in goto.read_text()
+    assert check_slocum(goto)[0] == pytest.approx((41.0, -71.0), abs=1e-12)
+    targets = check_seaglider(pathlib.Path(files["seaglider"]))
+    assert targets["P"][:2] == pytest.approx((41.0, -71.0), abs=1e-12)
+    assert abs(targets["P"][0] - lat) <= DDMM_TOL and abs(targets["P"][1] - lon) <= DDMM_TOL

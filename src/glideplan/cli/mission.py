@@ -187,8 +187,9 @@ def _print_summary(mission: Any, legs: Any, files: dict[str, Any]) -> None:
                    f"{leg.word:4s} {leg.length_m:10.1f} m {leg.duration_s:10.1f} s")
     hd = ", ".join(f"{r.names[i]} {h:.1f}" for i, h in enumerate(mission.headings_deg))
     typer.echo(f"headings (compass deg): {hd}")
+    err = mission.stats.get("max_endpoint_error")
     typer.echo(f"total: {mission.total_length_m:.1f} m, {mission.total_duration_s:.1f} s; "
-               f"largest endpoint error {mission.stats['max_endpoint_error']:.1e}")
+               f"largest endpoint error {'-' if err is None else f'{err:.1e}'} m")
     if r.projection is not None:
         typer.echo(f"projection: aeqd about {r.names[0]}, scale distortion "
                    f"{r.distortion:.1e}")

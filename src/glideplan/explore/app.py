@@ -15,19 +15,13 @@ import math
 import threading
 from collections.abc import Callable
 from dataclasses import replace
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import panel as pn
-from bokeh.models import (
-    Arrow,
-    ColumnDataSource,
-    CustomJS,
-    HoverTool,
-    PointDrawTool,
-    Range1d,
-    VeeHead,
-)
+from bokeh.models import ColumnDataSource, CustomJS, HoverTool, PointDrawTool, Range1d
+from bokeh.models.annotations import Arrow
+from bokeh.models.arrow_heads import VeeHead
 from bokeh.plotting import figure
 
 from glideplan.explore.catalog import Catalog, PlannerEntry, build_catalog, planner_key
@@ -129,7 +123,7 @@ class Explorer:
 
     # ----- figures ----------------------------------------------------------------------------
     def _build_figures(self) -> None:
-        self.x_range, self.y_range = Range1d(-1, 1), Range1d(-1, 1)
+        self.x_range, self.y_range = Range1d(start=-1.0, end=1.0), Range1d(start=-1.0, end=1.0)
         fig = figure(
             frame_width=600,
             frame_height=600,
@@ -178,7 +172,6 @@ class Explorer:
             line_width=1.3,
             selection_line_color="#e67e22",
             selection_line_alpha=1.0,
-            selection_line_width=3,
             nonselection_line_color=GREY,
             nonselection_line_alpha=0.3,
             legend_label="candidates",
@@ -208,10 +201,10 @@ class Explorer:
             legend_label="optimal path",
         )
         fig.segment("x0", "y0", "x1", "y1", source=self.heading_src, line_color="c", line_width=2)
+        body: dict[str, Any] = {"line_color": WIND, "line_width": 3}  # the stubs lag the runtime
         wind = Arrow(
             end=VeeHead(size=14, fill_color=WIND, line_color=WIND),
-            line_color=WIND,
-            line_width=3,
+            **body,
             source=self.wind_src,
             x_start="x_start",
             y_start="y_start",
@@ -247,10 +240,10 @@ class Explorer:
             text_font_size="12px",
             text_color="c",
         )
-        draw = PointDrawTool(renderers=[points], add=False, drag=True)
+        draw = PointDrawTool(renderers=[cast(Any, points)], add=False, drag=True)
         fig.add_tools(draw)
         fig.toolbar.active_drag = draw
-        self._legend_items = list(fig.legend.items)
+        self._legend_items: list[Any] = list(fig.legend.items)
         fig.legend.location = "top_left"
         fig.legend.background_fill_alpha = 0.8
         fig.legend.label_text_font_size = "11px"
@@ -375,16 +368,18 @@ class Explorer:
             f"<i>{html.escape(entry.help)}</i></div>"
         )
         self.param_inputs: dict[str, pn.widgets.TextInput] = {}
-        vehicle, option = [], []
+        vehicle: list[Any] = []
+        option: list[Any] = []
         for p in entry.parameters:
-            unit = " (x, y, deg)" if p.kind == "group" and "deg" in p.units else ""
-            hint = (
-                f" ({', '.join(f.rpartition('.')[2] for f in p.fields)})"
-                if p.kind == "group"
-                else ""
-            )
+            hint = ""
+            if p.kind == "group":
+                items = [
+                    f.rpartition(".")[2] + (" deg" if u == "deg" else "")
+                    for f, u in zip(p.fields, p.units, strict=True)
+                ]
+                hint = f" ({', '.join(items)})"
             w = pn.widgets.TextInput(
-                label=f"{p.label}{hint or unit}",
+                label=f"{p.label}{hint}",
                 value=self.state.values.get(p.name, p.default),
                 width=290 if p.target == "vehicle" else 270,
                 css_classes=[f"gp-input-{p.name}"],
@@ -429,7 +424,7 @@ class Explorer:
             width=320,
         )
         from bokeh.layouts import column
-        from bokeh.models import Div
+        from bokeh.models.widgets import Div
 
         self.profile_title = Div(text="<b>Controls along the path</b>", styles={"color": "#3b4a59"})
         self.profile_col = column(
@@ -495,7 +490,7 @@ class Explorer:
     def _make_pose_watcher(self, name: str) -> Callable[[Any], None]:
         def watch(event: Any) -> None:
             if not self._syncing:
-                self._locked(lambda: self.set_state(replace(self.state, **{name: event.new})))
+                self._locked(lambda: self.set_state(_with_pose(self.state, name, event.new)))
 
         return watch
 
@@ -528,8 +523,14 @@ class Explorer:
                 out[name] = None
         return out
 
+    def _box(self) -> tuple[float, float, float, float]:
+        """The view's data box (x0, x1, y0, y1) in m."""
+        r = (self.x_range.start, self.x_range.end, self.y_range.start, self.y_range.end)
+        return cast(tuple[float, float, float, float], tuple(float(cast(float, v)) for v in r))
+
     def _handle_length(self) -> float:
-        return 0.12 * (self.x_range.end - self.x_range.start)
+        x0, x1, _, _ = self._box()
+        return 0.12 * (x1 - x0)
 
     def _draw_poses(self) -> None:
         poses = self._poses()
@@ -580,7 +581,7 @@ class Explorer:
             self.pose_inputs[name].value = text
         finally:
             self._syncing = False
-        self.set_state(replace(self.state, **{name: text}))
+        self.set_state(_with_pose(self.state, name, text))
 
     def _on_points(self, attr: str, old: Any, new: Any) -> None:
         """A drag ended: a moved pose keeps its heading, a moved handle turns its pose."""
@@ -666,7 +667,7 @@ class Explorer:
         return view, part
 
     def _bounds_for(self, view: View) -> tuple[float, float, float, float]:
-        return (self.x_range.start, self.x_range.end, self.y_range.start, self.y_range.end)
+        return self._box()
 
     def _show_busy(self, busy: bool) -> None:
         text = '<span class="gp-busy">computing&hellip;</span>' if busy else ""
@@ -735,9 +736,10 @@ class Explorer:
             return
         wx, wy = view.wind
         w = math.hypot(wx, wy)
-        span = self.x_range.end - self.x_range.start
-        x0 = self.x_range.end - 0.3 * span
-        y0 = self.y_range.end - 0.12 * span
+        bx0, bx1, _, by1 = self._box()
+        span = bx1 - bx0
+        x0 = bx1 - 0.3 * span
+        y0 = by1 - 0.12 * span
         if w > 0:
             length = 0.1 * span * w / max(view.request.vehicle.speed, w)
             x1, y1 = x0 + length * wx / w, y0 + length * wy / w
@@ -800,14 +802,10 @@ class Explorer:
         xs, ys = view.path["x"], view.path["y"]
         if len(xs) == 0:
             return
-        lo = np.array([min(xs.min(), self.x_range.start), min(ys.min(), self.y_range.start)])
-        hi = np.array([max(xs.max(), self.x_range.end), max(ys.max(), self.y_range.end)])
-        inside = (
-            xs.min() >= self.x_range.start
-            and xs.max() <= self.x_range.end
-            and ys.min() >= self.y_range.start
-            and ys.max() <= self.y_range.end
-        )
+        bx0, bx1, by0, by1 = self._box()
+        lo = np.array([min(xs.min(), bx0), min(ys.min(), by0)])
+        hi = np.array([max(xs.max(), bx1), max(ys.max(), by1)])
+        inside = xs.min() >= bx0 and xs.max() <= bx1 and ys.min() >= by0 and ys.max() <= by1
         if not inside:
             pad = 0.08 * float(np.max(hi - lo))
             self._set_square(lo - pad, hi + pad)
@@ -847,6 +845,10 @@ def _table_html(cands: dict[str, list[Any]]) -> str:
         f'<div class="gp-table-wrap"><table class="gp-table"><thead><tr>{head}</tr></thead>'
         f"<tbody>{''.join(rows)}</tbody></table></div>"
     )
+
+
+def _with_pose(state: ExploreState, name: str, text: str) -> ExploreState:
+    return replace(state, start=text) if name == "start" else replace(state, goal=text)
 
 
 _POINT_COLUMNS = ("x", "y", "name", "role", "c", "fill", "size")

@@ -17,7 +17,7 @@ import sys
 import typing
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 from glideplan.errors import InvalidParameterError
 from glideplan.validation import check_finite
@@ -141,15 +141,15 @@ class PlannerEntry:
 
     @property
     def vehicle_type(self) -> type:
-        return self.spec.vehicle  # type: ignore[no-any-return]
+        return cast(type, self.spec.vehicle)
 
     @property
     def objective(self) -> str:
-        return self.spec.objective  # type: ignore[no-any-return]
+        return str(self.spec.objective)
 
     @property
     def method(self) -> str:
-        return self.spec.method  # type: ignore[no-any-return]
+        return str(self.spec.method)
 
     @property
     def slow(self) -> bool:

@@ -31,7 +31,6 @@ __all__ = [
 ]
 
 POSE_NAMES = ("start", "goal")
-_FLAGS = ("candidates", "partition")
 
 
 def _num(value: float) -> str:
@@ -111,13 +110,18 @@ def state_from_query(catalog: Catalog, query: Mapping[str, str] | str) -> Explor
     for p in entry.parameters:
         if p.name in query:
             values[p.name] = query[p.name]
-    flags = {f: query[f].lower() in ("1", "true", "yes", "on") for f in _FLAGS if f in query}
+
+    def flag(name: str, default: bool) -> bool:
+        text = query.get(name)
+        return default if text is None else text.lower() in ("1", "true", "yes", "on")
+
     return replace(
         state,
         start=query.get("start", state.start),
         goal=query.get("goal", state.goal),
         values=values,
-        **flags,
+        candidates=flag("candidates", state.candidates),
+        partition=flag("partition", state.partition),
     )
 
 
@@ -186,10 +190,10 @@ def request(catalog: Catalog, state: ExploreState) -> tuple[Request | None, dict
     try:
         vehicle = entry.build_vehicle(fields)
     except InvalidParameterError as err:
-        p = entry.parameter(err.name)
-        name = p.name if p is not None else ""
-        if p is not None:
-            err = InvalidParameterError(p.flag, err.value, err.rule)
+        owner = entry.parameter(err.name)
+        name = owner.name if owner is not None else ""
+        if owner is not None:
+            err = InvalidParameterError(owner.flag, err.value, err.rule)
         return None, {name: one_line(err)}
     except (TypeError, ValueError) as err:
         return None, {"": one_line(err)}

@@ -8,10 +8,12 @@ K candidate headings per free waypoint the exact minimum is a dynamic programme,
 
 O(n K^2) with one K x K matrix of leg costs per leg (`leg_costs.dubins_length_matrix`). The
 candidates are a uniform grid plus the headings the heuristics would choose there, so the
-result is never worse than a heuristic. A local continuous refinement follows: red-black
-sweeps of a vectorised golden-section search on each free heading within one grid step of its
-value (the cost seen by heading i depends only on its two neighbours, so all even, then all
-odd, waypoints move at once); a move is kept only if it lowers the cost.
+result is never worse than a heuristic. A local continuous refinement follows: L-BFGS-B
+(SciPy) on all free headings within one grid step of the DP choice, with central-difference
+gradients, then red-black sweeps of a vectorised golden-section search on each free heading
+(the cost seen by heading i depends only on its two neighbours, so all even, then all odd,
+waypoints move at once); a move is kept only if it lowers the cost, so the refined total is
+never above the DP's.
 """
 
 from __future__ import annotations
@@ -250,7 +252,7 @@ def _golden(
 def _local_costs(
     cost: LegCost, h: NDArray[np.float64], idx: NDArray[np.intp], trial: NDArray[np.float64]
 ) -> NDArray[np.float64]:
-    """`_local_cost` batched per leg: one kernel call per side for all waypoints in `idx`."""
+    """Cost of the (at most two) legs touching each waypoint idx[j] with heading trial[j]."""
     n = len(h)
     out = np.zeros(idx.size)
     has_prev = idx > 0

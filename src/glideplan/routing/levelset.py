@@ -63,7 +63,7 @@ def _bilinear(a: FloatArray, grid: RouteGrid, x: float, y: float) -> float:
 
 def _minmod(a: FloatArray, b: FloatArray) -> FloatArray:
     # sign-agreeing smaller magnitude, else 0: (sign a + sign b) / 2 * min(|a|, |b|)
-    return 0.5 * (np.sign(a) + np.sign(b)) * np.minimum(np.abs(a), np.abs(b))  # type: ignore[no-any-return]
+    return 0.5 * (np.sign(a) + np.sign(b)) * np.minimum(np.abs(a), np.abs(b))
 
 
 def _rate(p: FloatArray, lb: NDArray[np.bool_], ux: FloatArray, uy: FloatArray, speed: float,
@@ -94,7 +94,7 @@ def _rate(p: FloatArray, lb: NDArray[np.bool_], ux: FloatArray, uy: FloatArray, 
             d2m = np.where(lm2 | lm1 | lc, 0.0, d2m)
             d2p = np.where(lc | lp1 | lp2, 0.0, d2p)
         else:
-            lm1 = lp1 = None
+            lm1 = lp1 = None  # type: ignore[assignment]
         dm = (c - m1) / h + 0.5 * h * _minmod(d2m, d2c)
         dp = (p1 - c) / h - 0.5 * h * _minmod(d2c, d2p)
         out.append((dm, dp, lm1, lp1))
