@@ -40,7 +40,8 @@ def main() -> None:
 
     rng = np.random.default_rng(15)
     print(
-        f"{'planner':<14} {'page (ms)':>10} {'plan() (ms)':>12} {'overhead':>9} {'budget':>7}  verdict"
+        f"{'planner':<14} {'page (ms)':>10} {'plan() (ms)':>12} {'overhead':>9} "
+        f"{'budget':>7}  verdict"
     )
     failed = False
     for name, query, scale, budget in CASES:

@@ -301,7 +301,7 @@ def test_slow_planner_shows_busy(server: str, browser_context: Any):
         cost = float(_wait_result(page, previous=first))
         q = _query(page)
         v = VariableSpeedCar(float(q["v_min"]), float(q["v_max"]), float(q["u_max"]))
-        opts = {"synthesis_starts": int(q["synthesis_starts"])}
+        opts: dict[str, Any] = {"synthesis_starts": int(q["synthesis_starts"])}
         ref = plan(Pose(), _pose(q["goal"]), v, "time", "direct", **opts).cost
         assert cost == pytest.approx(ref, rel=1e-6)
     finally:

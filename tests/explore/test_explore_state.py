@@ -153,3 +153,44 @@ def test_partition_background_agrees_with_plan(catalog):
     colour = np.array([*_WORD_COLOURS[view.word], 70], dtype=np.uint8).view(np.uint32)[0]
     assert view.word == "LSL" and pixel == colour
     assert "LSL" in img["labels"]["text"]
+
+
+def test_cli_serves_the_page_locally(tmp_path):
+    """`glideplan explore --port P --no-show` serves `/` on 127.0.0.1 with local resources only."""
+    import re
+    import socket
+    import subprocess
+    import sys
+    import time
+    import urllib.request
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    code = "from glideplan.cli.app import main; raise SystemExit(main())"
+    args = [sys.executable, "-c", code, "explore", "--port", str(port), "--no-show"]
+    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        html = ""
+        deadline = time.monotonic() + 60.0
+        while time.monotonic() < deadline and not html:
+            try:
+                with urllib.request.urlopen(
+                    f"http://127.0.0.1:{port}/?planner=wind", timeout=5
+                ) as r:
+                    assert r.status == 200
+                    html = r.read().decode()
+            except OSError:
+                assert proc.poll() is None, proc.communicate()[1].decode()
+                time.sleep(0.3)
+        assert "glideplan explore" in html
+        urls = re.findall(r'(?:src|href)="([^"]+)"', html)
+        assert urls
+        assert all(u.startswith(("/", "static/", "./")) or "127.0.0.1" in u for u in urls), urls
+    finally:
+        proc.terminate()
+        proc.wait(timeout=20)
+
+
+def test_cli_refuses_a_bad_port(cli_error):
+    assert cli_error("explore", "--port", "0") == "glideplan: error: --port=0: must be in 1..65535"

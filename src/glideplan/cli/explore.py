@@ -29,6 +29,6 @@ def explore_command(
     from glideplan.explore.server import serve
 
     if not 0 < port < 65536:
-        raise InvalidParameterError("port", port, "must be in 1..65535")
+        raise InvalidParameterError("--port", port, "must be in 1..65535")
     typer.echo(f"glideplan explore: serving http://{host}:{port}/ (Ctrl-C to stop)", err=True)
     serve(port, host, show=not no_show)

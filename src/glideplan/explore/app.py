@@ -20,8 +20,7 @@ from typing import Any, cast
 import numpy as np
 import panel as pn
 from bokeh.models import ColumnDataSource, CustomJS, HoverTool, PointDrawTool, Range1d
-from bokeh.models.annotations import Arrow
-from bokeh.models.arrow_heads import VeeHead
+from bokeh.models.annotations.arrows import Arrow, VeeHead
 from bokeh.plotting import figure
 
 from glideplan.explore.catalog import Catalog, PlannerEntry, build_catalog, planner_key
@@ -49,7 +48,8 @@ PAGE_CSS = """
 .gp-strip { display: flex; flex-wrap: wrap; gap: 6px 22px; align-items: baseline;
   padding: 8px 12px; background: #f4f7fb; border: 1px solid #d6e0ec; border-radius: 6px; }
 .gp-item { display: flex; flex-direction: column; }
-.gp-item .gp-k { font-size: 11px; color: #5b6b7b; text-transform: uppercase; letter-spacing: .04em; }
+.gp-item .gp-k { font-size: 11px; color: #5b6b7b; text-transform: uppercase;
+  letter-spacing: .04em; }
 .gp-item .gp-v { font-size: 17px; color: #1b2733; font-variant-numeric: tabular-nums; }
 .gp-cost, .gp-word { font-weight: 600; }
 .gp-small { font-size: 13px !important; color: #3b4a59 !important; }
@@ -60,9 +60,12 @@ PAGE_CSS = """
   margin-right: 6px; border: 2px solid #1f5fa8; border-right-color: transparent;
   border-radius: 50%; animation: gp-spin .8s linear infinite; vertical-align: -1px; }
 @keyframes gp-spin { to { transform: rotate(360deg); } }
-.gp-table-wrap { max-height: 260px; overflow-y: auto; border: 1px solid #d6e0ec; border-radius: 6px; }
-.gp-table { border-collapse: collapse; width: 100%; font-size: 13px; font-variant-numeric: tabular-nums; }
-.gp-table th { position: sticky; top: 0; background: #eef3f9; text-align: left; padding: 4px 8px; color: #3b4a59; }
+.gp-table-wrap { max-height: 260px; overflow-y: auto; border: 1px solid #d6e0ec;
+  border-radius: 6px; }
+.gp-table { border-collapse: collapse; width: 100%; font-size: 13px;
+  font-variant-numeric: tabular-nums; }
+.gp-table th { position: sticky; top: 0; background: #eef3f9; text-align: left;
+  padding: 4px 8px; color: #3b4a59; }
 .gp-table td { padding: 3px 8px; border-top: 1px solid #edf1f6; }
 .gp-table tr.gp-opt td { background: #e4efff; font-weight: 600; color: #1f5fa8; }
 .gp-help { font-size: 12px; color: #5b6b7b; line-height: 1.35; }
@@ -418,7 +421,8 @@ class Explorer:
             self.partition_toggle,
             self.general_error,
             _html(
-                '<div class="gp-help">Download the solution (as <code>plan --json</code>), the path, the figure</div>'
+                '<div class="gp-help">Download the solution (as <code>plan --json</code>), '
+                "the path, the figure</div>"
             ),
             self.downloads,
             width=320,
@@ -766,7 +770,10 @@ class Explorer:
         bad = "" if view.ok else " gp-status-bad"
 
         def item(k: str, v: str, cls: str = "") -> str:
-            return f'<div class="gp-item"><span class="gp-k">{k}</span><span class="gp-v {cls}">{v}</span></div>'
+            return (
+                f'<div class="gp-item"><span class="gp-k">{k}</span>'
+                f'<span class="gp-v {cls}">{v}</span></div>'
+            )
 
         return (
             '<div class="gp-strip">'

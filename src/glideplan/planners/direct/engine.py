@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -13,7 +13,9 @@ import numpy as np
 from glideplan.errors import InvalidParameterError
 from glideplan.path import Path
 from glideplan.planners.direct.collocation import SCHEMES, Transcription, build_transcription
+from glideplan.planners.direct.results import DirectResult, StartResult
 from glideplan.planners.direct.system import ControlSystem
+from glideplan.planners.direct.timing import fly_controls, retime
 from glideplan.pose import TWO_PI, Pose, wrap_to_pi
 from glideplan.segments import Sampled
 from glideplan.solution import Status
@@ -22,60 +24,6 @@ from glideplan.validation import check_nonnegative, check_positive
 __all__ = ["DirectResult", "StartResult", "fly_controls", "retime", "solve_direct"]
 
 _OK_STATUSES = {"Solve_Succeeded", "Solved_To_Acceptable_Level"}
-_GL6_X, _GL6_W = np.polynomial.legendre.leggauss(6)
-
-
-@dataclass(frozen=True)
-class StartResult:
-    """One start of the multi-start: its guess's word, cost, status and solver effort."""
-
-    index: int
-    cost: float
-    status: str
-    iterations: int
-    heading_turns: int  # k of the heading branch psi(T) = goal.heading + 2 pi k
-    label: str = ""
-
-    def __iter__(self):  # unpacks as (cost, status)
-        return iter((self.cost, self.status))
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "index": self.index,
-            "cost": self.cost if math.isfinite(self.cost) else None,
-            "status": self.status,
-            "iterations": self.iterations,
-            "heading_turns": self.heading_turns,
-            "label": self.label,
-        }
-
-
-@dataclass(frozen=True, eq=False)
-class DirectResult:
-    """Outcome of `solve_direct`.
-
-    `status` is `Status.SOLVED` or `Status.FAILED` ("solved" / "failed"); `path` (one
-    `Sampled` segment from the origin) is None on failure; `cost` is the collocation cost on
-    the final mesh (inf on failure); `stats` holds iterations, seconds, mesh sizes and the
-    cost on each mesh, starts tried and succeeded, and the endpoint error of the returned
-    path's controls; `starts` has one `StartResult` (unpacks as (cost, status)) per guess;
-    `controls` the dense control history by name (plus "t", "speed", "turn_rate") along the
-    returned path; `warnings` what the caller must pass on (a failed re-timing).
-    """
-
-    status: Status
-    path: Path | None
-    cost: float
-    stats: dict[str, Any]
-    starts: tuple[StartResult, ...]
-    controls: Mapping[str, np.ndarray] = field(default_factory=dict)
-    message: str = ""
-    # things the caller must pass on to the user (e.g. a failed re-timing), one sentence each
-    warnings: tuple[str, ...] = ()
-
-    @property
-    def ok(self) -> bool:
-        return self.status is Status.SOLVED and self.path is not None
 
 
 @dataclass
@@ -87,81 +35,6 @@ class _Solve:
     iterations: int
     transcription: Transcription
     fractions: np.ndarray
-
-
-def fly_controls(
-    t: np.ndarray,
-    speed: np.ndarray,
-    turn_rate: np.ndarray,
-    start: Pose = Pose(),
-    drift: tuple[float, float] = (0.0, 0.0),
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Integrate x' = v cos psi + wx, y' = v sin psi + wy, psi' = u (drift (wx, wy) in m/s,
-    zero by default) for piecewise-linear controls.
-
-    The heading is exact (piecewise quadratic); positions use 6-point Gauss-Legendre per
-    piece. Returns x, y, heading at the nodes `t`.
-    """
-    dt = np.diff(t)
-    v0, v1 = speed[:-1], speed[1:]
-    u0, u1 = turn_rate[:-1], turn_rate[1:]
-    dpsi = dt * 0.5 * (u0 + u1)
-    psi = start.heading + np.concatenate([[0.0], np.cumsum(dpsi)])
-    s = 0.5 * (_GL6_X + 1.0)  # nodes on [0, 1]
-    wq = 0.5 * _GL6_W
-    ps = psi[:-1, None] + dt[:, None] * (u0[:, None] * s + 0.5 * (u1 - u0)[:, None] * s**2)
-    vs = v0[:, None] + (v1 - v0)[:, None] * s
-    dx = dt * ((vs * np.cos(ps)) @ wq)
-    dy = dt * ((vs * np.sin(ps)) @ wq)
-    x = start.x + np.concatenate([[0.0], np.cumsum(dx)]) + drift[0] * (t - t[0])
-    y = start.y + np.concatenate([[0.0], np.cumsum(dy)]) + drift[1] * (t - t[0])
-    return x, y, psi
-
-
-def retime(
-    t: np.ndarray,
-    speed: np.ndarray,
-    turn_rate: np.ndarray,
-    target: np.ndarray,
-    *,
-    length_scale: float = 1.0,
-    pieces: int = 8,
-    max_stretch: float = 0.05,
-    tol: float = 1e-12,
-    drift: tuple[float, float] = (0.0, 0.0),
-) -> tuple[np.ndarray, float, bool]:
-    """Re-time a control history so that, flown exactly, it ends at `target` (x, y, psi).
-
-    The node values of the controls are kept (so every control stays admissible: bounds and
-    nonlinear constraints hold exactly as before); only the time spent between nodes is
-    stretched by a factor r_p, constant on each of `pieces` consecutive groups of nodes.
-    `scipy.optimize.least_squares` (trust region, from r = 1) solves end(r) = target. Returns
-    the new node times, max |r_p - 1| and whether it converged within `max_stretch`.
-    """
-    dt = np.diff(t)
-    n = dt.size
-    K = max(1, min(int(pieces), n))
-    group = np.minimum((np.arange(n) * K) // n, K - 1)
-    scale = np.array([length_scale, length_scale, 1.0])
-
-    def end(r: np.ndarray) -> np.ndarray:
-        tt = np.concatenate([[0.0], np.cumsum(dt * r[group])])
-        x, y, psi = fly_controls(tt, speed, turn_rate, drift=drift)
-        return (np.array([x[-1], y[-1], psi[-1]]) - target) / scale
-
-    from scipy.optimize import least_squares  # imported where used (start-up time)
-
-    # 3 equations, K unknowns: SciPy's trust-region least squares from r = 1 (no stretch)
-    # takes the small steps of a minimum-norm Newton iteration and stops at a zero residual
-    eps = float(np.finfo(float).eps)
-    fit = least_squares(end, np.ones(K), method="trf", xtol=eps, ftol=eps, gtol=eps)
-    r = fit.x
-    if np.any(r <= 0.0):
-        return t, math.inf, False
-    e = end(r)
-    tt = np.concatenate([[0.0], np.cumsum(dt * r[group])])
-    stretch = float(np.max(np.abs(r - 1.0)))
-    return tt, stretch, bool(np.max(np.abs(e)) < 1e3 * tol and stretch <= max_stretch)
 
 
 def _as_matrix(value: Any) -> np.ndarray:
@@ -412,19 +285,24 @@ class _Deadline:
         self, stats: dict[str, Any], iterations: int, starts: list[StartResult], total: int
     ) -> DirectResult:
         """The failed result of a call stopped by the limit."""
-        stats.update(iterations=iterations, seconds=time.perf_counter() - self.t_start)
         stats["time_limit_reached"] = True
-        return DirectResult(
-            Status.FAILED,
-            None,
-            math.inf,
-            stats,
-            tuple(starts),
-            message=(
-                f"time limit of {self.limit:g} s reached "
-                f"({len(starts)} of {total} start(s) solved before it)"
-            ),
+        message = (
+            f"time limit of {self.limit:g} s reached "
+            f"({len(starts)} of {total} start(s) solved before it)"
         )
+        return _failed(stats, iterations, self.t_start, starts, message)
+
+
+def _failed(
+    stats: dict[str, Any],
+    iterations: int,
+    t_start: float,
+    starts: list[StartResult],
+    message: str,
+) -> DirectResult:
+    """A failed `DirectResult` (no path) with the effort spent."""
+    stats.update(iterations=iterations, seconds=time.perf_counter() - t_start)
+    return DirectResult(Status.FAILED, None, math.inf, stats, tuple(starts), message=message)
 
 
 def _check_options(
@@ -566,16 +444,9 @@ def solve_direct(
     if clock.expired():
         return clock.failure(stats, iterations, starts, len(guesses))
     if not first:
-        stats.update(iterations=iterations, seconds=time.perf_counter() - t_start)
-        statuses = sorted({s.status for s in starts})
-        return DirectResult(
-            Status.FAILED,
-            None,
-            math.inf,
-            stats,
-            tuple(starts),
-            message=f"no start converged (IPOPT: {', '.join(statuses)})",
-        )
+        statuses = ", ".join(sorted({s.status for s in starts}))
+        message = f"no start converged (IPOPT: {statuses})"
+        return _failed(stats, iterations, t_start, starts, message)
 
     first.sort(key=lambda r: r[0].cost)
     best_first = first[0][0].cost
