@@ -121,3 +121,49 @@ def test_verification_does_not_trust_a_false_constant_controls_claim():
     seg = Liar(Pose(0, 0, 0), 3.0, 1, 0.2, 30.0, 5.0, 0.3)
     end = integrate_path(Path((seg,))).end
     assert end.distance_to(seg.end) < 1e-7  # integrated with the real, varying speed
+
+
+def test_sample_refuses_more_points_than_its_stated_limit():
+    """n = 1e10 would need ~800 GB: a clear error naming n and the limit, not a MemoryError."""
+    from glideplan.path import MAX_SAMPLES
+
+    p = Path((Straight(Pose(), 3.0), Arc(Pose(3.0, 0.0, 0.0), 1.0, 2.0, 1)))
+    with pytest.raises(InvalidParameterError, match=rf"n=.*{MAX_SAMPLES}"):
+        p.sample(n=10**10)
+    with pytest.raises(InvalidParameterError, match="integer"):
+        p.sample(n=2.5)
+    assert p.sample(n=MAX_SAMPLES // 1000).x.size == MAX_SAMPLES // 1000
+
+
+def test_word_drops_zero_length_segments():
+    """A straight flown as an LSL type with empty arcs is the word "S" (issue 11)."""
+    p = Path(
+        (
+            Arc(Pose(), 0.0, 1.0, 1),
+            Straight(Pose(), 5.0),
+            Arc(Pose(5.0, 0.0, 0.0), 0.0, 1.0, 1),
+        )
+    )
+    assert p.word == "S" and p.family == "BSB"
+
+
+def test_path_arrays_round_trip_keeps_the_geometry():
+    """Path -> PathArrays (simulation) -> Path: same word, length and end pose; the reference
+    is the original path's closed-form end."""
+    from glideplan import dubins_path
+    from glideplan.simulation import PathArrays
+
+    paths = [
+        dubins_path(Pose(), Pose(4.0, 3.0, 1.0), 1.0),
+        dubins_path(Pose(1.0, 2.0, 0.5), Pose(-4.0, 3.0, 2.0), 2.0),
+        Path((Straight(Pose(), 2.0),)),
+    ]
+    arrays = PathArrays.from_paths(paths)
+    for i, p in enumerate(paths):
+        q = arrays.path(i)
+        assert q.word == p.word
+        assert q.length == pytest.approx(p.length, abs=1e-12)
+        assert q.end.distance_to(p.end) < 1e-12
+        np.testing.assert_allclose(arrays.end[i], p.end.as_array(), atol=1e-12)
+    with pytest.raises(InvalidParameterError, match="constant curvature"):
+        PathArrays.from_paths([Path((HeadingSpeedArc(Pose(), 1.0, 1, 0.2, 30.0, 2.0, 1.0),))])

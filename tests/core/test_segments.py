@@ -117,3 +117,18 @@ def test_bad_segment_parameters_name_the_parameter(factory, name):
     with pytest.raises(InvalidParameterError) as err:
         factory()
     assert err.value.name == name
+
+
+def test_heading_speed_arc_time_at_length_inverts_the_arc_length():
+    """time_at_length (SciPy bracketed root of S(t) = s) against the arc length integrated
+    independently by Gauss-Legendre quadrature of the speed (`integrate_rate`); lengths outside
+    [0, length] map to the ends."""
+    from glideplan import HeadingSpeedArc
+
+    arc = HeadingSpeedArc(Pose(1.0, 2.0, 0.3), 4.0, -1, 0.7, 2.0, 0.8, 0.4)
+    s = np.linspace(0.05, 0.95, 7) * arc.length
+    t = arc.time_at_length(s)
+    back = np.array([float(arc.integrate_rate(lambda v, u: v, ti)) for ti in t])
+    np.testing.assert_allclose(back, s, rtol=1e-12, atol=1e-12)
+    ends = arc.time_at_length(np.array([-1.0, 0.0, arc.length, arc.length + 1.0]))
+    np.testing.assert_array_equal(ends, [0.0, 0.0, arc.duration, arc.duration])

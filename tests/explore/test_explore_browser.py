@@ -259,8 +259,11 @@ def test_drag_goal_updates_cost_and_url(dubins_page: Any, shots: pathlib.Path):
     page.mouse.down()
     for k in range(1, 9):
         page.mouse.move(sx + (tx - sx) * k / 8, sy + (ty - sy) * k / 8)
+    # the page re-plans while the point is still held (live), then commits it on the drop
+    live = _wait_result(page, previous=before, timeout=20.0)
     page.mouse.up()
     after = float(_wait_result(page, previous=before))
+    assert float(live) == pytest.approx(after, rel=1e-3)
     q = _query(page)
     goal = _pose(q["goal"])
     assert goal.x == pytest.approx(1.5, abs=0.1) and goal.y == pytest.approx(-2.0, abs=0.1)

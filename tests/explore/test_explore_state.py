@@ -169,7 +169,7 @@ def test_cli_serves_the_page_locally(tmp_path):
         port = s.getsockname()[1]
     code = "from glideplan.cli.app import main; raise SystemExit(main())"
     args = [sys.executable, "-c", code, "explore", "--port", str(port), "--no-show"]
-    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     try:
         html = ""
         deadline = time.monotonic() + 60.0
@@ -181,7 +181,8 @@ def test_cli_serves_the_page_locally(tmp_path):
                     assert r.status == 200
                     html = r.read().decode()
             except OSError:
-                assert proc.poll() is None, proc.communicate()[1].decode()
+                if proc.poll() is not None:
+                    raise AssertionError(proc.communicate()[1].decode()) from None
                 time.sleep(0.3)
         assert "glideplan explore" in html
         urls = re.findall(r'(?:src|href)="([^"]+)"', html)
@@ -189,7 +190,7 @@ def test_cli_serves_the_page_locally(tmp_path):
         assert all(u.startswith(("/", "static/", "./")) or "127.0.0.1" in u for u in urls), urls
     finally:
         proc.terminate()
-        proc.wait(timeout=20)
+        proc.communicate(timeout=20)
 
 
 def test_cli_refuses_a_bad_port(cli_error):

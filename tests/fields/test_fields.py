@@ -59,10 +59,11 @@ def test_layouts_read_back_and_agree(layouts):
     HYCOM packs to 0.001 m/s, so it agrees to 5e-4.
     """
     cop, hyc = layouts
-    raw = xr.open_dataset(hyc)
-    assert float(raw["lon"].min()) >= 0.0 and float(raw["lon"].max()) > 180.0
-    assert raw["lat"].values[0] > raw["lat"].values[-1]
-    assert xr.open_dataset(cop)["uo"].attrs["standard_name"] == "eastward_sea_water_velocity"
+    with xr.open_dataset(hyc) as raw:
+        assert float(raw["lon"].min()) >= 0.0 and float(raw["lon"].max()) > 180.0
+        assert raw["lat"].values[0] > raw["lat"].values[-1]
+    with xr.open_dataset(cop) as raw:
+        assert raw["uo"].attrs["standard_name"] == "eastward_sea_water_velocity"
     fc, fh = open_field(cop), open_field(hyc)
     assert fc.info["variables"] == ["uo", "vo"] and fh.info["variables"] == ["water_u", "water_v"]
     rng = np.random.default_rng(1)
@@ -86,9 +87,9 @@ def test_grib_descending_latitude(tmp_path):
     ts = (TIMES - TIMES[0]) / np.timedelta64(1, "s")
     T, LA, LO = np.meshgrid(ts, lat, lon, indexing="ij")
     write_grib(path, lat, lon, TIMES, linear_u(T, LA, LO), linear_v(T, LA, LO))
-    raw = xr.open_dataset(path, engine="cfgrib", backend_kwargs={"indexpath": ""})
-    assert {"u10", "v10"} <= set(raw.data_vars)
-    assert raw["latitude"].values[0] > raw["latitude"].values[-1]
+    with xr.open_dataset(path, engine="cfgrib", backend_kwargs={"indexpath": ""}) as raw:
+        assert {"u10", "v10"} <= set(raw.data_vars)
+        assert raw["latitude"].values[0] > raw["latitude"].values[-1]
     f = open_field(path)
     assert f.info["variables"] == ["u10", "v10"]
     assert str(f.epoch)[:13] == "2026-01-01T00"

@@ -179,3 +179,35 @@ def test_goal_at_start_takes_no_time():
     vehicle = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=0.2)
     sol = plan(Pose(1, 2, 0.5), Pose(1, 2, 0.5), vehicle).raise_for_status()
     assert sol.cost == 0.0
+
+
+@pytest.mark.parametrize("distance", [1e4, 1e5, 1e6])
+def test_far_upwind_goal_is_solved_in_bounded_memory(distance):
+    """Issue 10: a goal 1e6 R upwind in a 0.99 v headwind took 4.6 GB (1e4) to an OOM kill.
+    Bounds by hand: the path is no shorter than the straight line to the virtual target, so
+    T >= tau_lo with tau - |p - w tau| = 0, i.e. T >= d / (1 - w) (here d / 0.01); an LSL
+    path exceeds that line by at most 2 R + 4 pi R (two arcs below 2 pi R, the straight at
+    most the centre distance), so T <= tau_lo + (2 + 4 pi) / (1 - w). The root search scans
+    only such a window (peak memory measured with tracemalloc)."""
+    import tracemalloc
+
+    car = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.99, wind_direction=0.0)
+    tracemalloc.start()
+    sol = plan(Pose(), Pose(-distance, 0.0, math.pi), car)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    assert sol.ok and sol.endpoint_error.max < 1e-6 * max(1.0, distance / 1e4)
+    lower = distance / 0.01
+    assert lower <= sol.cost <= lower + (2.0 + 4.0 * math.pi) / 0.01
+    assert peak < 200e6
+
+
+def test_goals_beyond_the_verifiable_range_are_refused():
+    """Arrival times beyond 1e9 R / v are refused up front, naming the goal and the rule; so
+    is a wind so close to the airspeed that the bracketing scan would exceed its limit."""
+    car = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.99, wind_direction=0.0)
+    with pytest.raises(InvalidParameterError, match=r"goal.*too far"):
+        plan(Pose(), Pose(-1e7, 0.0, math.pi), car)
+    gale = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.999999, wind_direction=0.0)
+    with pytest.raises(InvalidParameterError, match=r"wind.*too close to 1"):
+        plan(Pose(), Pose(-10.0, 3.0, math.pi), gale)

@@ -118,6 +118,7 @@ def _reflow(text: str | None) -> str | None:
     """Join the lines of each help paragraph (Rich would keep docstring line breaks)."""
     if not text:
         return text
+
     def keep(p: str) -> bool:  # \b paragraphs (Click's "no rewrap") and lists stay as written
         lines = [line.strip() for line in p.strip().splitlines()]
         return p.lstrip().startswith("\b") or any(

@@ -19,6 +19,7 @@ from typing import Any, cast
 
 import numpy as np
 import panel as pn
+from bokeh.events import Pan, PanEnd, PanStart
 from bokeh.models import ColumnDataSource, CustomJS, HoverTool, PointDrawTool, Range1d
 from bokeh.models.annotations.arrows import Arrow, VeeHead
 from bokeh.plotting import figure
@@ -115,6 +116,7 @@ class Explorer:
         self._syncing = False
         self._errors: dict[str, str] = {}
         self._drawn: dict[tuple[str, str], tuple[float, float]] = {}
+        self._dragging: tuple[str, str, float, float] | None = None
         self._partition_cache: tuple[Any, dict[str, Any] | None] | None = None
         self._build_figures()
         self._build_widgets()
@@ -262,6 +264,10 @@ class Explorer:
             ),
         )
         self.points_src.on_change("data", self._on_points)
+        # live re-planning while a point is dragged (the drop then commits it)
+        fig.on_event(PanStart, self._on_pan_start)
+        fig.on_event(Pan, self._on_pan)
+        fig.on_event(PanEnd, self._on_pan_end)
 
         self.prof_src = ColumnDataSource({"t": [], "speed": [], "second": [], "third": []})
         self.speed_fig = figure(
@@ -450,7 +456,8 @@ class Explorer:
     def set_state(self, state: ExploreState) -> None:
         """Show `state`: update the URL and the poses, and plan it."""
         self.state = state
-        self._draw_poses()
+        if self._dragging is None:  # the browser is moving the point itself
+            self._draw_poses()
         self._push_url()
         self.solve()
 
@@ -575,6 +582,34 @@ class Explorer:
         q = 10.0 ** math.floor(math.log10(max(self.entry.length_scale, 1e-12))) * 1e-3
         return float(f"{round(v / q) * q:.10g}")
 
+    def _on_pan_start(self, event: Any) -> None:
+        """Which point a drag holds: the drawn point nearest the pointer (within 3% of the view)."""
+        x0, x1, _, _ = self._box()
+        best = min(
+            self._drawn.items(),
+            key=lambda kv: math.dist(kv[1], (event.x, event.y)),
+            default=None,
+        )
+        if best is not None and math.dist(best[1], (event.x, event.y)) <= 0.03 * (x1 - x0):
+            (name, role), (px, py) = best
+            self._dragging = (name, role, px - event.x, py - event.y)
+
+    def _on_pan(self, event: Any) -> None:
+        if self._dragging is None:
+            return
+        name, role, dx, dy = self._dragging
+        self._drag_to(name, role, event.x + dx, event.y + dy)
+
+    def _on_pan_end(self, event: Any) -> None:
+        self._dragging = None
+
+    def _drag_to(self, name: str, role: str, x: float, y: float) -> None:
+        p = self._poses()[name]
+        if role == "pose" or p is None:
+            self._move_pose(name, x, y, None)
+        else:
+            self._move_pose(name, p[0], p[1], math.degrees(math.atan2(y - p[1], x - p[0])))
+
     def _move_pose(self, name: str, x: float, y: float, heading_deg: float | None) -> None:
         old = self._poses()[name]
         if heading_deg is None:
@@ -591,6 +626,9 @@ class Explorer:
         """A drag ended: a moved pose keeps its heading, a moved handle turns its pose."""
         if self._syncing:
             return
+        if self._dragging is not None:
+            # the drop: live updates moved the state, but the browser's points are the truth
+            self._dragging = None
         rows = zip(
             new.get("x", []),
             new.get("y", []),
@@ -603,16 +641,11 @@ class Explorer:
             for x, y, n, r in rows
             if (n, r) in self._drawn and math.dist((x, y), self._drawn[(n, r)]) > 1e-12
         ]
-        poses = self._poses()
         if len(new.get("x", [])) != len(self._drawn) or not moved:
             self._draw_poses()  # a deleted point comes back
             return
         name, role, x, y = next((m for m in moved if m[1] == "pose"), moved[0])
-        p = poses[name]
-        if role == "pose" or p is None:
-            self._move_pose(name, x, y, None)
-        else:
-            self._move_pose(name, p[0], p[1], math.degrees(math.atan2(y - p[1], x - p[0])))
+        self._drag_to(name, role, x, y)
 
     # ----- solving ----------------------------------------------------------------------------
     def solve(self) -> None:
@@ -714,7 +747,8 @@ class Explorer:
         else:
             self.part_src.data = {"image": [], "x": [], "y": [], "dw": [], "dh": []}
             self.part_labels.data = {"x": [], "y": [], "text": []}
-        self._expand_ranges(view)
+        if self._dragging is None:
+            self._expand_ranges(view)
         self._show_busy(False)
 
     def _apply_profile(self, view: View) -> None:

@@ -240,8 +240,9 @@ def _open_one(path: pathlib.Path) -> Any:
     if engine == "cfgrib":
         kwargs["backend_kwargs"] = {"indexpath": ""}
     try:
-        ds = xr.open_dataset(path, engine=engine, **kwargs)
-        return ds.load()
+        # Load and close at once: files left open until interpreter exit can crash HDF5.
+        with xr.open_dataset(path, engine=engine, **kwargs) as ds:
+            return ds.load()
     except InvalidParameterError:
         raise
     except Exception as exc:  # any reader failure is a bad file for the user

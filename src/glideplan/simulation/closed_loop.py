@@ -29,8 +29,7 @@ armed), is a failure.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
-from typing import Any
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -134,9 +133,191 @@ def finish_line_error(
     return crossed, error
 
 
-def _kept(mask: np.ndarray, *arrays: np.ndarray) -> list[Any]:
-    """The rows of each array where `mask` holds (compacting the live vehicles)."""
-    return [arr[mask] for arr in arrays]
+@dataclass(frozen=True, eq=False)
+class _SegmentTable:
+    """Every segment of every path (flattened, N x K rows) in the form the path point needs.
+
+    On a segment starting at arc length `s0` with heading `h0` and curvature `kappa`, at
+    d = varpi - s0 the tangent angle is chi = h0 + kappa d and the point is
+    (ax + d bx + cc sin chi, ay + d by - cc cos chi): (ax, ay) the centre and cc = 1/kappa on
+    arcs, (ax, ay) the start and (bx, by) the direction on straights (cc = 0) — two
+    transcendental functions per vehicle and step.
+    """
+
+    s0: np.ndarray
+    h0: np.ndarray
+    kappa: np.ndarray
+    ax: np.ndarray
+    bx: np.ndarray
+    ay: np.ndarray
+    by: np.ndarray
+    cc: np.ndarray
+
+    @classmethod
+    def of(cls, paths: PathArrays) -> _SegmentTable:
+        arc = paths.kappa != 0.0
+        inv_k = np.divide(1.0, paths.kappa, out=np.zeros_like(paths.kappa), where=arc)
+        ch0, sh0 = np.cos(paths.h0), np.sin(paths.h0)
+        columns = (
+            paths.s0,
+            paths.h0,
+            paths.kappa,
+            np.where(arc, paths.x0 - inv_k * sh0, paths.x0),
+            np.where(arc, 0.0, ch0),
+            np.where(arc, paths.y0 + inv_k * ch0, paths.y0),
+            np.where(arc, 0.0, sh0),
+            inv_k,
+        )
+        return cls(*(np.ascontiguousarray(c).reshape(-1) for c in columns))
+
+
+@dataclass(frozen=True, eq=False)
+class _PathPoint:
+    """The path point of each vehicle: position (m), unit tangent (cos, sin), the curvature of
+    its segment (1/m) and how far it lies beyond the path's ends along the end tangent (m)."""
+
+    x: np.ndarray
+    y: np.ndarray
+    cos: np.ndarray
+    sin: np.ndarray
+    kappa: np.ndarray
+    beyond: np.ndarray
+
+
+@dataclass(eq=False)
+class _Fleet:
+    """The vehicles still flying, one entry each (compacted as they finish).
+
+    ids: index into the results; x, y (m) and (cos psi, sin psi); varpi: path parameter (m);
+    a_prev: signed distance to the finish line at the last step (m); the finish line's point
+    (xf, yf) and normal (cf, sf); tmax: time-out (s); row: disturbance row; the path's length,
+    arming arc length, segment break points (arc lengths) and first row in the table.
+    """
+
+    ids: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    cp: np.ndarray
+    sp: np.ndarray
+    varpi: np.ndarray
+    a_prev: np.ndarray
+    xf: np.ndarray
+    yf: np.ndarray
+    cf: np.ndarray
+    sf: np.ndarray
+    tmax: np.ndarray
+    row: np.ndarray
+    length: np.ndarray
+    arm: np.ndarray
+    s_breaks: np.ndarray
+    base: np.ndarray
+
+    @classmethod
+    def start(cls, paths: PathArrays, t_max: np.ndarray, rows: np.ndarray) -> _Fleet:
+        n, kk = paths.kappa.shape
+        x, y = paths.x0[:, 0].copy(), paths.y0[:, 0].copy()
+        xf, yf = paths.end[:, 0].copy(), paths.end[:, 1].copy()
+        cf, sf = np.cos(paths.end[:, 2]), np.sin(paths.end[:, 2])
+        return cls(
+            ids=np.arange(n),
+            x=x,
+            y=y,
+            cp=np.cos(paths.h0[:, 0]),
+            sp=np.sin(paths.h0[:, 0]),
+            varpi=np.zeros(n),
+            a_prev=(x - xf) * cf + (y - yf) * sf,
+            xf=xf,
+            yf=yf,
+            cf=cf,
+            sf=sf,
+            tmax=t_max.copy(),
+            row=rows.copy(),
+            length=paths.length.copy(),
+            arm=paths.arm.copy(),
+            s_breaks=paths.s0[:, 1:].copy(),
+            base=np.arange(n) * kk,
+        )
+
+    def keep(self, mask: np.ndarray) -> None:
+        """Drop the vehicles where `mask` is False."""
+        for f in fields(self):
+            setattr(self, f.name, getattr(self, f.name)[mask])
+
+    def path_point(self, table: _SegmentTable) -> _PathPoint:
+        """The path point at each vehicle's varpi (guidance.PathArrays.point_curvature)."""
+        seg = self.base.copy()
+        for j in range(self.s_breaks.shape[1]):
+            seg += self.varpi >= self.s_breaks[:, j]
+        wc = np.clip(self.varpi, 0.0, self.length)
+        dd = wc - table.s0[seg]
+        chi = table.h0[seg] + table.kappa[seg] * dd
+        c, s = np.cos(chi), np.sin(chi)
+        beyond = self.varpi - wc  # beyond either end: along the end tangent
+        cc = table.cc[seg]
+        xp = table.ax[seg] + dd * table.bx[seg] + cc * s + beyond * c
+        yp = table.ay[seg] + dd * table.by[seg] - cc * c + beyond * s
+        return _PathPoint(xp, yp, c, s, table.kappa[seg], beyond)
+
+
+def _guidance(
+    fleet: _Fleet, point: _PathPoint, gx: np.ndarray, gy: np.ndarray, cfg: FollowerSettings
+) -> tuple[np.ndarray, np.ndarray]:
+    """Lookahead guidance (guidance.lookahead_guidance): the course error (rad) of the ground
+    velocity (gx, gy) against the commanded course, the tangent turned by -atan(e / Delta),
+    and the rate of the path parameter (m/s)."""
+    c, s = point.cos, point.sin
+    delta = cfg.lookahead_distance
+    ex, ey = fleet.x - point.x, fleet.y - point.y
+    cross = ey * c - ex * s
+    rate = gx * c + gy * s + cfg.gamma * (ex * c + ey * s)
+    inv = 1.0 / np.sqrt(delta * delta + cross * cross)
+    dirx = (c * delta + s * cross) * inv
+    diry = (s * delta - c * cross) * inv
+    return np.arctan2(gx * diry - gy * dirx, gx * dirx + gy * diry), rate
+
+
+def _turn_rate(
+    err: np.ndarray, rate: np.ndarray, point: _PathPoint, cfg: FollowerSettings
+) -> np.ndarray:
+    """Saturated bang-bang course control plus the path's turn rate as a feedforward."""
+    umax, phi_b = cfg.max_turn_rate, cfg.boundary_layer
+    if phi_b > 0.0:
+        u = umax * np.clip(err / phi_b, -1.0, 1.0)
+    else:
+        u = umax * np.sign(err)
+    if cfg.feedforward:
+        kap = np.where(point.beyond == 0.0, point.kappa, 0.0)
+        u = np.clip(u + kap * rate, -umax, umax)
+    return u
+
+
+def _move(
+    fleet: _Fleet, u: np.ndarray, drift: np.ndarray, cfg: FollowerSettings
+) -> tuple[np.ndarray, np.ndarray]:
+    """New positions after one step, and the fleet's heading turned, for constant u and drift.
+
+    Exact motion: the heading turns by u dt, the air-relative displacement is the chord
+    v dt sinc(u dt / 2) at heading psi + u dt / 2 (half-angle series where u_max dt <= 0.2,
+    exact to ~1e-13 there).
+    """
+    dt, v = cfg.dt, cfg.speed
+    half = 0.5 * dt * u
+    if cfg.max_turn_rate * dt <= 0.2:
+        h2 = half * half
+        sh = half * (1.0 - h2 / 6.0 * (1.0 - h2 / 20.0))
+        chh = 1.0 - 0.5 * h2 * (1.0 - h2 / 12.0)
+        sinc = 1.0 - h2 / 6.0 * (1.0 - h2 / 20.0)
+    else:
+        sh, chh = np.sin(half), np.cos(half)
+        sinc = np.sinc(half / math.pi)
+    cp, sp = fleet.cp, fleet.sp
+    cm = cp * chh - sp * sh
+    sm = sp * chh + cp * sh
+    chord = v * dt * sinc
+    x_new = fleet.x + chord * cm + drift[:, 0] * dt
+    y_new = fleet.y + chord * sm + drift[:, 1] * dt
+    fleet.cp, fleet.sp = cm * chh - sm * sh, sm * chh + cm * sh
+    return x_new, y_new
 
 
 def follow_paths(
@@ -154,153 +335,78 @@ def follow_paths(
     vehicle to a row (default: vehicle i uses row i), so several vehicles can share one
     realisation. disturbance_bound: delta_max (m/s) for the time-out. record: keep every
     vehicle's positions (for figures; memory grows with N x steps).
+
+    Each step: the path point, the guidance's course error, the turn rate, the exact motion,
+    then the finish-line check (crossings interpolated within the step), the time-out and the
+    lost check; finished vehicles are dropped from the fleet in batches.
     """
     cfg = settings or FollowerSettings()
     n = paths.count
-    v, umax, dt = cfg.speed, cfg.max_turn_rate, cfg.dt
+    v, dt = cfg.speed, cfg.dt
     dmax = check_in_range("disturbance_bound", disturbance_bound, 0.0, v, high_open=True)
     row_of = np.arange(n) if rows is None else np.asarray(rows, dtype=np.intp)
     if row_of.shape != (n,) or (n and (row_of.min() < 0 or row_of.max() >= disturbance.rows)):
         raise InvalidParameterError("rows", row_of.shape, "need one valid row per path")
-    delta_lookahead = cfg.lookahead_distance
-    phi_b = cfg.boundary_layer
-    feedforward = cfg.feedforward
     lost_margin = 2.0 * cfg.min_radius
 
     error = np.full(n, np.nan)
     crossed = np.zeros(n, dtype=bool)
     t_end = np.zeros(n)
     t_max = cfg.timeout_factor * (paths.length + TWO_PI * cfg.min_radius) / (v - dmax)
-
-    # Per-segment table for the path point (one row gather per step): on a segment starting at
-    # arc length s0 with heading h0 and curvature k, at d = varpi - s0 the tangent angle is
-    # chi = h0 + k d and the point (ax + d bx + cc sin chi, ay + d by - cc cos chi), with
-    # (ax, ay) the centre and cc = 1/k on arcs, (ax, ay) the start, (bx, by) the direction on
-    # straights (cc = 0) — two transcendental functions per vehicle and step.
-    kk = paths.kappa.shape[1]
-    arc = paths.kappa != 0.0
-    inv_k = np.divide(1.0, paths.kappa, out=np.zeros_like(paths.kappa), where=arc)
-    ch0, sh0 = np.cos(paths.h0), np.sin(paths.h0)
-    table = np.stack(
-        [
-            paths.s0,
-            paths.h0,
-            paths.kappa,
-            np.where(arc, paths.x0 - inv_k * sh0, paths.x0),
-            np.where(arc, 0.0, ch0),
-            np.where(arc, paths.y0 + inv_k * ch0, paths.y0),
-            np.where(arc, 0.0, sh0),
-            inv_k,
-        ],
-        axis=-1,
-    ).reshape(n * kk, 8)
-    s_breaks = paths.s0[:, 1:].copy()
-    length = paths.length.copy()
-    arm = paths.arm.copy()
-    base = np.arange(n) * kk
-
-    ids = np.arange(n)
-    x, y = paths.x0[:, 0].copy(), paths.y0[:, 0].copy()
-    cp, sp = np.cos(paths.h0[:, 0]), np.sin(paths.h0[:, 0])
-    varpi = np.zeros(n)
-    xf, yf = paths.end[:, 0].copy(), paths.end[:, 1].copy()
-    cf, sf = np.cos(paths.end[:, 2]), np.sin(paths.end[:, 2])
-    tmax = t_max.copy()
-    rw = row_of.copy()
-    a_prev = (x - xf) * cf + (y - yf) * sf
+    table = _SegmentTable.of(paths)
+    fleet = _Fleet.start(paths, t_max, row_of)
     t = 0.0
     step = 0
-    taylor = umax * dt <= 0.2  # half-angle series below are exact to ~1e-13 there
-    gamma = cfg.gamma
-    dl2 = delta_lookahead * delta_lookahead
     track_list: list[np.ndarray] = []
     if record:
-        full = np.stack([x, y], axis=-1)
+        full = np.stack([fleet.x, fleet.y], axis=-1)
         track_list.append(full.copy())
     live = np.ones(n, dtype=bool)
     while live.any():
-        d = disturbance.next()[rw]
-        dx, dy = d[:, 0], d[:, 1]
-        gx = v * cp + dx
-        gy = v * sp + dy
-        # path point (guidance.PathArrays.point_curvature, in table form)
-        seg = base.copy()
-        for j in range(kk - 1):
-            seg += varpi >= s_breaks[:, j]
-        row = table[seg]
-        wc = np.clip(varpi, 0.0, length)
-        dd = wc - row[:, 0]
-        chi = row[:, 1] + row[:, 2] * dd
-        c, s = np.cos(chi), np.sin(chi)
-        extra = varpi - wc  # beyond either end: along the end tangent
-        xp = row[:, 3] + dd * row[:, 4] + row[:, 7] * s + extra * c
-        yp = row[:, 5] + dd * row[:, 6] - row[:, 7] * c + extra * s
-        # lookahead guidance (guidance.lookahead_guidance): rate of the path parameter and the
-        # commanded course as a unit vector, the tangent turned by -atan(e / Delta)
-        ex, ey = x - xp, y - yp
-        cross = ey * c - ex * s
-        rate = gx * c + gy * s + gamma * (ex * c + ey * s)
-        inv = 1.0 / np.sqrt(dl2 + cross * cross)
-        dirx = (c * delta_lookahead + s * cross) * inv
-        diry = (s * delta_lookahead - c * cross) * inv
-        err = np.arctan2(gx * diry - gy * dirx, gx * dirx + gy * diry)
-        if phi_b > 0.0:
-            u = umax * np.clip(err / phi_b, -1.0, 1.0)
-        else:
-            u = umax * np.sign(err)
-        if feedforward:
-            kap = np.where(extra == 0.0, row[:, 2], 0.0)
-            u = np.clip(u + kap * rate, -umax, umax)
-        # exact motion over the step for constant u and delta: heading turns by u dt, the
-        # air-relative displacement is the chord v dt sinc(u dt / 2) at heading psi + u dt / 2
-        half = 0.5 * dt * u
-        if taylor:
-            h2 = half * half
-            sh = half * (1.0 - h2 / 6.0 * (1.0 - h2 / 20.0))
-            chh = 1.0 - 0.5 * h2 * (1.0 - h2 / 12.0)
-            sinc = 1.0 - h2 / 6.0 * (1.0 - h2 / 20.0)
-        else:
-            sh, chh = np.sin(half), np.cos(half)
-            sinc = np.sinc(half / math.pi)
-        cm = cp * chh - sp * sh
-        sm = sp * chh + cp * sh
-        chord = v * dt * sinc
-        x_new = x + chord * cm + dx * dt
-        y_new = y + chord * sm + dy * dt
-        cp, sp = cm * chh - sm * sh, sm * chh + cm * sh
+        drift = disturbance.next()[fleet.row]
+        gx = v * fleet.cp + drift[:, 0]
+        gy = v * fleet.sp + drift[:, 1]
+        point = fleet.path_point(table)
+        err, rate = _guidance(fleet, point, gx, gy, cfg)
+        u = _turn_rate(err, rate, point, cfg)
+        x_new, y_new = _move(fleet, u, drift, cfg)
         step += 1
         if step % 1024 == 0:  # keep (cos psi, sin psi) on the unit circle
-            norm = np.hypot(cp, sp)
-            cp, sp = cp / norm, sp / norm
-        varpi = varpi + rate * dt
+            norm = np.hypot(fleet.cp, fleet.sp)
+            fleet.cp, fleet.sp = fleet.cp / norm, fleet.sp / norm
+        fleet.varpi = fleet.varpi + rate * dt
         t = step * dt
-        a = (x_new - xf) * cf + (y_new - yf) * sf
-        hit = live & (varpi >= arm) & (a_prev < 0.0) & (a >= 0.0)
+        a = (x_new - fleet.xf) * fleet.cf + (y_new - fleet.yf) * fleet.sf
+        hit = live & (fleet.varpi >= fleet.arm) & (fleet.a_prev < 0.0) & (a >= 0.0)
         if hit.any():
             frac, err_h = _crossing(
-                x[hit], y[hit], x_new[hit], y_new[hit], a_prev[hit], a[hit], xf[hit], yf[hit]
+                fleet.x[hit],
+                fleet.y[hit],
+                x_new[hit],
+                y_new[hit],
+                fleet.a_prev[hit],
+                a[hit],
+                fleet.xf[hit],
+                fleet.yf[hit],
             )
-            k = ids[hit]
+            k = fleet.ids[hit]
             error[k] = err_h
             crossed[k] = True
             t_end[k] = t - dt + frac * dt
-        x, y, a_prev = x_new, y_new, a
+        fleet.x, fleet.y, fleet.a_prev = x_new, y_new, a
         if record:
-            full[ids[live], 0], full[ids[live], 1] = x[live], y[live]
+            full[fleet.ids[live], 0], full[fleet.ids[live], 1] = fleet.x[live], fleet.y[live]
             track_list.append(full.copy())
         # lost: the path point is far past the end, so the vehicle went beyond the finish
         # line without crossing it forwards while armed (it will not come back)
-        done = live & (hit | (t >= tmax) | (varpi > length + lost_margin))
+        done = live & (hit | (t >= fleet.tmax) | (fleet.varpi > fleet.length + lost_margin))
         if done.any():
-            t_end[ids[done & ~hit]] = t
+            t_end[fleet.ids[done & ~hit]] = t
             live &= ~done
             n_live = int(np.count_nonzero(live))
             # finished vehicles ride along (masked) until compacting pays off
             if n_live < 0.9 * live.size or n_live < 256:
-                keep = live
-                ids, x, y, cp, sp, varpi, a_prev = _kept(keep, ids, x, y, cp, sp, varpi, a_prev)
-                xf, yf, cf, sf, tmax, rw = _kept(keep, xf, yf, cf, sf, tmax, rw)
-                length, arm, s_breaks, base = _kept(keep, length, arm, s_breaks, base)
+                fleet.keep(live)
                 live = np.ones(n_live, dtype=bool)
     tracks = np.stack(track_list) if record else None
     return FollowResult(error=error, crossed=crossed, time=t_end, tracks=tracks)

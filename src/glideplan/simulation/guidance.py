@@ -17,13 +17,17 @@ tangent angle chi_p:
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from glideplan.errors import InvalidParameterError
+from glideplan.path import Path
 from glideplan.planners.dubins import WORDS, dubins_shortest, word_directions
+from glideplan.pose import Pose
+from glideplan.segments import Arc, Segment, Straight
 from glideplan.validation import check_finite_array, check_positive
 
 __all__ = ["GuidanceCommand", "PathArrays", "lookahead_guidance"]
@@ -106,6 +110,41 @@ class PathArrays:
         batch = dubins_shortest(np.zeros(3), g, radius)
         dirs = _DIRS[batch.word_index]
         return cls.from_segments(np.zeros_like(g), dirs, batch.segment_lengths, radius)
+
+    @classmethod
+    def from_paths(cls, paths: Sequence[Path]) -> PathArrays:
+        """The same paths as arrays: each `Path` of straights and constant-radius arcs
+        (`Straight`, `Arc`) becomes one row; shorter paths are padded with empty straights."""
+        if not paths:
+            raise InvalidParameterError("paths", paths, "needs at least one Path")
+        k = max(len(p.segments) for p in paths)
+        dirs, lens, radii = np.zeros((len(paths), k)), np.zeros((len(paths), k)), []
+        for i, p in enumerate(paths):
+            arcs = {seg.radius for seg in p.segments if isinstance(seg, Arc)}
+            if any(not isinstance(seg, (Arc, Straight)) for seg in p.segments) or len(arcs) > 1:
+                raise InvalidParameterError(
+                    "paths", i, "needs straights and arcs of one radius (constant curvature)"
+                )
+            radii.append(arcs.pop() if arcs else 1.0)
+            for j, seg in enumerate(p.segments):
+                dirs[i, j], lens[i, j] = seg.direction, seg.length
+        start = np.array([p.start.as_array() for p in paths])
+        return cls.from_segments(start, dirs, lens, np.array(radii))
+
+    def path(self, i: int, speed: float = 1.0) -> Path:
+        """Row `i` as a `Path` of `Straight` and `Arc` segments flown at `speed` (m/s)."""
+        segments: list[Segment] = []
+        for j in range(self.kappa.shape[1]):
+            start = Pose(float(self.x0[i, j]), float(self.y0[i, j]), float(self.h0[i, j]))
+            nxt = self.s0[i, j + 1] if j + 1 < self.s0.shape[1] else self.length[i]
+            length = float(nxt - self.s0[i, j])
+            kap = float(self.kappa[i, j])
+            if kap == 0.0:
+                segments.append(Straight(start, length, speed))
+            else:
+                direction = 1 if kap > 0.0 else -1
+                segments.append(Arc(start, length * abs(kap), 1.0 / abs(kap), direction, speed))
+        return Path(tuple(segments))
 
     def take(self, index: np.ndarray) -> PathArrays:
         """The paths selected by an index or boolean mask."""
