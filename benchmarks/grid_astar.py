@@ -40,10 +40,10 @@ def grid_astar(grid: RouteGrid, sampler: CurrentSampler, speed: float, t0: float
     t_start = time.process_time()
     h = grid.spacing
     ny, nx = grid.shape
-    j0 = int(round((0.0 - grid.x[0]) / h))
-    i0 = int(round((0.0 - grid.y[0]) / h))
-    jg = int(round((goal_xy[0] - grid.x[0]) / h))
-    ig = int(round((goal_xy[1] - grid.y[0]) / h))
+    j0 = round((0.0 - grid.x[0]) / h)
+    i0 = round((0.0 - grid.y[0]) / h)
+    jg = round((goal_xy[0] - grid.x[0]) / h)
+    ig = round((goal_xy[1] - grid.y[0]) / h)
     levels = sampler.levels
     cache: dict[int, tuple[list[list[float]], list[list[float]]]] = {}
 

@@ -21,17 +21,18 @@ import math
 import pathlib
 import sys
 import time
+from typing import Any
 
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).parent))
 
-from grid_astar import grid_astar  # noqa: E402
+from grid_astar import grid_astar
 
-from glideplan.fields import GriddedField, double_gyre  # noqa: E402
-from glideplan.geodesy import LocalProjection  # noqa: E402
-from glideplan.routing import route  # noqa: E402
-from glideplan.routing.grid import CurrentSampler, build_grid  # noqa: E402
+from glideplan.fields import GriddedField, double_gyre
+from glideplan.geodesy import LocalProjection
+from glideplan.routing import route
+from glideplan.routing.grid import CurrentSampler, build_grid
 
 SPEED = 0.5
 START = (30.25, -39.75)
@@ -48,17 +49,19 @@ def gridded_gyre() -> GriddedField:
     times = np.arange(LEVELS) * STEP_S
     T, LA, LO = np.meshgrid(times, lat, lon, indexing="ij")
     u, v = g.fn(T, LA, LO)
-    return GriddedField(times=times, lat=lat, lon=lon, u=np.asarray(u), v=np.asarray(v),
+    return GriddedField(times=np.asarray(times, dtype=float), lat=lat, lon=lon,
+                        u=np.asarray(u), v=np.asarray(v),
                         epoch=g.epoch, info={"kind": "gridded", "source": "double gyre x48"})
 
 
-def one_route(cells: int, field: GriddedField, depart: float = 0.0) -> dict[str, float]:
+def one_route(cells: int, field: GriddedField, depart: float = 0.0) -> dict[str, Any]:
     t = time.perf_counter()
     c0 = time.process_time()
     r = route(field, START, GOAL, SPEED, depart=depart, cells=cells)
     wall = time.perf_counter() - t
     cpu = time.process_time() - c0
-    return {"cells": cells, "cpu": cpu, "nodes": r.stats["grid_nodes"][0] * r.stats["grid_nodes"][1],
+    n = r.stats["grid_nodes"]
+    return {"cells": cells, "cpu": cpu, "nodes": n[0] * n[1],
             "shape": r.stats["grid_nodes"], "spacing": r.stats["spacing_m"], "wall": wall,
             "front": r.stats["front_s"], "grid_T": r.grid_duration_s or math.nan,
             "T": r.duration_s or math.nan, "method": r.method, "err": r.endpoint_error_m,
@@ -95,13 +98,14 @@ def main() -> None:
     print("| cells | grid | spacing (m) | route CPU (s) | route wall (s) | front wall (s) | "
           "grid T (h) | refined T (h) | method | endpoint err (m) | dT grid vs previous (s) |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
-    rows = []
+    rows: list[dict[str, Any]] = []
     for cells in ([100, 200, 300] if args.quick else [100, 200, 300, 400]):
         row = one_route(cells, field)
         prev = rows[-1]["grid_T"] if rows else math.nan
         rows.append(row)
         print(f"| {cells} | {row['shape'][0]}x{row['shape'][1]} | {row['spacing']:.0f} | "
-              f"{row['cpu']:.2f} | {row['wall']:.2f} | {row['front']:.2f} | {row['grid_T'] / 3600:.4f} | "
+              f"{row['cpu']:.2f} | {row['wall']:.2f} | {row['front']:.2f} | "
+              f"{row['grid_T'] / 3600:.4f} | "
               f"{row['T'] / 3600:.4f} | {row['method']} | {row['err']:.1f} | "
               f"{row['grid_T'] - prev:+.0f} |")
     straight = rows[-1]["straight"]

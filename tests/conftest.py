@@ -128,13 +128,13 @@ if os.environ.get("GLIDEPLAN_CPU_DURATIONS"):
         _CPU_SECONDS[item.nodeid] = time.process_time() - t0
 
     def pytest_terminal_summary(terminalreporter):
-        by_dir: collections.Counter[str] = collections.Counter()
+        by_dir: dict[str, float] = collections.defaultdict(float)
         for nodeid, sec in _CPU_SECONDS.items():
             parts = nodeid.split("::")[0].split("/")
             by_dir["/".join(parts[:2]) if len(parts) > 2 else parts[0]] += sec
         write = terminalreporter.write_line
         write(f"CPU seconds in this process: {sum(by_dir.values()):.1f}")
-        for name, sec in by_dir.most_common():
+        for name, sec in sorted(by_dir.items(), key=lambda kv: -kv[1]):
             write(f"  {sec:7.2f}  {name}")
         write("slowest tests (CPU seconds):")
         for nodeid, sec in sorted(_CPU_SECONDS.items(), key=lambda kv: -kv[1])[:25]:

@@ -25,8 +25,10 @@ __all__ = [
     "cost_unit",
     "describe_vehicle",
     "length_unit",
+    "mark_pose",
     "plot_path",
     "plot_solution",
+    "pose_text",
     "save_figure",
 ]
 
@@ -86,17 +88,32 @@ def describe_vehicle(vehicle: Vehicle) -> str:
     return m.replace("_", " ")
 
 
-def _pose_text(pose: Pose, unit: str) -> str:
-    return f"({pose.x:.4g}, {pose.y:.4g}) {unit}, {math.degrees(pose.heading):.4g} deg"
+def pose_text(pose: Pose, unit: str, scale: float = 1.0) -> str:
+    """`(x, y) unit, heading deg` of a pose whose lengths are divided by `scale`."""
+    return (
+        f"({pose.x / scale:.4g}, {pose.y / scale:.4g}) {unit}, "
+        f"{math.degrees(pose.heading) % 360.0:.4g} deg"
+    )
 
 
-def _mark_pose(ax: Any, pose: Pose, size: float, *, colour: str, marker: str, label: str) -> None:
-    """A marker at the pose and an arrow of length `size` along its heading."""
-    ax.plot(pose.x, pose.y, marker, color=colour, ms=8, zorder=5, label=label, ls="none")
+def mark_pose(
+    ax: Any,
+    pose: Pose,
+    size: float,
+    *,
+    colour: str,
+    marker: str,
+    label: str,
+    scale: float = 1.0,
+) -> None:
+    """A marker at the pose (lengths divided by `scale`) and an arrow of length `size` (axis
+    units) along its heading; start: green circle, goal: red square, by convention."""
+    x, y = pose.x / scale, pose.y / scale
+    ax.plot(x, y, marker, color=colour, ms=8, zorder=5, label=label, ls="none")
     ax.annotate(
         "",
-        xy=(pose.x + size * math.cos(pose.heading), pose.y + size * math.sin(pose.heading)),
-        xytext=(pose.x, pose.y),
+        xy=(x + size * math.cos(pose.heading), y + size * math.sin(pose.heading)),
+        xytext=(x, y),
         arrowprops={"arrowstyle": "-|>", "color": colour, "lw": 1.6, "mutation_scale": 14},
         zorder=6,
     )
@@ -170,13 +187,15 @@ def _wind_arrow(ax: Any, vehicle: Vehicle) -> None:
     )
 
 
-def _title(solution: Solution, unit: str) -> str:
+def _title(solution: Solution, unit: str, heading: str = "") -> str:
     head = f"{solution.planner} ({solution.objective}): {describe_vehicle(solution.vehicle)}"
+    if heading:
+        head = f"{heading}\n{head}"
     eps = solution.extras.get("disturbance_ratio")
     radius = solution.extras.get("radius")
     if isinstance(eps, float) and eps > 0.0 and isinstance(radius, float):
         head += f"; planned with R0 (1 + eps)^2 = {radius:.4g} m (eps = {eps:g})"
-    problem = f"start {_pose_text(solution.start, unit)} -> goal {_pose_text(solution.goal, unit)}"
+    problem = f"start {pose_text(solution.start, unit)} -> goal {pose_text(solution.goal, unit)}"
     if solution.ok:
         word = solution.word or "(none: start = goal)"
         result = (
@@ -189,10 +208,12 @@ def _title(solution: Solution, unit: str) -> str:
     return f"{head}\n{problem}\n{result}"
 
 
-def plot_solution(solution: Solution, ax: Any = None, *, candidates: bool = False) -> Any:
+def plot_solution(
+    solution: Solution, ax: Any = None, *, candidates: bool = False, heading: str = ""
+) -> Any:
     """Draw a solution: the optimal path, optionally the other feasible candidates, the start
-    and goal with their headings, a title stating problem and answer, and a legend outside
-    the axes."""
+    and goal with their headings, a title stating problem and answer (after `heading`, e.g.
+    the example's name, when given), and a legend outside the axes."""
     ax = _axes(ax, figsize=(9.0, 6.0))
     unit = length_unit(solution.vehicle)
     cost_u = cost_unit(solution.objective, solution.vehicle)
@@ -254,8 +275,8 @@ def plot_solution(solution: Solution, ax: Any = None, *, candidates: bool = Fals
     floor = max(solution.vehicle.length_scale, 1e-6)
     span = max(max(xs) - min(xs), max(ys) - min(ys), floor)
     arrow = 0.08 * span
-    _mark_pose(ax, solution.start, arrow, colour="tab:green", marker="o", label="start (heading)")
-    _mark_pose(ax, solution.goal, arrow, colour="tab:red", marker="s", label="goal (heading)")
+    mark_pose(ax, solution.start, arrow, colour="tab:green", marker="o", label="start (heading)")
+    mark_pose(ax, solution.goal, arrow, colour="tab:red", marker="s", label="goal (heading)")
     if switches:
         ax.plot([], [], "o", mfc="white", mec="black", ms=5, ls="none", label="switch point")
     half = 0.5 * span + 0.12 * span
@@ -267,7 +288,7 @@ def plot_solution(solution: Solution, ax: Any = None, *, candidates: bool = Fals
     _label_axes(ax, unit)
     _wind_arrow(ax, solution.vehicle)
     ax.grid(True, lw=0.4, alpha=0.5)
-    ax.set_title(_title(solution, unit), fontsize=9, loc="left")
+    ax.set_title(_title(solution, unit, heading), fontsize=9, loc="left")
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=8)
     return ax
 

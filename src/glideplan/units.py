@@ -9,6 +9,7 @@ are the values of `scipy.constants` (checked in the tests), written here because
 from __future__ import annotations
 
 import math
+from typing import overload
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -54,71 +55,127 @@ def _scaled(x: ArrayLike, factor: float, offset: float = 0.0) -> np.ndarray | fl
     return float(x) * factor + offset  # type: ignore[arg-type]
 
 
+@overload
+def kmh_to_ms(v_kmh: float) -> float: ...
+@overload
+def kmh_to_ms(v_kmh: ArrayLike) -> np.ndarray | float: ...
 def kmh_to_ms(v_kmh: ArrayLike) -> np.ndarray | float:
     """Speed in km/h to m/s."""
     return _scaled(v_kmh, _KMH_MS)
 
 
+@overload
+def ms_to_kmh(v_ms: float) -> float: ...
+@overload
+def ms_to_kmh(v_ms: ArrayLike) -> np.ndarray | float: ...
 def ms_to_kmh(v_ms: ArrayLike) -> np.ndarray | float:
     """Speed in m/s to km/h."""
     return _scaled(v_ms, 3.6)
 
 
+@overload
+def deg_to_rad(a_deg: float) -> float: ...
+@overload
+def deg_to_rad(a_deg: ArrayLike) -> np.ndarray | float: ...
 def deg_to_rad(a_deg: ArrayLike) -> np.ndarray | float:
     """Angle in degrees to radians."""
     return np.deg2rad(a_deg) if np.ndim(a_deg) else math.radians(float(a_deg))  # type: ignore[arg-type]
 
 
+@overload
+def rad_to_deg(a_rad: float) -> float: ...
+@overload
+def rad_to_deg(a_rad: ArrayLike) -> np.ndarray | float: ...
 def rad_to_deg(a_rad: ArrayLike) -> np.ndarray | float:
     """Angle in radians to degrees."""
     return np.rad2deg(a_rad) if np.ndim(a_rad) else math.degrees(float(a_rad))  # type: ignore[arg-type]
 
 
+@overload
+def psi_to_pa(p_psi: float) -> float: ...
+@overload
+def psi_to_pa(p_psi: ArrayLike) -> np.ndarray | float: ...
 def psi_to_pa(p_psi: ArrayLike) -> np.ndarray | float:
     """Pressure in psi to pascal."""
     return _scaled(p_psi, PSI_PA)
 
 
+@overload
+def pa_to_psi(p_pa: float) -> float: ...
+@overload
+def pa_to_psi(p_pa: ArrayLike) -> np.ndarray | float: ...
 def pa_to_psi(p_pa: ArrayLike) -> np.ndarray | float:
     """Pressure in pascal to psi."""
     return _scaled(p_pa, 1.0 / PSI_PA)
 
 
+@overload
+def litre_to_m3(v_l: float) -> float: ...
+@overload
+def litre_to_m3(v_l: ArrayLike) -> np.ndarray | float: ...
 def litre_to_m3(v_l: ArrayLike) -> np.ndarray | float:
     """Volume in litres to cubic metres."""
     return _scaled(v_l, 1e-3)
 
 
+@overload
+def m3_to_litre(v_m3: float) -> float: ...
+@overload
+def m3_to_litre(v_m3: ArrayLike) -> np.ndarray | float: ...
 def m3_to_litre(v_m3: ArrayLike) -> np.ndarray | float:
     """Volume in cubic metres to litres."""
     return _scaled(v_m3, 1e3)
 
 
+@overload
+def inch_to_m(l_in: float) -> float: ...
+@overload
+def inch_to_m(l_in: ArrayLike) -> np.ndarray | float: ...
 def inch_to_m(l_in: ArrayLike) -> np.ndarray | float:
     """Length in inches to metres."""
     return _scaled(l_in, INCH_M)
 
 
+@overload
+def inch3_to_m3(v_in3: float) -> float: ...
+@overload
+def inch3_to_m3(v_in3: ArrayLike) -> np.ndarray | float: ...
 def inch3_to_m3(v_in3: ArrayLike) -> np.ndarray | float:
     """Volume in cubic inches to cubic metres."""
     return _scaled(v_in3, INCH_M**3)
 
 
+@overload
+def feet_to_m(l_ft: float) -> float: ...
+@overload
+def feet_to_m(l_ft: ArrayLike) -> np.ndarray | float: ...
 def feet_to_m(l_ft: ArrayLike) -> np.ndarray | float:
     """Length in feet to metres."""
     return _scaled(l_ft, FT_M)
 
 
+@overload
+def lb_to_kg(m_lb: float) -> float: ...
+@overload
+def lb_to_kg(m_lb: ArrayLike) -> np.ndarray | float: ...
 def lb_to_kg(m_lb: ArrayLike) -> np.ndarray | float:
     """Mass in pounds to kilograms."""
     return _scaled(m_lb, LB_KG)
 
 
+@overload
+def n_to_lbf(f_n: float) -> float: ...
+@overload
+def n_to_lbf(f_n: ArrayLike) -> np.ndarray | float: ...
 def n_to_lbf(f_n: ArrayLike) -> np.ndarray | float:
     """Force in newtons to pound-force."""
     return _scaled(f_n, 1.0 / LBF_N)
 
 
+@overload
+def celsius_to_kelvin(t_c: float) -> float: ...
+@overload
+def celsius_to_kelvin(t_c: ArrayLike) -> np.ndarray | float: ...
 def celsius_to_kelvin(t_c: ArrayLike) -> np.ndarray | float:
     """Temperature in degC to K."""
     return _scaled(t_c, 1.0, ZERO_CELSIUS_K)

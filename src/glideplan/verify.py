@@ -25,7 +25,7 @@ import numpy as np
 
 from glideplan.objectives import get_objective
 from glideplan.path import Path
-from glideplan.pose import Pose, wrap_to_pi
+from glideplan.pose import TWO_PI, Pose, wrap_to_pi
 from glideplan.segments import Segment
 
 __all__ = ["EndpointError", "IntegratedPath", "endpoint_error", "integrate_path"]
@@ -74,12 +74,16 @@ def _integrate_constant(
 ) -> np.ndarray:
     """Advance [x, y, heading, cost] over `duration` (s) under constant controls.
 
-    psi(t) = psi0 + u t; x and y are Gauss-Legendre quadratures of v cos psi + wx and
-    v sin psi + wy over pieces turning at most pi/4 (16 nodes each: exact to rounding).
+    psi(t) = psi0 + u t; x and y are Gauss-Legendre quadratures of v cos psi and v sin psi
+    over pieces turning at most pi/4 (16 nodes each: exact to rounding), plus the drift
+    w t. Whole turns of the heading add nothing to the air-relative displacement, so only
+    the last partial turn is integrated (bounded work for any duration).
     """
     v, u, r = controls
-    pieces = max(1, math.ceil(abs(u) * duration / (0.25 * math.pi)))
-    edges = np.linspace(0.0, duration, pieces + 1)
+    turn = abs(u) * duration
+    rest = duration - (math.floor(turn / TWO_PI) * TWO_PI / abs(u) if u != 0.0 else 0.0)
+    pieces = max(1, math.ceil(abs(u) * rest / (0.25 * math.pi)))
+    edges = np.linspace(0.0, rest, pieces + 1)
     half = 0.5 * np.diff(edges)
     nodes = (0.5 * (edges[:-1] + edges[1:]))[:, None] + half[:, None] * _GL_NODES[None, :]
     psi = state[2] + u * nodes

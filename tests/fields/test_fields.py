@@ -190,3 +190,16 @@ def test_uniform_and_double_gyre():
     # edges; the walls y = 0 and y = L carry no normal flow.
     assert np.max(np.hypot(uu, vv)) == pytest.approx(0.3, rel=1e-2)
     np.testing.assert_allclose(vv[:, 0], 0.0, atol=1e-12)
+
+
+def test_several_files_merge_along_time(tmp_path):
+    """Two files holding consecutive time chunks read as one field spanning both."""
+    u, v = _linear_arrays()
+    first, second = tmp_path / "a.nc", tmp_path / "b.nc"
+    copernicus_dataset(LAT, LON, TIMES[:2], [0.5], u[:2], v[:2]).to_netcdf(first)
+    copernicus_dataset(LAT, LON, TIMES[2:], [0.5], u[2:], v[2:]).to_netcdf(second)
+    f = open_field([first, second])
+    assert f.time_span == (0.0, 43200.0)
+    uu, vv = f.velocity(40000.0, 30.2, -40.3)
+    assert float(uu) == pytest.approx(linear_u(40000.0, 30.2, -40.3), abs=1e-6)
+    assert float(vv) == pytest.approx(linear_v(40000.0, 30.2, -40.3), abs=1e-6)

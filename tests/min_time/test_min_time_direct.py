@@ -26,10 +26,11 @@ GOALS = [
     (0.148, 0.7861, 2.3468, 0.5),
     (2.97, -1.98, -3.11, 0.3),
 ]
-# the flown path's time is the optimum plus the collocation error of a bang-bang control
-# (switches resolved to one mesh interval of >= 60, refinement to mesh_tol = 1e-5 in cost):
-# allowed 1e-3 relative, measured <= 4.2e-6 on these goals and 1e-4 in `make validate`
-DIRECT_ACCURACY = 1e-3
+# when the direct method lands in the optimum's family, its flown time is the optimum plus
+# the collocation error of a bang-bang control (switches resolved to one mesh interval of
+# >= 60, refinement to mesh_tol = 1e-5 in cost): measured <= 4.2e-6 relative over 14 goals
+# (2024 seed), 1e-4 allowed
+DIRECT_ACCURACY = 1e-4
 
 
 @pytest.mark.parametrize("goal", GOALS, ids=lambda g: f"{g[0]:.2f},{g[1]:.2f},{g[2]:.2f},r{g[3]}")

@@ -47,7 +47,8 @@ def demo(
         slug = _slug(case.name)
         write_json(sol.to_dict() | res.extra, out / f"{slug}.json")
         if plots and sol.path is not None:
-            save_figure(plot_solution(sol, candidates=True), str(out / f"{slug}.png"))
+            ax = plot_solution(sol, candidates=True, heading=f"{case.name} ({case.source})")
+            save_figure(ax, str(out / f"{slug}.png"))
         ref = f"{case.reference_cost:.4f} {case.reference_word}" if case.reference_cost else ""
         err = f"{sol.endpoint_error.max:.1e}" if sol.endpoint_error else "-"
         cost = f"{sol.cost:.4f}" if sol.ok else sol.status.value

@@ -36,11 +36,10 @@ def serve(
 
     catalog = build_catalog()
     threading.Thread(target=warm_up, daemon=True, name="glideplan-warm-up").start()
-    origin = (
-        [f"{host}:{port}", f"localhost:{port}"]
-        if host in ("127.0.0.1", "localhost")
-        else [f"{host}:{port}"]
-    )
+    # The page's websocket is accepted from the page's own origin only; a user who binds
+    # another address (e.g. 0.0.0.0 to share on a network) is reached by names we cannot know.
+    loopback = host in ("127.0.0.1", "localhost", "::1")
+    origin: list[str] | str = [f"127.0.0.1:{port}", f"localhost:{port}"] if loopback else "*"
     return pn.serve(
         {"/": lambda: create_page(catalog)},
         port=port,

@@ -6,8 +6,12 @@ GRIB; `from_xarray(ds)` converts a dataset; `double_gyre()` is the built-in exam
 NaN = land/missing = obstacle. Queries outside the extent or time span raise naming the bound.
 """
 
-from glideplan.fields.examples import double_gyre
-from glideplan.fields.field import (
+from glideplan.fields.io import pyproj_before_eccodes
+
+pyproj_before_eccodes()  # before any cfgrib/eccodes load (see fields.io): avoids an exit crash
+
+from glideplan.fields.examples import double_gyre  # noqa: E402
+from glideplan.fields.field import (  # noqa: E402
     AnalyticField,
     Extent,
     FlowField,
@@ -15,7 +19,7 @@ from glideplan.fields.field import (
     UniformField,
     to_seconds,
 )
-from glideplan.fields.io import depth_average, from_xarray, open_field
+from glideplan.fields.io import depth_average, from_xarray, open_field  # noqa: E402
 
 __all__ = [
     "AnalyticField",

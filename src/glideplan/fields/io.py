@@ -21,7 +21,20 @@ import numpy as np
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import GriddedField
 
-__all__ = ["depth_average", "from_xarray", "open_field"]
+__all__ = ["depth_average", "from_xarray", "open_field", "pyproj_before_eccodes"]
+
+
+def pyproj_before_eccodes() -> None:
+    """Load PROJ (pyproj) before ecCodes: the other order crashes the interpreter at exit.
+
+    Measured here (eccodes 2.x wheels with pyproj 3.x): importing eccodes first and then
+    using pyproj ends the process with "double free or corruption" / SIGSEGV at shutdown;
+    pyproj first is clean. Called before every cfgrib/eccodes use.
+    """
+    try:
+        import pyproj  # noqa: F401
+    except ImportError:  # pragma: no cover - pyproj is a core dependency of routing
+        pass
 
 _STANDARD_NAMES = (
     ("eastward_sea_water_velocity", "northward_sea_water_velocity"),
@@ -238,6 +251,7 @@ def _open_one(path: pathlib.Path) -> Any:
     engine = _engine(path)
     kwargs: dict[str, Any] = {}
     if engine == "cfgrib":
+        pyproj_before_eccodes()
         kwargs["backend_kwargs"] = {"indexpath": ""}
     try:
         # Load and close at once: files left open until interpreter exit can crash HDF5.

@@ -22,6 +22,12 @@ from numpy.typing import ArrayLike
 __all__ = ["copernicus_dataset", "hycom_dataset", "write_grib"]
 
 
+def _pyproj_before_eccodes() -> None:
+    from glideplan.fields.io import pyproj_before_eccodes
+
+    pyproj_before_eccodes()
+
+
 def _arrays(u: ArrayLike, v: ArrayLike, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
     ua = np.broadcast_to(np.asarray(u, dtype=float), shape).copy()
     va = np.broadcast_to(np.asarray(v, dtype=float), shape).copy()
@@ -89,6 +95,7 @@ def write_grib(path: str | pathlib.Path, lat: ArrayLike, lon: ArrayLike, times: 
     lat and lon must be regularly spaced; times are forecast steps from the first (whole
     hours). u, v: (time, lat, lon).
     """
+    _pyproj_before_eccodes()
     import eccodes
 
     la, lo = np.asarray(lat, dtype=float), np.asarray(lon, dtype=float)

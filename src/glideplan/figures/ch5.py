@@ -21,7 +21,7 @@ from glideplan.solution import Solution
 from glideplan.units import ms_to_kmh
 from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider, dg1001m
 
-__all__ = ["EXAMPLES", "GLIDER", "draw_solution", "plan_example"]
+__all__ = ["EXAMPLES", "GLIDER", "draw_solution", "plan_example", "solution_figure"]
 
 GLIDER = dg1001m()
 # goal (units of R_stf) and what section 5.9 prints: best type and orientation, the
@@ -69,31 +69,37 @@ def plan_example(figure_id: str, method: str = "synthesis") -> Solution:
 # ----- drawing ------------------------------------------------------------------------------
 
 
-def draw_solution(
-    solution: Solution, filename: pathlib.Path | str, *, max_candidates: int = 6
-) -> None:
-    """Candidate paths with their costs, the Dubins path at v_stf (dashed) and the optimal
-    control history (turn rate and speed vs time, limits dashed), as in Figs. 5.5-5.7."""
+def solution_figure(solution: Solution, *, max_candidates: int = 6) -> Any:
+    """The figure of `draw_solution` (returned, not saved): left the candidate paths in units
+    of R_stf with the Dubins path at v_stf (dashed), start and goal with their headings and
+    the legend below the axes; right the optimal control history (turn rate and speed
+    against time, limits dashed); the title states the problem and the answer."""
     from glideplan.planners.min_altitude import dubins_reference
+    from glideplan.plotting import describe_vehicle, mark_pose, pose_text
 
     plt = pyplot()
     glider = solution.vehicle
     assert isinstance(glider, QuadraticPolarGlider)
     unit = glider.radius_stf
-    fig = plt.figure(figsize=(11.5, 5.2))
+    fig = plt.figure(figsize=(12.5, 6.4), layout="constrained")
     grid = fig.add_gridspec(2, 2, width_ratios=(1.15, 1.0))
     ax = fig.add_subplot(grid[:, 0])
     feasible = [c for c in solution.candidates if c.path is not None]
+    styles = ("--", "-.", ":", (0, (5, 1, 1, 1)))
     for k, cand in enumerate(feasible[:max_candidates]):
         assert cand.path is not None
         smp = cand.path.sample(n=400)
         best = k == 0
+        name = "optimal" if best else "candidate"
         ax.plot(
             smp.x / unit,
             smp.y / unit,
-            lw=2.2 if best else 1.0,
-            alpha=1.0 if best else 0.75,
-            label=f"{cand.family} {cand.word} [{cand.cost:.2f}]",
+            color="black" if best else f"C{k - 1}",
+            ls="-" if best else styles[(k - 1) % len(styles)],
+            lw=2.4 if best else 1.1,
+            alpha=1.0 if best else 0.8,
+            zorder=3 if best else 2,
+            label=f"{name} {cand.family} {cand.word}, {cand.cost:.2f} m",
         )
     ref = dubins_reference(solution.start, solution.goal, glider)
     if ref is not None and ref.path is not None:
@@ -101,41 +107,66 @@ def draw_solution(
         ax.plot(
             smp.x / unit,
             smp.y / unit,
-            "k--",
-            lw=1.0,
-            label=f"Dubins {ref.word} at v_stf [{ref.cost:.2f}]",
+            color="0.45",
+            ls=(0, (2, 2)),
+            lw=1.2,
+            label=f"Dubins {ref.word} at v_stf, {ref.cost:.2f} m",
         )
-    for pose in (solution.start, solution.goal):
-        ax.annotate(
-            "",
-            xy=(
-                pose.x / unit + 0.35 * math.cos(pose.heading),
-                pose.y / unit + 0.35 * math.sin(pose.heading),
-            ),
-            xytext=(pose.x / unit, pose.y / unit),
-            arrowprops={"arrowstyle": "->", "lw": 1.5},
-        )
+    arrow = 0.3
+    mark_pose(ax, solution.start, arrow, colour="tab:green", marker="o",
+              label="start (heading)", scale=unit)
+    mark_pose(ax, solution.goal, arrow, colour="tab:red", marker="s",
+              label="goal (heading)", scale=unit)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("x / R_stf")
+    ax.grid(True, lw=0.4, alpha=0.5)
+    ax.set_xlabel(f"x / R_stf  (R_stf = {unit:.4g} m)")
     ax.set_ylabel("y / R_stf")
-    ax.set_title("candidate paths [altitude loss, m]")
-    ax.legend(fontsize=7, loc="best")
+    ax.set_title("candidate paths, altitude loss in m", fontsize=10)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=2,
+              borderaxespad=0.0)
     if solution.path is not None:
         smp = solution.path.sample(n=600)
         ax_u = fig.add_subplot(grid[0, 1])
         ax_u.plot(smp.t, smp.turn_rate, "b-")
         for lim in (-glider.u_max, glider.u_max):
             ax_u.axhline(lim, color="k", ls="--", lw=0.8)
-        ax_u.set_ylabel("turn rate (rad/s)")
-        ax_u.set_title("optimal control history")
+        ax_u.text(smp.t[-1], glider.u_max, " u_max", va="center", fontsize=7)
+        ax_u.text(smp.t[-1], -glider.u_max, " -u_max", va="center", fontsize=7)
+        ax_u.set_ylabel("turn rate u (rad/s)")
+        ax_u.set_title("optimal control history", fontsize=10)
+        ax_u.grid(True, lw=0.4, alpha=0.5)
+        ax_u.tick_params(labelbottom=False)
         ax_v = fig.add_subplot(grid[1, 1], sharex=ax_u)
         ax_v.plot(smp.t, ms_to_kmh(smp.speed), "b-")
         for v, name in ((glider.v_stall, "v_stall"), (glider.v_stf, "v_stf")):
             ax_v.axhline(ms_to_kmh(v), color="k", ls="--", lw=0.8)
             ax_v.text(smp.t[-1], ms_to_kmh(v), f" {name}", va="center", fontsize=7)
-        ax_v.set_xlabel("time (s)")
-        ax_v.set_ylabel("speed (km/h)")
-    save_png(fig, filename)
+        ax_v.set_xlabel("time t (s)")
+        ax_v.set_ylabel("speed v (km/h)")
+        ax_v.grid(True, lw=0.4, alpha=0.5)
+    problem = (
+        f"Minimum altitude loss, {describe_vehicle(glider)}\n"
+        f"start {pose_text(solution.start, 'R_stf', unit)} -> "
+        f"goal {pose_text(solution.goal, 'R_stf', unit)}"
+    )
+    if solution.ok:
+        answer = (
+            f"optimal word {solution.word or '-'}, family {solution.family or '-'}, "
+            f"altitude loss {solution.cost:.4g} m"
+        )
+        if ref is not None and ref.path is not None:
+            answer += f" (Dubins path at v_stf: {ref.cost:.4g} m)"
+    else:
+        answer = f"status {solution.status.value}: {solution.message}"
+    fig.suptitle(f"{problem}\n{answer}", fontsize=10, x=0.01, ha="left")
+    return fig
+
+
+def draw_solution(
+    solution: Solution, filename: pathlib.Path | str, *, max_candidates: int = 6
+) -> None:
+    """Write `solution_figure(solution)` to `filename` (PNG), as Figs. 5.5-5.7."""
+    save_png(solution_figure(solution, max_candidates=max_candidates), filename, crop=True)
 
 
 # ----- Fig 5.1 and Table 5.2 -----------------------------------------------------------------

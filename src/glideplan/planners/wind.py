@@ -115,6 +115,9 @@ class WindSolution:
     times: np.ndarray
     segment_lengths: np.ndarray
     radius: float
+    # per word, grid cells with a sign change where the root polish failed (NaN inside the
+    # cell) before the word's first root: an earlier arrival may hide there
+    skipped_brackets: tuple[int, ...] = (0, 0, 0, 0, 0, 0)
 
     @property
     def best(self) -> int:
@@ -143,8 +146,9 @@ def _feasible_end(
 
 def _polish(
     k: int, a: float, b: float, goal: tuple[float, float, float], wind: tuple[float, float]
-) -> float | None:
-    """The smallest valid root of F_W in the grid cell [a, b], or None.
+) -> tuple[float | None, bool]:
+    """The smallest valid root of F_W in the grid cell [a, b] (or None), and whether the
+    cell was skipped: a sign change where Brent's method failed (NaN inside the cell).
 
     Tried on the branch of F_W through F(a) (unwrapped by multiples of 2 pi: a root just
     before an arc wraps) and on F_W itself (a root just after a wrap); a root is valid when
@@ -162,13 +166,14 @@ def _polish(
         a, b = _feasible_end(raw, a, b, math.isfinite(fa))
         fa, fb = raw(a), raw(b)
     if not (fa > 0.0 and math.isfinite(fb)):
-        return None
+        return None, False
 
     def unwrapped(tau: float) -> float:
         f = raw(tau)
         return f - TWO_PI * round((f - fa) / TWO_PI) if math.isfinite(f) else f
 
     best: float | None = None
+    failed = False
     for fn in (unwrapped, raw):
         fend = fn(b)
         if not fend <= 0.0:
@@ -176,10 +181,11 @@ def _polish(
         try:
             root = b if fend == 0.0 else brentq(fn, a, b, xtol=1e-14, rtol=1e-15)
         except ValueError:  # NaN inside the cell (a word's feasibility boundary)
+            failed = True
             continue
         if abs(raw(root)) <= _ROOT_TOL * max(1.0, root) and (best is None or root < best):
             best = root
-    return best
+    return best, failed and best is None
 
 
 def _excess_time(excess: float, goal_xy: tuple[float, float], wind: tuple[float, float]) -> float:
@@ -238,8 +244,9 @@ def _root_window(
 
 def _first_roots(
     goal: tuple[float, float, float], wind: tuple[float, float]
-) -> tuple[np.ndarray, np.ndarray]:
-    """Smallest root tau_W of each word's F_W (normalised units) and its (t, p, q).
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Smallest root tau_W of each word's F_W (normalised units), its (t, p, q), and the
+    number of cells skipped before it (see `_polish`).
 
     The grid over the window of `_root_window` is scanned in chunks (bounded memory) and the
     scan stops once every word has its first root.
@@ -247,6 +254,7 @@ def _first_roots(
     x1, y1, psi1 = goal
     taus = np.full(6, np.inf)
     tpqs = np.full((6, 3), np.nan)
+    skipped = np.zeros(6, dtype=int)
     wmag = math.hypot(*wind)
     if wmag == 0.0:  # still air: T_W = L_W / v
         for k in range(6):
@@ -254,7 +262,7 @@ def _first_roots(
             if tpq is not None:
                 taus[k] = sum(tpq)
                 tpqs[k] = tpq
-        return taus, tpqs
+        return taus, tpqs, skipped
     for k in range(6):  # the goal is the start: arrival at T = 0 (all arcs empty)
         tpq = _word_tpq(k, x1, y1, psi1)
         if tpq is not None and sum(tpq) <= 1e-12:
@@ -277,7 +285,8 @@ def _first_roots(
             cand |= np.isnan(fa) & (fb <= 0.0)
         for k in list(open_words):
             for i in np.nonzero(cand[:, k])[0]:
-                root = _polish(k, float(grid[i]), float(grid[i + 1]), goal, wind)
+                root, skip = _polish(k, float(grid[i]), float(grid[i + 1]), goal, wind)
+                skipped[k] += skip
                 if root is not None:
                     tpq = _word_tpq(k, x1 - wind[0] * root, y1 - wind[1] * root, psi1)
                     assert tpq is not None
@@ -287,7 +296,7 @@ def _first_roots(
                     break
         if not open_words:
             break
-    return taus, tpqs
+    return taus, tpqs, skipped
 
 
 def convected_dubins(
@@ -318,8 +327,13 @@ def convected_dubins(
             f"wind speed + eps * speed must be < speed (here {w:g} + {eps:g} * {v:g} >= {v:g})",
         )
     r = float(feasible_radius(r0, eps))
-    taus, tpqs = _first_roots((g.x / r, g.y / r, g.heading), (wx / v, wy / v))
-    return WindSolution(times=taus * r / v, segment_lengths=tpqs * r, radius=r)
+    taus, tpqs, skipped = _first_roots((g.x / r, g.y / r, g.heading), (wx / v, wy / v))
+    return WindSolution(
+        times=taus * r / v,
+        segment_lengths=tpqs * r,
+        radius=r,
+        skipped_brackets=tuple(int(c) for c in skipped),
+    )
 
 
 def convected_dubins_path(
@@ -390,4 +404,11 @@ def plan_wind(problem: Problem, *, disturbance_ratio: float = 0.0) -> PlannerOut
         "eps": float(eps),
         "wind": {"speed": vehicle.wind_speed, "direction": vehicle.wind_direction},
     }
-    return PlannerOutput(candidates=tuple(cands), extras=extras)
+    warnings = tuple(
+        f"word {word}: {count} root bracket(s) of F_W skipped before its first arrival "
+        "(Brent's method met the word's feasibility boundary inside the cell); an earlier "
+        "arrival of this word may have been missed"
+        for word, count in zip(WORDS, sol.skipped_brackets, strict=True)
+        if count
+    )
+    return PlannerOutput(candidates=tuple(cands), extras=extras, warnings=warnings)

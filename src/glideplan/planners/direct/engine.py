@@ -417,7 +417,7 @@ def solve_direct(
     t_build = time.perf_counter() - t_start
     fr = np.full(N, 1.0 / N)
 
-    first: list[tuple[_Solve, int, float, int]] = []
+    first: list[_Converged] = []
     starts: list[StartResult] = []
     iterations = 0
     for i, guess in enumerate(guesses):
@@ -431,7 +431,7 @@ def solve_direct(
             StartResult(i, res.cost if res.ok else math.inf, res.status, res.iterations, k, label)
         )
         if res.ok:
-            first.append((res, k, js, i))
+            first.append(_Converged(res, k, js, i))
         if clock.expired():
             break
 
@@ -448,56 +448,91 @@ def solve_direct(
         message = f"no start converged (IPOPT: {statuses})"
         return _failed(stats, iterations, t_start, starts, message)
 
-    first.sort(key=lambda r: r[0].cost)
-    best_first = first[0][0].cost
-    chosen = [r for r in first if r[0].cost <= best_first + refine_within * abs(best_first)][
-        : max(1, int(max_refined_starts))
-    ]
-
-    finals: list[tuple[_Solve, list[int], list[float], bool, int]] = []
-    for res, k, js, idx in chosen:
-        meshes, costs = [res.transcription.n_intervals], [res.cost]
-        cur, converged = res, False
-        for _ in range(int(max_refinements)):
-            nxt = prob.refine(cur, k, js)
-            iterations += max(nxt.iterations, 0)
-            if clock.expired():
-                return clock.failure(stats, iterations, starts, len(guesses))
-            if not nxt.ok:
-                break
-            change = abs(nxt.cost - cur.cost) / max(abs(nxt.cost), 1e-12)
-            cur = nxt
-            meshes.append(cur.transcription.n_intervals)
-            costs.append(cur.cost)
-            if change < mesh_tol:
-                converged = True
-                break
-        finals.append((cur, meshes, costs, converged, idx))
-    finals.sort(key=lambda f: f[0].cost)
-    best, meshes, costs, converged, best_idx = finals[0]
-    best_k = starts[best_idx].heading_turns
-    path, controls, out_info = prob.output(best, int(output_density), best_k)
+    # the best starts (within refine_within of the cheapest), refined on finer meshes
+    first.sort(key=lambda c: c.solve.cost)
+    best_first = first[0].solve.cost
+    chosen = [c for c in first if c.solve.cost <= best_first + refine_within * abs(best_first)]
+    chosen = chosen[: max(1, int(max_refined_starts))]
+    finals: list[_Refined] = []
+    for start in chosen:
+        refined = _refine(prob, start, int(max_refinements), mesh_tol, clock)
+        iterations += refined.iterations
+        if refined.timed_out:
+            return clock.failure(stats, iterations, starts, len(guesses))
+        finals.append(refined)
+    best = min(finals, key=lambda f: f.solve.cost)
+    best_k = starts[best.index].heading_turns
+    path, controls, out_info = prob.output(best.solve, int(output_density), best_k)
     stats.update(
         iterations=iterations,
         seconds=time.perf_counter() - t_start,
-        mesh_sizes=meshes,
-        mesh_costs=costs,
-        mesh_converged=converged,
+        mesh_sizes=best.meshes,
+        mesh_costs=best.costs,
+        mesh_converged=best.converged,
         refined_starts=len(chosen),
-        best_start=best_idx,
+        best_start=best.index,
         heading_turns=best_k,
         **out_info,
         nodes=int(controls["t"].size),
     )
     message = (
         ""
-        if converged
+        if best.converged
         else (
             f"mesh refinement stopped before the cost changed by < {mesh_tol:g} "
-            f"(costs {', '.join(f'{c:.6g}' for c in costs)})"
+            f"(costs {', '.join(f'{c:.6g}' for c in best.costs)})"
         )
     )
     warnings = (out_info["retime_failed"],) if "retime_failed" in out_info else ()
     return DirectResult(
-        Status.SOLVED, path, best.cost, stats, tuple(starts), controls, message, warnings
+        Status.SOLVED, path, best.solve.cost, stats, tuple(starts), controls, message, warnings
     )
+
+
+@dataclass(frozen=True)
+class _Converged:
+    """A start that converged on the first mesh: its solve, heading branch k (psi(T) =
+    goal.heading + 2 pi k), cost scale and index among the guesses."""
+
+    solve: _Solve
+    turns: int
+    cost_scale: float
+    index: int
+
+
+@dataclass(frozen=True)
+class _Refined:
+    """A converged start after mesh refinement: the last good solve, the mesh sizes and
+    costs along the way, whether the cost settled, the IPOPT iterations spent and whether the
+    time limit stopped it."""
+
+    solve: _Solve
+    meshes: list[int]
+    costs: list[float]
+    converged: bool
+    index: int
+    iterations: int
+    timed_out: bool
+
+
+def _refine(
+    prob: _Problem, start: _Converged, max_refinements: int, mesh_tol: float, clock: _Deadline
+) -> _Refined:
+    """Bisect every mesh interval until the relative cost change is below `mesh_tol`."""
+    cur = start.solve
+    meshes, costs = [cur.transcription.n_intervals], [cur.cost]
+    iterations = 0
+    for _ in range(max_refinements):
+        nxt = prob.refine(cur, start.turns, start.cost_scale)
+        iterations += max(nxt.iterations, 0)
+        if clock.expired():
+            return _Refined(cur, meshes, costs, False, start.index, iterations, True)
+        if not nxt.ok:
+            break
+        change = abs(nxt.cost - cur.cost) / max(abs(nxt.cost), 1e-12)
+        cur = nxt
+        meshes.append(cur.transcription.n_intervals)
+        costs.append(cur.cost)
+        if change < mesh_tol:
+            return _Refined(cur, meshes, costs, True, start.index, iterations, False)
+    return _Refined(cur, meshes, costs, False, start.index, iterations, False)
