@@ -136,9 +136,13 @@ def _matching(vehicle: Vehicle, objective: str, method: str | None) -> list[Plan
     def found() -> list[PlannerSpec]:
         return [s for s in _REGISTRY if isinstance(vehicle, s.vehicle) and s.objective == objective]
 
-    load_for(type(vehicle))
+    listed = load_for(type(vehicle))
     matches = found()
-    if not matches or (method is not None and all(s.method != method for s in matches)):
+    if (
+        not listed
+        or not matches
+        or (method is not None and all(s.method != method for s in matches))
+    ):
         load_all()
         matches = found()
     return matches

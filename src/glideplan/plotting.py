@@ -78,7 +78,7 @@ def describe_vehicle(vehicle: Vehicle) -> str:
     if m == "quadratic_polar_glider":
         return (
             f"glider (quadratic polar), v in [{d['v_stall']:.3g}, {d['v_max']:.3g}] m/s, "
-            f"R_stf = {d['radius_stf']:.3g} m"
+            f"R_stf = {d['radius_stf']:.4g} m"
         )
     if m == "load_factor_glider":
         return (

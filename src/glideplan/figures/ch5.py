@@ -130,8 +130,9 @@ def solution_figure(solution: Solution, *, max_candidates: int = 6) -> Any:
         ax_u.plot(smp.t, smp.turn_rate, "b-")
         for lim in (-glider.u_max, glider.u_max):
             ax_u.axhline(lim, color="k", ls="--", lw=0.8)
-        ax_u.text(smp.t[-1], glider.u_max, " u_max", va="center", fontsize=7)
-        ax_u.text(smp.t[-1], -glider.u_max, " -u_max", va="center", fontsize=7)
+        for lim, name, va in ((glider.u_max, "u_max", "top"), (-glider.u_max, "-u_max", "bottom")):
+            ax_u.text(0.99, lim, f"{name} ", transform=ax_u.get_yaxis_transform(), ha="right",
+                      va=va, fontsize=7)
         ax_u.set_ylabel("turn rate u (rad/s)")
         ax_u.set_title("optimal control history", fontsize=10)
         ax_u.grid(True, lw=0.4, alpha=0.5)
@@ -140,7 +141,8 @@ def solution_figure(solution: Solution, *, max_candidates: int = 6) -> Any:
         ax_v.plot(smp.t, ms_to_kmh(smp.speed), "b-")
         for v, name in ((glider.v_stall, "v_stall"), (glider.v_stf, "v_stf")):
             ax_v.axhline(ms_to_kmh(v), color="k", ls="--", lw=0.8)
-            ax_v.text(smp.t[-1], ms_to_kmh(v), f" {name}", va="center", fontsize=7)
+            ax_v.text(0.99, ms_to_kmh(v), f"{name} ", transform=ax_v.get_yaxis_transform(),
+                      ha="right", va="bottom" if name == "v_stall" else "top", fontsize=7)
         ax_v.set_xlabel("time t (s)")
         ax_v.set_ylabel("speed v (km/h)")
         ax_v.grid(True, lw=0.4, alpha=0.5)

@@ -21,7 +21,7 @@ from glideplan.pose import Pose
 from glideplan.studies.load_factor_hodograph import hc_minimiser
 from glideplan.vehicles.load_factor_glider import LoadFactorGlider
 
-__all__ = ["GLIDER", "draw_solution", "solve_example"]
+__all__ = ["GLIDER", "draw_solution", "solution_figure", "solve_example"]
 
 GLIDER = LoadFactorGlider()  # (6.21)
 S67 = "section 6.7"
@@ -396,38 +396,65 @@ def solve_example(goal: tuple[float, float, float], scheme: str = "hermite-simps
     return plan(Pose(), Pose(*goal), GLIDER, "altitude", "direct", scheme=scheme)
 
 
-def draw_solution(solution, filename: str | pathlib.Path, title: str = "") -> None:
-    """Fig 6.11-style panels: (a) v and n vs s, (b) path, (c) (v, n) over Omega by arc class."""
+def solution_figure(solution, title: str = "") -> Any:
+    """The figure of `draw_solution` (returned, not saved): (a) v and n against s, (b) the
+    path with start and goal headings, (c) (v, n) over Omega coloured by arc class; lengths in
+    l_ref = V_ref^2 / g, speeds in V_ref; legends below the panels; the title states the
+    problem (after `title`, e.g. the figure's name) and the answer."""
+    from glideplan.plotting import describe_vehicle, mark_pose, pose_text
+
     plt = pyplot()
     glider = solution.vehicle
     ctr = solution.extras["controls"]
     s, v, n = (np.asarray(ctr[k]) for k in ("s", "v", "n"))
     labels = np.asarray(ctr["label"])
-    fig = plt.figure(figsize=(12, 4))
+    fig = plt.figure(figsize=(13.5, 5.6), layout="constrained")
+    below = {"loc": "upper center", "bbox_to_anchor": (0.5, -0.16), "borderaxespad": 0.0}
     a1 = fig.add_subplot(1, 3, 1)
-    a1.plot(s, v, "b-", label="speed v")
+    a1.plot(s, v, "b-", label="speed v / V_ref")
     a1.plot(s, n, "r-", label="load factor n")
-    a1.set_xlabel("arc length s")
-    a1.legend(fontsize=7)
-    a1.set_title("(a) controls")
+    a1.set_xlabel("arc length s / l_ref")
+    a1.set_ylabel("v / V_ref, n")
+    a1.grid(True, lw=0.4, alpha=0.5)
+    a1.legend(fontsize=8, ncol=2, **below)
+    a1.set_title("(a) controls", fontsize=10)
     a2 = fig.add_subplot(1, 3, 2)
     smp = solution.path.sample(400)
-    a2.plot(smp.x, smp.y, "k-")
-    st, gl = solution.start, solution.goal
-    for p, c in ((st, "g"), (gl, "r")):
-        a2.quiver(p.x, p.y, math.cos(p.heading), math.sin(p.heading), color=c, scale=12)
-    a2.set_aspect("equal")
-    a2.set_title("(b) path")
+    a2.plot(smp.x, smp.y, "k-", lw=2.0,
+            label=f"optimal {solution.word or '-'} ({solution.family or '-'}), "
+                  f"{solution.cost:.5g} l_ref")
+    span = float(max(np.ptp(smp.x), np.ptp(smp.y), 1e-9))
+    mark_pose(a2, solution.start, 0.1 * span, colour="tab:green", marker="o",
+              label="start (heading)")
+    mark_pose(a2, solution.goal, 0.1 * span, colour="tab:red", marker="s",
+              label="goal (heading)")
+    a2.set_aspect("equal", adjustable="datalim")
+    a2.set_xlabel("x / l_ref")
+    a2.set_ylabel("y / l_ref")
+    a2.grid(True, lw=0.4, alpha=0.5)
+    a2.legend(fontsize=8, ncol=1, **below)
+    a2.set_title("(b) path", fontsize=10)
     a3 = fig.add_subplot(1, 3, 3)
     _draw_control_set(a3, glider)
     for cls, (color, name) in _CLASS_STYLE.items():
         m = labels == cls
         if np.any(m):
-            a3.plot(v[m], n[m], "o", color=color, ms=3, label=name)
+            a3.plot(v[m], n[m], "o", color=color, ms=3, label=f"path: {name}")
     a3.set_xlim(0.5, 2.1)
     a3.set_ylim(0.8, 2.2)
-    a3.legend(fontsize=6, loc="upper right")
-    a3.set_title("(c) controls over Omega")
-    if title:
-        fig.suptitle(title)
-    save_png(fig, filename, crop=True)
+    a3.set_xlabel("speed v / V_ref")
+    a3.legend(fontsize=7, ncol=2, **below)
+    a3.set_title("(c) controls over Omega", fontsize=10)
+    problem = (
+        f"Minimum altitude loss, {describe_vehicle(glider)}; lengths in l_ref = V_ref^2 / g\n"
+        f"start {pose_text(solution.start, 'l_ref')} -> goal {pose_text(solution.goal, 'l_ref')}"
+        f"\noptimal word {solution.word or '-'}, family {solution.family or '-'}, altitude loss {solution.cost:.5g} l_ref, "
+        f"path length {solution.path.length:.4g} l_ref"
+    )
+    fig.suptitle(f"{title}\n{problem}" if title else problem, fontsize=10, x=0.01, ha="left")
+    return fig
+
+
+def draw_solution(solution, filename: str | pathlib.Path, title: str = "") -> None:
+    """Fig 6.11-style panels (`solution_figure`) written to `filename` (PNG)."""
+    save_png(solution_figure(solution, title), filename, crop=True)

@@ -38,8 +38,12 @@ def load_all() -> None:
 
 
 def load_for(vehicle_type: type) -> bool:
-    """Import the planner modules listed for `vehicle_type` (or a base class); False if none."""
-    names = [n for cls in vehicle_type.__mro__ for n in PLANNER_MODULES.get(cls.__name__, ())]
+    """Import the planner modules listed for exactly `vehicle_type`; False if it is not listed.
+
+    A subclass of a listed model is not listed (its own planners may live elsewhere): the
+    caller then loads every module.
+    """
+    names = PLANNER_MODULES.get(vehicle_type.__name__, ())
     for name in names:
         importlib.import_module(f"{__name__}.{name}")
     return bool(names)

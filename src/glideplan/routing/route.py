@@ -234,7 +234,11 @@ def route(
         shot = zermelo_shooting(sampler, speed, t0, goal_xy, theta0, grid_T, tol_m=tol)
         if not shot.converged:
             land = sampler.land()
-            if np.any(land):
+            shot_name = "direct-shooting"
+            if not np.any(land & grid.inside):  # open water (edges of the field aside)
+                shot = direct_refinement(sampler, speed, t0, goal_xy, g.t, g.heading, grid_T,
+                                         tol_m=max(0.05 * grid.spacing, 1.0))
+            if np.any(land) and not shot.converged:
                 from scipy.ndimage import distance_transform_edt
 
                 # Signed: distance to the nearest land node outside, minus the distance to
@@ -244,10 +248,6 @@ def route(
                 shot = polyline_refinement(sampler, speed, t0, goal_xy, g.x, g.y, clearance,
                                            margin=grid.spacing)
                 shot_name = "polyline-collocation"
-            else:
-                shot = direct_refinement(sampler, speed, t0, goal_xy, g.t, g.heading, grid_T,
-                                         tol_m=max(0.05 * grid.spacing, 1.0))
-                shot_name = "direct-shooting"
         else:
             shot_name = "zermelo-shooting"
         lap("refine")
