@@ -12,7 +12,15 @@ from glideplan.path import Path, PathSamples
 from glideplan.planners.dubins import dubins_path, dubins_shortest, feasible_radius
 from glideplan.planning import PlannerOutput, Problem, plan, register_planner, registered_planners
 from glideplan.pose import Pose, mod_2pi, wrap_to_pi
-from glideplan.segments import Arc, HeadingSpeedArc, Sampled, Segment, Straight
+from glideplan.segments import (
+    Arc,
+    DriftingStraight,
+    HeadingSpeedArc,
+    Sampled,
+    Segment,
+    Straight,
+    TrochoidArc,
+)
 from glideplan.solution import Candidate, Solution, Status
 from glideplan.vehicles import DubinsCar, Vehicle
 from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
@@ -26,6 +34,7 @@ __version__ = "0.1.0"
 __all__ = [
     "Arc",
     "Candidate",
+    "DriftingStraight",
     "DubinsCar",
     "DubinsCarInWind",
     "EndpointError",
@@ -45,6 +54,7 @@ __all__ = [
     "Solution",
     "Status",
     "Straight",
+    "TrochoidArc",
     "VariableSpeedCar",
     "Vehicle",
     "__version__",

@@ -62,4 +62,7 @@ def test_chapter_4_demo_cases():
         assert result.solution.ok, case.name
         assert result.solution.cost == pytest.approx(case.reference_cost, abs=5e-4), case.name
         assert result.solution.word == case.reference_word, case.name
-        assert result.seconds < 5.0
+        # Speed is measured in benchmarks/min_time.py, not here: a loaded machine must not
+        # fail a correctness test.
+        assert result.solution.endpoint_error is not None
+        assert result.solution.endpoint_error.max <= 1e-6, case.name

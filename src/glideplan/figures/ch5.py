@@ -69,11 +69,12 @@ def plan_example(figure_id: str, method: str = "synthesis") -> Solution:
 # ----- drawing ------------------------------------------------------------------------------
 
 
-def solution_figure(solution: Solution, *, max_candidates: int = 6) -> Any:
+def solution_figure(solution: Solution, *, max_candidates: int = 6, title: str = "") -> Any:
     """The figure of `draw_solution` (returned, not saved): left the candidate paths in units
     of R_stf with the Dubins path at v_stf (dashed), start and goal with their headings and
     the legend below the axes; right the optimal control history (turn rate and speed
-    against time, limits dashed); the title states the problem and the answer."""
+    against time, limits dashed); the title states the problem (after `title`, e.g. the
+    figure's name) and the answer."""
     from glideplan.planners.min_altitude import dubins_reference
     from glideplan.plotting import describe_vehicle, mark_pose, pose_text
 
@@ -112,7 +113,13 @@ def solution_figure(solution: Solution, *, max_candidates: int = 6) -> Any:
             lw=1.2,
             label=f"Dubins {ref.word} at v_stf, {ref.cost:.2f} m",
         )
-    arrow = 0.3
+    if solution.path is not None:
+        opt = solution.path.sample(n=200)
+        span = max(float(np.ptp(opt.x)), float(np.ptp(opt.y))) / unit
+    else:
+        span = math.hypot(solution.goal.x - solution.start.x, solution.goal.y - solution.start.y)
+        span /= unit
+    arrow = max(0.3, 0.1 * span)
     mark_pose(ax, solution.start, arrow, colour="tab:green", marker="o",
               label="start (heading)", scale=unit)
     mark_pose(ax, solution.goal, arrow, colour="tab:red", marker="s",
@@ -160,15 +167,17 @@ def solution_figure(solution: Solution, *, max_candidates: int = 6) -> Any:
             answer += f" (Dubins path at v_stf: {ref.cost:.4g} m)"
     else:
         answer = f"status {solution.status.value}: {solution.message}"
-    fig.suptitle(f"{problem}\n{answer}", fontsize=10, x=0.01, ha="left")
+    text = f"{problem}\n{answer}"
+    fig.suptitle(f"{title}\n{text}" if title else text, fontsize=10, x=0.01, ha="left")
     return fig
 
 
 def draw_solution(
-    solution: Solution, filename: pathlib.Path | str, *, max_candidates: int = 6
+    solution: Solution, filename: pathlib.Path | str, *, max_candidates: int = 6, title: str = ""
 ) -> None:
     """Write `solution_figure(solution)` to `filename` (PNG), as Figs. 5.5-5.7."""
-    save_png(solution_figure(solution, max_candidates=max_candidates), filename, crop=True)
+    fig = solution_figure(solution, max_candidates=max_candidates, title=title)
+    save_png(fig, filename, crop=True)
 
 
 # ----- Fig 5.1 and Table 5.2 -----------------------------------------------------------------
@@ -302,7 +311,7 @@ def _example_figure(figure_id: str, out_dir: pathlib.Path) -> FigureReport:
     sol = plan_example(figure_id)
     direct = plan_example(figure_id, "direct")
     name = figure_id.replace(".", "_") + ".png"
-    draw_solution(sol, out_dir / name)
+    draw_solution(sol, out_dir / name, title=f"{figure_id} (section 5.9)")
     dubins = float(sol.extras["dubins_cost"])
     gain = dubins - sol.cost
     pct = 100.0 * gain / dubins

@@ -448,8 +448,8 @@ def solution_figure(solution, title: str = "") -> Any:
     problem = (
         f"Minimum altitude loss, {describe_vehicle(glider)}; lengths in l_ref = V_ref^2 / g\n"
         f"start {pose_text(solution.start, 'l_ref')} -> goal {pose_text(solution.goal, 'l_ref')}"
-        f"\noptimal word {solution.word or '-'}, family {solution.family or '-'}, altitude loss {solution.cost:.5g} l_ref, "
-        f"path length {solution.path.length:.4g} l_ref"
+        f"\noptimal word {solution.word or '-'}, family {solution.family or '-'}, "
+        f"altitude loss {solution.cost:.5g} l_ref, path length {solution.path.length:.4g} l_ref"
     )
     fig.suptitle(f"{title}\n{problem}" if title else problem, fontsize=10, x=0.01, ha="left")
     return fig

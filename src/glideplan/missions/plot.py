@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import pathlib
 from typing import Any
 
 import numpy as np
@@ -23,7 +24,7 @@ def plot_mission(
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(8, 7))
+    fig, ax = plt.subplots(figsize=(10, 7))
     r = plan.route
     track = plan.track()
     geo = r.projection is not None
@@ -59,26 +60,37 @@ def plot_mission(
         ax.annotate(f"{leg.index + 1}: {leg.word} {leg.length_m:.0f} m",
                     (tx[mid], ty[mid]), fontsize=7, color="tab:blue",
                     bbox={"boxstyle": "round,pad=0.15", "fc": "white", "alpha": 0.7, "lw": 0})
-    ax.plot([], [], color="tab:red", label="chosen heading")
-    ax.plot([], [], color="tab:green", label="given heading")
+    ax.plot([], [], color="tab:red", label="chosen heading (compass deg)")
+    if np.any(given):
+        ax.plot([], [], color="tab:green", label="given heading (compass deg)")
     if geo:
         assert r.lat is not None
         ax.set_aspect(1.0 / math.cos(math.radians(float(np.mean(r.lat)))))
-        ax.set_xlabel("longitude [deg]")
-        ax.set_ylabel("latitude [deg]")
+        ax.set_xlabel("longitude (deg)")
+        ax.set_ylabel("latitude (deg)")
         ax.ticklabel_format(useOffset=False)
     else:
         ax.set_aspect("equal")
-        ax.set_xlabel("x [m]")
-        ax.set_ylabel("y [m]")
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
     if plan.radius is None:
-        how = "through the current field"
+        name = plan.field_info.get("name") if isinstance(plan, FieldMission) else None
+        how = f"time-optimal through the current field{f' {name}' if name else ''}"
     else:
         wind = "" if plan.wind is None else (
             f", wind {plan.wind[0]:g} m/s from {plan.wind[1]:g}\N{DEGREE SIGN}")
-        how = f"R = {plan.radius:g} m{wind}"
-    ax.set_title(f"mission: {r.n} waypoints, {plan.total_length_m:.0f} m, "
-                 f"{plan.total_duration_s / 3600:.2f} h ({how})")
+        how = f"Dubins legs, turn radius R = {plan.radius:g} m{wind}, {plan.objective} optimal"
+    err = plan.stats.get("max_endpoint_error")
+    status = "all legs planned" if plan.ok else "some legs FAILED (see the report)"
+    if isinstance(err, float):
+        status += f", max endpoint error {err:.1e} m"
+    ax.set_title(
+        f"Mission {pathlib.Path(str(r.source)).name}: {r.n} waypoints, "
+        f"speed {plan.speed:g} m/s, {how}\n"
+        f"total {plan.total_length_m:.0f} m, {plan.total_duration_s / 3600:.2f} h; {status}",
+        fontsize=9, loc="left",
+    )
     ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=8)
+    fig.tight_layout()
     return fig

@@ -22,14 +22,17 @@ straight line with a crab angle; None if impossible), `grid_duration_s`,
 
 Method: the reachable front, phi_t + V|grad phi| + c.grad phi = 0 (Lolla et al. 2012), on a
 grid in a local azimuthal-equidistant plane about the start (`levelset`); backtracking along
-grad T of the arrival-time map (`backtrack`); Zermelo shooting as a local refinement kept only
-when not slower (`refine`); verification through the field (`verify`). Bad input raises
+grad T of the arrival-time map (`backtrack`); a local refinement (`refine`: Zermelo shooting,
+else direct single shooting over headings in open water, else polyline collocation with a
+land-clearance constraint) kept only when it converges, stays off land, verifies and is not
+slower than the grid time (beyond `GRID_TIME_TOLERANCE`, the grid's own error); verification
+through the field (`verify`). Bad input raises
 `InvalidParameterError`; an unreachable goal is a result, not an exception.
 
 `glider_path(result, radius, ...)` turns a solved route into a flyable Dubins path with the
 feasible radius R0' = R0 (1 + eps)^2 and follows it in closed loop through the same field.
 """
 
-from glideplan.routing.route import RouteResult, route
+from glideplan.routing.route import GRID_TIME_TOLERANCE, RouteResult, route
 
-__all__ = ["RouteResult", "route"]
+__all__ = ["GRID_TIME_TOLERANCE", "RouteResult", "route"]

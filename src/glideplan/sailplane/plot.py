@@ -2,41 +2,80 @@
 
 from __future__ import annotations
 
+import math
 import pathlib
 
 import numpy as np
 
 from glideplan.sailplane.request import FinalGlideDrawing
 
-__all__ = ["draw_final_glide"]
+__all__ = ["draw_final_glide", "glide_summary"]
+
+
+def glide_summary(d: FinalGlideDrawing) -> str:
+    """One line with the answer: altitude loss, arrival altitude and margin over the floor
+    (goal elevation + safety height), all in m; "unreachable" when no altitude is known."""
+    if not np.all(np.isfinite(d.altitude)):
+        return f"goal unreachable in this wind; goal elevation {d.goal_elevation:.0f} m"
+    start, end = float(d.altitude[0]), float(d.altitude[-1])
+    floor = d.goal_elevation + d.safety_height
+    return (
+        f"start {start:.0f} m, altitude loss {start - end:.0f} m, arrival {end:.0f} m, "
+        f"margin {end - floor:+.0f} m over goal elevation {d.goal_elevation:.0f} m "
+        f"+ safety height {d.safety_height:.0f} m"
+    )
+
+
+def _direction_arrow(ax: object, x: np.ndarray, y: np.ndarray, at_end: bool, colour: str,
+                     size: float) -> None:
+    """An arrow of length `size` (km) along the track's direction at its start or end."""
+    k = slice(-2, None) if at_end else slice(0, 2)
+    dx, dy = float(np.diff(x[k])[0]), float(np.diff(y[k])[0])
+    norm = math.hypot(dx, dy)
+    if norm <= 0.0:
+        return
+    x0, y0 = (float(x[-1]), float(y[-1])) if at_end else (float(x[0]), float(y[0]))
+    ax.annotate(  # type: ignore[attr-defined]
+        "", xy=(x0 + size * dx / norm, y0 + size * dy / norm), xytext=(x0, y0),
+        arrowprops={"arrowstyle": "-|>", "color": colour, "lw": 1.6, "mutation_scale": 14},
+        zorder=6,
+    )
 
 
 def draw_final_glide(d: FinalGlideDrawing, filename: str | pathlib.Path) -> None:
-    """Left: ground track (km, x east, y north) with start and goal. Right: altitude (m)
-    against ground distance (km) with the goal elevation, the safety height and the goal."""
+    """Left: ground track (km, x east, y north) with start and goal and the track direction
+    there. Right: altitude (m) against ground distance (km) with the goal elevation, the
+    safety height and the arrival. Legends below the panels; the title states the problem
+    (`d.title`) and the answer (`glide_summary`)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5))
-    ax1.plot(d.x / 1000, d.y / 1000, color="C0", lw=1.8, label="ground track")
-    ax1.plot(d.x[0] / 1000, d.y[0] / 1000, "o", color="C2", label="start")
-    ax1.plot(d.x[-1] / 1000, d.y[-1] / 1000, "*", color="C3", ms=12, label="goal")
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 5.6), layout="constrained")
+    below = {"loc": "upper center", "bbox_to_anchor": (0.5, -0.14), "borderaxespad": 0.0,
+             "fontsize": 8, "ncol": 2}
+    xk, yk = d.x / 1000, d.y / 1000
+    span = float(max(np.ptp(xk), np.ptp(yk), 1e-6))
+    ax1.plot(xk, yk, color="C0", lw=1.8, label="ground track")
+    ax1.plot(xk[0], yk[0], "o", color="tab:green", ms=8, label="start (track direction)")
+    ax1.plot(xk[-1], yk[-1], "s", color="tab:red", ms=8, label="goal (track direction)")
+    _direction_arrow(ax1, xk, yk, False, "tab:green", 0.08 * span)
+    _direction_arrow(ax1, xk, yk, True, "tab:red", 0.08 * span)
     ax1.set_xlabel("east (km)")
     ax1.set_ylabel("north (km)")
     ax1.set_aspect("equal", adjustable="datalim")
     ax1.grid(alpha=0.3)
-    ax1.legend(loc="best", fontsize=8)
-    ax1.set_title("ground track")
+    ax1.legend(**below)
+    ax1.set_title("ground track", fontsize=10)
     to_goal = np.hypot(d.x - d.x[-1], d.y - d.y[-1])
     near = to_goal <= max(1500.0, 0.06 * float(to_goal[0]))
     if to_goal[0] > 5000.0 and np.count_nonzero(near) > 2:
         inset = ax1.inset_axes((0.58, 0.08, 0.38, 0.38))
-        inset.plot(d.x[near] / 1000, d.y[near] / 1000, color="C0", lw=1.5)
-        inset.plot(d.x[-1] / 1000, d.y[-1] / 1000, "*", color="C3", ms=10)
+        inset.plot(xk[near], yk[near], color="C0", lw=1.5)
+        inset.plot(xk[-1], yk[-1], "s", color="tab:red", ms=7)
         inset.set_aspect("equal", adjustable="datalim")
-        inset.set_title("approach", fontsize=8)
+        inset.set_title("approach (km)", fontsize=8)
         inset.tick_params(labelsize=7)
     s = d.distance / 1000
     ax2.plot(s, d.altitude, color="C0", lw=1.8, label="altitude")
@@ -45,17 +84,18 @@ def draw_final_glide(d: FinalGlideDrawing, filename: str | pathlib.Path) -> None
         d.goal_elevation, color="0.3", lw=1, label=f"goal elevation {d.goal_elevation:.0f} m"
     )
     ax2.axhline(
-        floor, color="C1", ls="--", lw=1.2, label=f"goal + safety height {d.safety_height:.0f} m"
+        floor, color="C1", ls="--", lw=1.2,
+        label=f"goal elevation + safety height {d.safety_height:.0f} m",
     )
     if np.all(np.isfinite(d.altitude)):
-        ax2.plot(s[-1], d.altitude[-1], "*", color="C3", ms=12, label="arrival")
-    ax2.plot(s[-1], d.goal_elevation, "s", color="C3", label="goal")
+        ax2.plot(s[-1], d.altitude[-1], "*", color="tab:red", ms=12,
+                 label=f"arrival {d.altitude[-1]:.0f} m")
+    ax2.plot(s[-1], d.goal_elevation, "s", color="tab:red", label="goal")
     ax2.set_xlabel("distance over ground (km)")
     ax2.set_ylabel("altitude (m)")
     ax2.grid(alpha=0.3)
-    ax2.legend(loc="best", fontsize=8)
-    ax2.set_title("altitude profile")
-    fig.suptitle(d.title)
-    fig.tight_layout()
-    fig.savefig(filename, dpi=110)
+    ax2.legend(**below)
+    ax2.set_title("altitude profile", fontsize=10)
+    fig.suptitle(f"{d.title}\n{glide_summary(d)}", fontsize=10)
+    fig.savefig(filename, dpi=110, bbox_inches="tight")
     plt.close(fig)
