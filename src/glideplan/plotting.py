@@ -35,6 +35,10 @@ __all__ = [
 # Candidates drawn one by one in the legend; the rest share one grey entry.
 _MAX_LABELLED_CANDIDATES = 8
 _CANDIDATE_STYLES = ("--", "-.", ":", (0, (5, 1, 1, 1)))
+# What a cost is called in titles, by objective.
+_COST_NAMES = {"length": "length", "time": "time", "altitude": "altitude loss"}
+# Title lines wrap at this many characters (the figure stays as wide as the plot + legend).
+_TITLE_WIDTH = 90
 
 
 def _axes(ax: Any, figsize: tuple[float, float] = (6.0, 6.0)) -> Any:
@@ -126,6 +130,25 @@ def _label_axes(ax: Any, unit: str) -> None:
         ax.set_ylabel(f"y ({unit})" if unit == "m" else f"y / {unit}")
 
 
+def _switch_points(path: Path) -> np.ndarray:
+    """(k, 2) starts of the segments after the first, zero-length segments ignored (m)."""
+    tol = 1e-9 * max(path.length, 1.0)
+    real = [seg for seg in path.segments if seg.length > tol]
+    return np.array([[seg.start.x, seg.start.y] for seg in real[1:]]).reshape(-1, 2)
+
+
+def _same_path(a: Path, b: Path, cost_a: float, cost_b: float) -> bool:
+    """Two candidates draw the same curve: same word (zero-length segments dropped), and the
+    same cost, length and points at a quarter, half and three quarters of the length, within
+    1e-9 relative."""
+    tol = 1e-9 * max(abs(cost_a), abs(cost_b), a.length, 1.0)
+    if a.word != b.word or abs(cost_a - cost_b) > tol or abs(a.length - b.length) > tol:
+        return False
+    fractions = np.array([0.25, 0.5, 0.75])
+    pa, pb = a.sample(lengths=fractions * a.length), b.sample(lengths=fractions * b.length)
+    return bool(np.all(np.hypot(pa.x - pb.x, pa.y - pb.y) <= tol * 1e3))
+
+
 def plot_path(
     path: Path,
     ax: Any = None,
@@ -145,9 +168,9 @@ def plot_path(
     smp = path.sample(n=max(n, 50 * len(path.segments)))
     (line,) = ax.plot(smp.x, smp.y, **({"lw": 1.8} | line_kwargs))
     colour = line.get_color()
-    if switch_markers and len(path.segments) > 1:
-        pts = np.array([[s.start.x, s.start.y] for s in path.segments[1:]])
-        ax.plot(pts[:, 0], pts[:, 1], "o", mfc="white", mec=colour, ms=5, zorder=4)
+    starts = _switch_points(path)
+    if switch_markers and len(starts):
+        ax.plot(starts[:, 0], starts[:, 1], "o", mfc="white", mec=colour, ms=5, zorder=4)
     if pose_markers:
         span = float(max(np.ptp(smp.x), np.ptp(smp.y), 1e-9))
         for p in (path.start, path.end):
@@ -194,18 +217,22 @@ def _title(solution: Solution, unit: str, heading: str = "") -> str:
     eps = solution.extras.get("disturbance_ratio")
     radius = solution.extras.get("radius")
     if isinstance(eps, float) and eps > 0.0 and isinstance(radius, float):
-        head += f"; planned with R0 (1 + eps)^2 = {radius:.4g} m (eps = {eps:g})"
+        head += f"\nplanned with R0' = R0 (1 + eps)^2 = {radius:.4g} m (eps = {eps:g})"
     problem = f"start {pose_text(solution.start, unit)} -> goal {pose_text(solution.goal, unit)}"
     if solution.ok:
         word = solution.word or "(none: start = goal)"
         result = (
             f"optimal word {word}, family {solution.family or '-'}, "
-            f"{solution.objective} cost {solution.cost:.5g} "
+            f"{_COST_NAMES.get(solution.objective, solution.objective + ' cost')} "
+            f"{solution.cost:.5g} "
             f"{cost_unit(solution.objective, solution.vehicle)}"
         )
     else:
         result = f"status {solution.status.value}: {solution.message}"
-    return f"{head}\n{problem}\n{result}"
+    import textwrap
+
+    lines = f"{head}\n{problem}\n{result}".split("\n")
+    return "\n".join(textwrap.fill(line, _TITLE_WIDTH, break_long_words=False) for line in lines)
 
 
 def plot_solution(
@@ -219,16 +246,26 @@ def plot_solution(
     cost_u = cost_unit(solution.objective, solution.vehicle)
     drawn: list[Any] = []
     if candidates:
-        others = [
-            c
-            for c in solution.candidates
-            if c.path is not None and c.feasible and c.path is not solution.path
-        ]
+        # Candidates that draw the same curve as the optimal or an earlier candidate (e.g.
+        # LSL, LSR, RSL, RSR with zero-length turns on a straight path) are drawn once.
+        others: list[Any] = []
+        kept = [] if solution.path is None else [(solution.path, solution.cost)]
+        coincide = 0
+        for c in solution.candidates:
+            if c.path is None or not c.feasible or c.path is solution.path:
+                continue
+            if any(_same_path(c.path, p, c.cost, cost) for p, cost in kept):
+                coincide += 1
+                continue
+            kept.append((c.path, c.cost))
+            others.append(c)
         for i, c in enumerate(others):
             assert c.path is not None
             labelled = i < _MAX_LABELLED_CANDIDATES
             if labelled:
-                label = f"candidate {c.word or '-'} ({c.family or '-'}), {c.cost:.4g} {cost_u}"
+                label = (
+                    f"candidate {c.path.word or '-'} ({c.family or '-'}), {c.cost:.4g} {cost_u}"
+                )
             elif i == _MAX_LABELLED_CANDIDATES:
                 label = f"{len(others) - i} more candidates"
             else:
@@ -245,7 +282,8 @@ def plot_solution(
                 color=None if labelled else "0.6",
                 label=label,
             )
-            drawn.append(c.path)
+            if labelled:  # the frame follows the labelled paths; the grey rest may be clipped
+                drawn.append(c.path)
     if solution.path is not None:
         word = solution.word or "-"
         plot_path(
@@ -263,7 +301,9 @@ def plot_solution(
             ),
         )
         drawn.append(solution.path)
-    switches = solution.path is not None and len(solution.path.segments) > 1
+    if candidates and coincide:
+        ax.plot([], [], ls="none", label=f"({coincide} more candidates coincide with one drawn)")
+    switches = solution.path is not None and len(_switch_points(solution.path)) > 0
     xs = [solution.start.x, solution.goal.x]
     ys = [solution.start.y, solution.goal.y]
     for p in drawn:

@@ -35,3 +35,20 @@ def test_load_factor_refuses_goals_beyond_its_reach():
     assert MAX_GOAL_DISTANCE < 1000.0
     with pytest.raises(InvalidParameterError, match=rf"goal=1000.*at most {MAX_GOAL_DISTANCE:g}"):
         plan(Pose(), Pose(1000.0, 0.0, math.pi), LoadFactorGlider())
+
+
+def test_a_failed_retiming_is_a_warning_of_the_solution(monkeypatch):
+    """Issue 10 §3: when re-timing fails, the engine keeps the collocation timing and says so;
+    plan() carries the sentence into Solution.warnings (and --json). The failure is forced by
+    replacing the re-timing with one that reports no convergence."""
+    import glideplan.planners.direct.engine as engine
+
+    def failing_retime(t, speed, turn_rate, target, **kwargs):
+        return t, 0.2, False
+
+    monkeypatch.setattr(engine, "retime", failing_retime)
+    sol = plan(
+        Pose(), Pose(0.0, 2.0, 2.0943951023931953), VariableSpeedCar(0.3, 1.0, 1.0), method="direct"
+    )
+    assert any("re-timing" in w and "stretch 0.2" in w for w in sol.warnings)
+    assert sol.to_dict()["warnings"] == list(sol.warnings)

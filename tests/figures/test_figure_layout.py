@@ -181,3 +181,24 @@ def test_final_glide_figure_is_written(tmp_path, arrival):
     draw_final_glide(d, out)
     h, w = matplotlib.image.imread(out).shape[:2]
     assert w > h
+
+
+def test_candidates_that_draw_the_optimal_curve_are_drawn_once():
+    """Straight downwind (section 3.2, T = 10 / 1.3 by hand): LSL, LSR, RSL, RSR all have
+    zero-length turns and draw the same segment; the legend shows the optimal once, says how
+    many coincide, and marks no switch point (there is no turn)."""
+    import matplotlib.pyplot as plt
+
+    from glideplan.plotting import plot_solution
+    from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
+
+    car = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=0.0)
+    sol = plan(Pose(), Pose(10.0, 0.0, 0.0), car)
+    assert sol.cost == pytest.approx(10.0 / 1.3, rel=1e-9) and sol.word == "S"
+    same = [c for c in sol.candidates if c.feasible and c.path is not None]
+    ax = plot_solution(sol, candidates=True)
+    texts = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert not any(t.startswith("candidate ") for t in texts)
+    assert f"({len(same) - 1} more candidates coincide with one drawn)" in texts
+    assert "switch point" not in texts
+    plt.close(ax.get_figure())

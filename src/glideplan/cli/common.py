@@ -73,6 +73,8 @@ def solving(description: str, function: Callable[[], T]) -> T:
 
     Nothing is drawn when stderr is not a terminal, so piped output and `--json` stay clean.
     """
+    if not sys.stderr.isatty():  # decided before importing Rich (start-up time)
+        return function()
     from rich.console import Console
 
     console = Console(stderr=True)

@@ -183,11 +183,18 @@ def pitch_range_rad(
     tank_mass_kg: ArrayLike | None = None,
 ) -> tuple[np.ndarray | float, np.ndarray | float]:
     """Pitch angles (rad) at the aft and forward ends of the moving-mass travel (section 7.3)."""
-    kw = {"tank_mass_kg": tank_mass_kg}
     aft = equilibrium_pitch_rad(
-        layout, layout.moving_mass_min_station_m, bladder_volume_m3, environment, **kw
+        layout,
+        layout.moving_mass_min_station_m,
+        bladder_volume_m3,
+        environment,
+        tank_mass_kg=tank_mass_kg,
     )
     fwd = equilibrium_pitch_rad(
-        layout, layout.moving_mass_max_station_m, bladder_volume_m3, environment, **kw
+        layout,
+        layout.moving_mass_max_station_m,
+        bladder_volume_m3,
+        environment,
+        tank_mass_kg=tank_mass_kg,
     )
     return aft, fwd

@@ -47,6 +47,8 @@ def plot_mission(
     wx, wy = xy(r.x, r.y)
     ax.plot(wx, wy, "o", color="k", ms=6, label="waypoints", zorder=5)
     hx, hy = xy(r.x + arrow * np.cos(plan.headings), r.y + arrow * np.sin(plan.headings))
+    ax.plot(hx, hy, ls="none")  # the arrow tips inside the frame (else they are not drawn)
+    ax.margins(0.07)  # room for the waypoint labels below and right of the points
     given = ~r.free if plan.radius is not None else np.zeros(r.n, dtype=bool)  # field: free
     for i in range(r.n):
         color = "tab:green" if given[i] else "tab:red"
@@ -57,7 +59,9 @@ def plot_mission(
     for leg in plan.legs:
         sel = np.nonzero(track.leg == leg.index)[0]
         mid = sel[len(sel) // 2]
-        ax.annotate(f"{leg.index + 1}: {leg.word} {leg.length_m:.0f} m",
+        what = (f"{leg.duration_s / 3600:.1f} h" if isinstance(plan, FieldMission)
+                else leg.word)  # a field leg has no turn word: its time instead
+        ax.annotate(f"{leg.index + 1}: {what}, {leg.length_m:.0f} m",
                     (tx[mid], ty[mid]), fontsize=7, color="tab:blue",
                     bbox={"boxstyle": "round,pad=0.15", "fc": "white", "alpha": 0.7, "lw": 0})
     ax.plot([], [], color="tab:red", label="chosen heading (compass deg)")
@@ -74,8 +78,9 @@ def plot_mission(
         ax.set_xlabel("x (m)")
         ax.set_ylabel("y (m)")
     if plan.radius is None:
-        name = plan.field_info.get("name") if isinstance(plan, FieldMission) else None
-        how = f"time-optimal through the current field{f' {name}' if name else ''}"
+        src = plan.field_info.get("source") if isinstance(plan, FieldMission) else None
+        name = pathlib.Path(str(src)).name if src else ""
+        how = f"time-optimal through the current field {name}".rstrip()
     else:
         wind = "" if plan.wind is None else (
             f", wind {plan.wind[0]:g} m/s from {plan.wind[1]:g}\N{DEGREE SIGN}")

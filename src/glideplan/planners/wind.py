@@ -225,9 +225,10 @@ def _root_window(
     if hi > _MAX_TAU:
         raise InvalidParameterError(
             "goal",
-            f"({goal[0]:.6g}, {goal[1]:.6g}) turn radii",
-            f"too far for this wind: the arrival time would exceed {_MAX_TAU:.0e} R / v, where "
-            "rounding alone exceeds the verification tolerance of 1e-6 R",
+            float(f"{math.hypot(goal[0], goal[1]):.6g}"),
+            f"distance (in turn radii R) is too far for this wind: the arrival time would "
+            f"exceed {_MAX_TAU:.0e} R / v, where rounding alone exceeds the verification "
+            "tolerance of 1e-6 R",
         )
     lo = max(0.0, lo - _GRID_STEP)  # F_W > 0 strictly before h^-1(0)
     count = max(3, math.ceil((hi - lo) / _GRID_STEP) + 1)

@@ -138,7 +138,7 @@ def dissertation_minimum(name: str, starts: int = 20, seed: int = 0) -> WeakMini
     goal = EXAMPLE_GOAL
 
     def resid(p: np.ndarray) -> np.ndarray:
-        pos, h = compose(build(p), 0.3, ())  # type: ignore[arg-type]
+        pos, h = compose(build(p), 0.3, ())
         return np.array([pos[0] - goal.x, pos[1] - goal.y, (h - goal.heading + PI) % (2 * PI) - PI])
 
     cons = [{"type": "eq", "fun": resid}] + [{"type": "ineq", "fun": g} for g in ineq]
