@@ -113,10 +113,14 @@ def mark_pose(
     """A marker at the pose (lengths divided by `scale`) and an arrow of length `size` (axis
     units) along its heading; start: green circle, goal: red square, by convention."""
     x, y = pose.x / scale, pose.y / scale
+    tip = (x + size * math.cos(pose.heading), y + size * math.sin(pose.heading))
     ax.plot(x, y, marker, color=colour, ms=8, zorder=5, label=label, ls="none")
+    # An invisible line to the tip keeps the arrow inside autoscaled limits (an annotation
+    # whose tip leaves the axes is not drawn at all).
+    ax.plot([x, tip[0]], [y, tip[1]], ls="none")
     ax.annotate(
         "",
-        xy=(x + size * math.cos(pose.heading), y + size * math.sin(pose.heading)),
+        xy=tip,
         xytext=(x, y),
         arrowprops={"arrowstyle": "-|>", "color": colour, "lw": 1.6, "mutation_scale": 14},
         zorder=6,

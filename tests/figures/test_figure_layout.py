@@ -27,7 +27,8 @@ def _overlaps(a, b) -> bool:
 
 
 def _assert_legends_outside(fig) -> list[str]:
-    """Every legend of `fig` lies outside every (non-inset) axes; returns the legend texts."""
+    """Every legend of `fig` lies outside every (non-inset) axes and off every axis label;
+    returns the legend texts."""
     fig.canvas.draw()
     axes = [ax for ax in fig.axes if ax.get_label() != "<inset>"]
     texts: list[str] = []
@@ -40,6 +41,11 @@ def _assert_legends_outside(fig) -> list[str]:
                 f"legend {[t.get_text() for t in legend.get_texts()][:2]} covers "
                 f"axes {ax.get_title()!r}"
             )
+            for label in (ax.xaxis.label, ax.yaxis.label):
+                if label.get_text():
+                    assert not _overlaps(box, _extent(label, fig)), (
+                        f"legend covers the axis label {label.get_text()!r}"
+                    )
         texts += [t.get_text() for t in legend.get_texts()]
     return texts
 
@@ -70,20 +76,27 @@ def test_min_altitude_figure_states_the_problem_and_legend_is_below_the_paths():
     import matplotlib.pyplot as plt
 
     plt.close(fig)
+    from glideplan.plotting import plot_solution  # the demo's figure of the same solution
+
+    ax = plot_solution(sol, candidates=True)
+    assert f"altitude loss {sol.cost:.5g} m" in ax.get_title(loc="left")
+    plt.close(ax.get_figure())
 
 
-def test_load_factor_figure_states_the_problem_and_no_legend_covers_omega():
-    """`plan load-factor --plot` (Fig 6.13): lengths in l_ref, speeds in V_ref, the word and
-    family in title and legend, and none of the three legends inside any panel (the
-    legend of panel (c) covered the control set before)."""
+@pytest.mark.parametrize("goal", [(1.1, 2.0, 0.0), (0.0, -0.5, math.pi)])
+def test_load_factor_figure_states_the_problem_and_no_legend_covers_omega(goal):
+    """`plan load-factor --plot` (Figs 6.13 tall, 6.12 wide): lengths in l_ref, speeds in
+    V_ref, the word and family in title and legend, and none of the three legends inside
+    any panel or on an axis label (the legend of panel (c) covered the control set before)."""
     from glideplan.figures.ch6 import solution_figure, solve_example
 
-    sol = solve_example((1.1, 2.0, 0.0))
+    sol = solve_example(goal)
     assert sol.ok
-    fig = solution_figure(sol, "fig6.13")
+    fig = solution_figure(sol, "fig6.x")
     title = fig.get_suptitle()
-    assert title.startswith("fig6.13\n") and "load-factor glider" in title
-    assert "goal (1.1, 2) l_ref, 0 deg" in title
+    assert title.startswith("fig6.x\n") and "load-factor glider" in title
+    heading = math.degrees(goal[2])
+    assert f"goal ({goal[0]:.4g}, {goal[1]:.4g}) l_ref, {heading:.4g} deg" in title
     assert f"optimal word {sol.word}, family {sol.family}" in title
     assert f"altitude loss {sol.cost:.5g} l_ref" in title
     a1, a2, a3 = fig.axes
@@ -93,7 +106,7 @@ def test_load_factor_figure_states_the_problem_and_no_legend_covers_omega():
     assert a3.get_xlabel() == "speed v / V_ref"
     texts = _assert_legends_outside(fig)
     assert any(t.startswith(f"optimal {sol.word} ({sol.family})") for t in texts)
-    assert {"start (heading)", "goal (heading)", "path: corner"} <= set(texts)
+    assert {"start (heading)", "goal (heading)"} <= set(texts)
     import matplotlib.pyplot as plt
 
     plt.close(fig)

@@ -409,14 +409,22 @@ def solution_figure(solution, title: str = "") -> Any:
     s, v, n = (np.asarray(ctr[k]) for k in ("s", "v", "n"))
     labels = np.asarray(ctr["label"])
     fig = plt.figure(figsize=(13.5, 5.6), layout="constrained")
-    below = {"loc": "upper center", "bbox_to_anchor": (0.5, -0.16), "borderaxespad": 0.0}
+    def below(ax: Any) -> dict[str, Any]:
+        """Legend placement 40 pt under the panel's bottom edge (clear of its tick labels
+        and axis label) whatever height the equal aspect leaves the panel."""
+        from matplotlib.transforms import ScaledTranslation
+
+        shift = ScaledTranslation(0.0, -40.0 / 72.0, fig.dpi_scale_trans)
+        return {"loc": "upper center", "bbox_to_anchor": (0.5, 0.0), "borderaxespad": 0.0,
+                "bbox_transform": ax.transAxes + shift}
+
     a1 = fig.add_subplot(1, 3, 1)
     a1.plot(s, v, "b-", label="speed v / V_ref")
     a1.plot(s, n, "r-", label="load factor n")
     a1.set_xlabel("arc length s / l_ref")
     a1.set_ylabel("v / V_ref, n")
     a1.grid(True, lw=0.4, alpha=0.5)
-    a1.legend(fontsize=8, ncol=2, **below)
+    a1.legend(fontsize=8, ncol=2, **below(a1))
     a1.set_title("(a) controls", fontsize=10)
     a2 = fig.add_subplot(1, 3, 2)
     smp = solution.path.sample(400)
@@ -428,11 +436,12 @@ def solution_figure(solution, title: str = "") -> Any:
               label="start (heading)")
     mark_pose(a2, solution.goal, 0.1 * span, colour="tab:red", marker="s",
               label="goal (heading)")
-    a2.set_aspect("equal", adjustable="datalim")
+    a2.margins(0.08)
+    a2.set_aspect("equal", adjustable="box")
     a2.set_xlabel("x / l_ref")
     a2.set_ylabel("y / l_ref")
     a2.grid(True, lw=0.4, alpha=0.5)
-    a2.legend(fontsize=8, ncol=1, **below)
+    a2.legend(fontsize=8, ncol=1, **below(a2))
     a2.set_title("(b) path", fontsize=10)
     a3 = fig.add_subplot(1, 3, 3)
     _draw_control_set(a3, glider)
@@ -443,7 +452,7 @@ def solution_figure(solution, title: str = "") -> Any:
     a3.set_xlim(0.5, 2.1)
     a3.set_ylim(0.8, 2.2)
     a3.set_xlabel("speed v / V_ref")
-    a3.legend(fontsize=7, ncol=2, **below)
+    a3.legend(fontsize=7, ncol=2, **below(a3))
     a3.set_title("(c) controls over Omega", fontsize=10)
     problem = (
         f"Minimum altitude loss, {describe_vehicle(glider)}; lengths in l_ref = V_ref^2 / g\n"
