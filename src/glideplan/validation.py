@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterable
 from typing import Any
 
 import numpy as np
@@ -10,6 +11,7 @@ import numpy as np
 from glideplan.errors import InvalidParameterError
 
 __all__ = [
+    "check_fields",
     "check_finite",
     "check_finite_array",
     "check_in_range",
@@ -84,6 +86,12 @@ def check_less(name_a: str, a: float, name_b: str, b: float, *, strict: bool = T
     if not ok:
         op = "<" if strict else "<="
         raise InvalidParameterError(name_a, a, f"must be {op} {name_b}={b:g}")
+
+
+def check_fields(obj: Any, check: Callable[[str, Any], Any], names: Iterable[str]) -> None:
+    """Replace each named field of a (frozen) dataclass by `check(name, value)`, in order."""
+    for name in names:
+        object.__setattr__(obj, name, check(name, getattr(obj, name)))
 
 
 def check_finite_array(name: str, value: Any, *, last_dim: int | None = None) -> np.ndarray:

@@ -6,8 +6,12 @@ segments report, never their closed-form positions. On a segment whose controls 
 (straights and arcs) the heading is exactly psi0 + u t and the positions are the quadratures
 x(T) = x0 + int_0^T (v cos(psi0 + u t) + wx) dt (likewise y), evaluated with composite
 Gauss-Legendre rules (NumPy) on pieces turning at most pi/4, whose error is below 1e-15 of
-the piece length; this keeps SciPy out of the start-up of a Dubins plan. Other segments are
-integrated with SciPy's DOP853 (imported when needed). The difference
+the piece length; this keeps SciPy out of the start-up of a Dubins plan. On a segment whose
+controls are piecewise linear between its breakpoints (a direct method's `Sampled` nodes)
+the heading is exact on each interval, psi(s) = psi_i + u_i s + (u_{i+1} - u_i) s^2 / (2 h),
+and x, y are Gauss-Legendre quadratures of v cos psi, v sin psi per interval (split so each
+piece turns at most pi/4), vectorised over the intervals. Other segments are integrated with
+SciPy's DOP853 per breakpoint interval (imported when needed). The difference
 between the integrated end state and the goal is the endpoint error every solution carries.
 Every segment reports the steady uniform wind or current it is flown in as
 `drift = (wx, wy)` (m/s; zero for most), which is added to the velocity (eq. A.4 with no
@@ -95,6 +99,43 @@ def _integrate_constant(
     )
 
 
+def _integrate_piecewise_linear(
+    state: np.ndarray, seg: Segment, rate: Any, drift: np.ndarray
+) -> np.ndarray:
+    """Advance [x, y, heading, cost] over a segment with controls linear between breakpoints.
+
+    On interval i (length h, local time s) v = v_i + dv s / h and u = u_i + du s / h, so
+    psi(s) = psi_i + u_i s + du s^2 / (2 h) exactly and psi_{i+1} = psi_i + h (u_i + u_{i+1}) / 2.
+    x' = v cos psi, y' = v sin psi (and the cost rate r(v, u)) are integrated by 16-node
+    Gauss-Legendre rules on sub-pieces turning at most pi/4 each (every interval split into
+    the same number of pieces), vectorised over all intervals.
+    """
+    t = seg.breakpoints()
+    h = np.diff(t)
+    v, u = seg.controls(t)
+    dpsi = 0.5 * h * (u[:-1] + u[1:])
+    psi0 = state[2] + np.concatenate([[0.0], np.cumsum(dpsi[:-1])])
+    max_turn = float(np.max(np.maximum(np.abs(u[:-1]), np.abs(u[1:])) * h))
+    pieces = max(1, math.ceil(max_turn / (0.25 * math.pi)))
+    edges = np.linspace(0.0, 1.0, pieces + 1)
+    # fraction of each interval at the quadrature nodes: (pieces * 16,), weights summing to 1
+    frac = (0.5 * (edges[:-1] + edges[1:]))[:, None] + (0.5 / pieces) * _GL_NODES[None, :]
+    frac = frac.ravel()
+    wts = np.tile((0.5 / pieces) * _GL_WEIGHTS, pieces)
+    s = h[:, None] * frac[None, :]  # (intervals, nodes) local times
+    du = (u[1:] - u[:-1])[:, None]
+    vs = v[:-1, None] + (v[1:] - v[:-1])[:, None] * frac[None, :]
+    us = u[:-1, None] + du * frac[None, :]
+    psi = psi0[:, None] + u[:-1, None] * s + 0.5 * du * frac[None, :] * s
+    w = h[:, None] * wts[None, :]
+    dx = float(np.sum(w * vs * np.cos(psi))) + drift[0] * seg.duration
+    dy = float(np.sum(w * vs * np.sin(psi))) + drift[1] * seg.duration
+    cost = float(np.sum(w * rate(vs.ravel(), us.ravel()).reshape(vs.shape))) if rate is not None else 0.0
+    return np.array(
+        [state[0] + dx, state[1] + dy, state[2] + float(np.sum(dpsi)), state[3] + cost]
+    )
+
+
 def integrate_path(
     path: Path, objective: str | None = None, *, rtol: float = 1e-11, atol: float = 1e-12
 ) -> IntegratedPath:
@@ -109,6 +150,9 @@ def integrate_path(
         if fixed is not None:
             state = _integrate_constant(state, seg.duration, fixed, np.array([wx, wy]))
             continue
+        if seg.piecewise_linear_controls:
+            state = _integrate_piecewise_linear(state, seg, rate, np.array([wx, wy]))
+            continue
         from scipy.integrate import solve_ivp  # only segments with varying controls need it
 
         def rhs(
@@ -118,9 +162,7 @@ def integrate_path(
             r = float(rate(v, u)[0]) if rate is not None else 0.0
             return [v[0] * math.cos(z[2]) + wx, v[0] * math.sin(z[2]) + wy, u[0], r]
 
-        bps = seg.breakpoints()
-        pieces = bps if bps.size <= 8 else np.array([0.0, seg.duration])
-        for a, b in itertools.pairwise(pieces):
+        for a, b in itertools.pairwise(seg.breakpoints()):
             if b <= a:
                 continue
             sol = solve_ivp(rhs, (a, b), state, method="DOP853", rtol=rtol, atol=atol)

@@ -4,14 +4,16 @@ Exit codes: 0 success; 1 planning failure (no verified path: `PlanningError`); 2
 (`InvalidParameterError`, `ResultsFileError`, a usage error, a missing or unreadable file);
 3 internal error (any other exception is a bug: one line, and `glideplan --debug ...` prints
 the traceback); 130 interrupted. Command modules in this package register on the sub-apps;
-`load_commands()` imports them.
+`load_commands()` imports them all, `load_commands(argv)` only those that the command line
+needs (`glideplan plan dubins ...` imports `plan_dubins` alone; help, no command or an unknown
+one import all): start-up time is part of the interface (issue 11).
 """
 
 from __future__ import annotations
 
 import importlib
 import os
-import pkgutil
+import pathlib
 import sys
 import traceback
 from typing import Any
@@ -23,6 +25,7 @@ try:  # Typer >= 0.20 vendors Click as typer._click
 except ImportError:  # pragma: no cover - older Typer with external Click
     from click import exceptions as click_exc  # type: ignore[no-redef]
 
+from glideplan.cli import _coerce, _registry
 from glideplan.errors import InvalidParameterError, PlanningError, ResultsFileError
 
 app = typer.Typer(
@@ -68,15 +71,30 @@ app.add_typer(map_app, name="map")
 app.add_typer(study_app, name="study")
 app.add_typer(design_app, name="design")
 
-_SKIP = {"app", "common"}
+_SKIP = frozenset({"app", "common"})
+_GLOBAL_FLAGS = frozenset({"--debug"})
 
 
-def load_commands() -> None:
-    """Import every command module of `glideplan.cli` so that it registers its commands."""
-    package = importlib.import_module("glideplan.cli")
-    for mod in pkgutil.iter_modules(package.__path__):
-        if mod.name not in _SKIP and not mod.name.startswith("_"):
-            importlib.import_module(f"glideplan.cli.{mod.name}")
+def command_index() -> _registry.CommandIndex:
+    """Which module defines which command, read from the command modules' source."""
+    group_of: dict[str, str | None] = {"app": None}
+    names = {id(v): k for k, v in globals().items() if isinstance(v, typer.Typer)}
+    for info in app.registered_groups:  # the groups defined here (plan_app -> "plan")
+        if id(info.typer_instance) in names and info.name:
+            group_of[names[id(info.typer_instance)]] = info.name
+    return _registry.build_index(pathlib.Path(__file__).parent, _SKIP, group_of)
+
+
+def load_commands(argv: list[str] | None = None) -> None:
+    """Import the command modules of `glideplan.cli` so that they register their commands.
+
+    Without `argv`, every module; with it, only those that the invocation needs (see
+    `glideplan.cli._registry`): help, no command or an unknown one still load every module.
+    """
+    index = command_index()
+    modules = None if argv is None else _registry.modules_for(argv, index, _GLOBAL_FLAGS)
+    for name in index.modules if modules is None else modules:
+        importlib.import_module(f"glideplan.cli.{name}")
 
 
 def _error(message: str, code: int) -> int:
@@ -138,8 +156,10 @@ def _polish(command: Any) -> Any:
 
     def get_help_option(ctx: Any) -> Any:
         option = make_help(ctx)
-        if option is not None and option.metavar is None:
-            option.metavar = ""
+        if option is not None:
+            if option.metavar is None:
+                option.metavar = ""
+            _coerce.fast_param(option)
         return option
 
     command.get_help_option = get_help_option
@@ -158,12 +178,33 @@ def _find_option(root: Any, argv: list[str], flag: str) -> Any:
     return next((p for p in command.params if flag in getattr(p, "opts", ())), None)
 
 
+_BUILT: dict[tuple[int, ...], Any] = {}
+
+
+def _click_command() -> Any:
+    """The Click command of the commands registered so far, built once per set of commands.
+
+    Command modules only add commands, so the numbers registered on the root and on each
+    group identify the set; the tests run `main` many times in one process.
+    """
+    groups = [group.typer_instance for group in app.registered_groups]
+    key = (
+        len(app.registered_commands),
+        *(len(group.registered_commands) for group in groups if group is not None),
+    )
+    if key not in _BUILT:
+        command = _polish(typer.main.get_command(app))
+        _coerce.fast_coercion(command)
+        _BUILT[key] = command
+    return _BUILT[key]
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the CLI with `argv` (default: sys.argv[1:]) and return the exit code."""
     args = list(sys.argv[1:] if argv is None else argv)
     debug = _debug_requested(args)
-    load_commands()
-    command = _polish(typer.main.get_command(app))
+    load_commands(args)
+    command = _click_command()
     try:
         result = command.main(args=args, prog_name="glideplan", standalone_mode=False)
     except typer.Exit as exc:

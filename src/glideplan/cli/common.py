@@ -20,22 +20,63 @@ from glideplan.validation import check_finite
 
 __all__ = [
     "FIGURE_SUFFIXES",
+    "PoseValues",
     "announce",
     "check_figure_file",
     "emit_solution",
     "flag_names",
+    "goal_option",
     "json_default",
+    "json_flag",
     "parse_pose",
+    "parse_start_goal",
+    "plot_option",
     "print_json",
     "print_warnings",
     "solving",
+    "start_option",
+    "time_limit_flag",
     "time_limit_option",
+    "write_figure",
     "write_json",
 ]
 
 T = TypeVar("T")
 
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
+
+PoseValues = tuple[float, float, float]
+"""A pose as typed on the command line: X Y HEADING_DEG."""
+
+
+def goal_option(help: str) -> Any:
+    """The required `--goal X Y HEADING_DEG` option, with the command's own help text."""
+    return typer.Option("--goal", metavar="X Y HEADING_DEG", help=help, show_default=False)
+
+
+def start_option(help: str) -> Any:
+    """The `--start X Y HEADING_DEG` option (default shown), with the command's own help text."""
+    return typer.Option("--start", metavar="X Y HEADING_DEG", help=help)
+
+
+def json_flag(help: str = "Print one JSON object.") -> Any:
+    """The `--json` flag: print one JSON object instead of a table."""
+    return typer.Option("--json", help=help)
+
+
+def plot_option(help: str) -> Any:
+    """The `--plot FILE` option: the figure file a command draws."""
+    return typer.Option("--plot", metavar="FILE", help=help)
+
+
+def time_limit_flag() -> Any:
+    """The `--time-limit SECONDS` option of the commands that can run a direct solver."""
+    return typer.Option(
+        "--time-limit",
+        metavar="SECONDS",
+        help="Stop the direct solver after SECONDS and report what it has (direct only).",
+        show_default=False,
+    )
 
 
 @contextlib.contextmanager
@@ -143,6 +184,24 @@ def parse_pose(values: list[float] | tuple[float, ...] | None, name: str) -> Pos
     return Pose(x, y, math.radians(h))
 
 
+def parse_start_goal(start: PoseValues, goal: PoseValues) -> tuple[Pose, Pose]:
+    """`--start` and `--goal` from the command line to `Pose`s (start checked first)."""
+    return parse_pose(start, "--start"), parse_pose(goal, "--goal")
+
+
+def write_figure(
+    plot_file: pathlib.Path | None, json_out: bool, draw: Callable[[], None] | None
+) -> None:
+    """Call `draw()` and say `wrote FILE`, or warn when there is no path to draw (`draw=None`)."""
+    if plot_file is None:
+        return
+    if draw is None:
+        print_warnings([f"no path to draw: {plot_file} not written"])
+        return
+    draw()
+    announce(f"wrote {plot_file}", json_out)
+
+
 def json_default(obj: Any) -> Any:
     """Make NumPy scalars and arrays JSON-serialisable (non-finite floats become null)."""
     if isinstance(obj, np.ndarray):
@@ -213,12 +272,12 @@ def emit_solution(
             table.add_row("candidates", str(len(solution.candidates)))
         Console().print(table)
     print_warnings(solution.warnings)
-    if plot_file is not None and solution.path is not None:
+
+    def draw() -> None:
         from glideplan.plotting import plot_solution, save_figure
 
         save_figure(plot_solution(solution, candidates=plot_candidates), str(plot_file))
-        announce(f"wrote {plot_file}", json_out)
-    elif plot_file is not None:
-        print_warnings([f"no path to draw: {plot_file} not written"])
+
+    write_figure(plot_file, json_out, draw if solution.path is not None else None)
     if not solution.ok:
         raise PlanningError(f"{solution.planner}: {solution.status.value}: {solution.message}")

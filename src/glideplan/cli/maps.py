@@ -95,24 +95,7 @@ def partition_command(
     processes: ProcessesOpt = None,
 ) -> None:
     """Partition of the plane by optimal Dubins word for final heading psi1 (Fig 3.1)."""
-    from rich.console import Console
-    from rich.table import Table
-
-    from glideplan.studies.maps import partition_map
-
-    _check_data_file(data)
-    check_figure_file(out, "--out")
-    psi1 = math.radians(_finite("--heading", heading))
-    with flag_names(**_FLAGS):
-        pmap = partition_map(psi1, extent, n, eps, **_batch_options(scheduler, processes))
-    table = Table(title=f"Dubins partition, heading {heading:g} deg, eps {eps:g}, {n}x{n} grid")
-    table.add_column("optimal word(s)")
-    table.add_column("share of grid", justify="right")
-    for label, frac in sorted(pmap.fractions().items(), key=lambda kv: -kv[1]):
-        table.add_row(label, f"{100 * frac:.2f} %")
-    Console().print(table)
-    meta = {"map": "partition", "heading_rad": psi1, "eps": eps, "extent": extent, "n": n}
-    _write_outputs(pmap, meta, data, out, "plot_partition")
+    _run_map("partition", heading, eps, extent, n, out, data, scheduler, processes)
 
 
 @map_app.command("tradespace")
@@ -127,18 +110,62 @@ def tradespace_command(
     processes: ProcessesOpt = None,
 ) -> None:
     """Ratio T = d_feasible / d_optimal of path lengths with R0 (1 + eps)^2 and R0 (Fig 3.2)."""
-    from rich.console import Console
-    from rich.table import Table
+    _run_map("tradespace", heading, eps, extent, n, out, data, scheduler, processes)
 
-    from glideplan.studies.maps import tradespace_map
+
+def _run_map(
+    kind: str,
+    heading: float,
+    eps: float,
+    extent: float,
+    n: int,
+    out: pathlib.Path | None,
+    data: pathlib.Path | None,
+    scheduler: str | None,
+    processes: int | None,
+) -> None:
+    """Check the options, compute the `kind` map (partition, tradespace), print and write it."""
+    from rich.console import Console
+
+    from glideplan.studies.maps import partition_map, tradespace_map
 
     _check_data_file(data)
     check_figure_file(out, "--out")
     psi1 = math.radians(_finite("--heading", heading))
     with flag_names(**_FLAGS):
-        tmap = tradespace_map(psi1, eps, extent, n, **_batch_options(scheduler, processes))
+        batch = _batch_options(scheduler, processes)
+        if kind == "partition":
+            grid_map: Any = partition_map(psi1, extent, n, eps, **batch)
+        else:
+            grid_map = tradespace_map(psi1, eps, extent, n, **batch)
+    grid = f"heading {heading:g} deg, eps {eps:g}, {n}x{n} grid"
+    if kind == "partition":
+        table = _partition_table(grid_map, f"Dubins partition, {grid}")
+    else:
+        table = _tradespace_table(grid_map, f"Tradespace T, {grid}")
+    Console().print(table)
+    meta = {"map": kind, "heading_rad": psi1, "eps": eps, "extent": extent, "n": n}
+    _write_outputs(grid_map, meta, data, out, f"plot_{kind}")
+
+
+def _partition_table(pmap: Any, title: str) -> Any:
+    """The share of the grid each optimal word holds (a Rich table)."""
+    from rich.table import Table
+
+    table = Table(title=title)
+    table.add_column("optimal word(s)")
+    table.add_column("share of grid", justify="right")
+    for label, frac in sorted(pmap.fractions().items(), key=lambda kv: -kv[1]):
+        table.add_row(label, f"{100 * frac:.2f} %")
+    return table
+
+
+def _tradespace_table(tmap: Any, title: str) -> Any:
+    """Minimum, median and maximum of the ratio T and the shares above 2 and 5 (a Rich table)."""
+    from rich.table import Table
+
     ratio = tmap.ratio[np.isfinite(tmap.ratio)]
-    table = Table(title=f"Tradespace T, heading {heading:g} deg, eps {eps:g}, {n}x{n} grid")
+    table = Table(title=title)
     table.add_column("quantity")
     table.add_column("value", justify="right")
     table.add_row("min T", f"{ratio.min():.4f}")
@@ -146,9 +173,7 @@ def tradespace_command(
     table.add_row("max T", f"{ratio.max():.4f}")
     table.add_row("share with T > 2", f"{100 * np.mean(ratio > 2):.2f} %")
     table.add_row("share with T > 5 (truncated)", f"{100 * np.mean(ratio > 5):.2f} %")
-    Console().print(table)
-    meta = {"map": "tradespace", "heading_rad": psi1, "eps": eps, "extent": extent, "n": n}
-    _write_outputs(tmap, meta, data, out, "plot_tradespace")
+    return table
 
 
 def _write_outputs(

@@ -39,8 +39,13 @@ def mission_plan(
              ".kml or .geojson.", show_default=False)],
     speed: Annotated[float, typer.Option("--speed", help="Speed through the air/water (m/s).",
                                          show_default=False)],
-    radius: Annotated[float, typer.Option("--radius", help="Minimum turn radius (m).",
-                                          show_default=False)],
+    radius: Annotated[float, typer.Option(
+        "--radius", help="Minimum turn radius R0 (m). With --field: each routed leg becomes the "
+                         "flyable path of Dubins pieces of radius R0' = R0 (1 + eps)^2, eps = "
+                         "the leg's largest current / speed (as `glideplan route --radius`), "
+                         "joined with a continuous course at the waypoints, followed in closed "
+                         "loop through the field; the track and the vehicle files carry it.",
+        show_default=False)],
     objective: Annotated[str | None, typer.Option(
         "--objective", help="length or time (default: length; time with --wind).")] = None,
     wind: Annotated[tuple[float, float] | None, typer.Option(
@@ -49,8 +54,17 @@ def mission_plan(
         show_default=False)] = None,
     field: Annotated[pathlib.Path | None, typer.Option(
         "--field", help="Current/wind field file (NetCDF or GRIB, as `glideplan route`): each "
-                        "leg is routed through it (time-optimal, headings free; --radius "
-                        "unused).", show_default=False)] = None,
+                        "leg is routed through it (time-optimal, headings free), departing "
+                        "when the previous leg arrives.", show_default=False)] = None,
+    depart: Annotated[str | None, typer.Option(
+        "--depart", help="With --field: departure from the first waypoint, ISO 8601 (UTC if no "
+                         "offset; default the field's first time; must lie in its time span).",
+        show_default=False)] = None,
+    depth_range: Annotated[tuple[float, float] | None, typer.Option(
+        "--depth-range", metavar="Z0 Z1",
+        help="With --field: average the currents over depths Z0..Z1 (m, positive down; "
+             "trapezoidal over the file's levels), as `glideplan route`.",
+        show_default=False)] = None,
     headings: Annotated[int | None, typer.Option(
         "--headings", help="Candidate headings per free waypoint K (default 360; 36 in wind).",
         show_default=False)] = None,
@@ -82,10 +96,17 @@ def mission_plan(
     Each leg is the optimal Dubins (or, with --wind, convected-Dubins minimum-time) path,
     verified by integration. With --export the mission is written for GIS tools and vehicles.
     """
+    from glideplan.cli.route import check_depth_range, parse_depart
     from glideplan.formats import ExportOptions, export_mission, parse_formats, read_route
     from glideplan.missions import plan_mission, straight_leg_list
 
     plot = check_figure_file(plot)
+    if field is None and (depart is not None or depth_range is not None):
+        raise InvalidParameterError("--depart" if depart is not None else "--depth-range",
+                                    depart if depart is not None else depth_range,
+                                    "applies with --field only")
+    check_depth_range(depth_range)
+    when = parse_depart(depart)
     if field is not None and wind is not None:
         raise InvalidParameterError("--wind", wind, "give either --wind or --field, not both")
     if field is not None and objective not in (None, "time"):
@@ -113,7 +134,7 @@ def mission_plan(
                     field="--field"):
         fmts = parse_formats(formats, r.geographic) if export is not None else ()
         if field is not None:
-            mission = _plan_in_field(r, field, speed)
+            mission = _plan_in_field(r, field, speed, radius, when, depth_range)
         else:
             mission = plan_mission(r, speed=speed, radius=radius, objective=obj,
                                    wind=None if wind is None else (wind[0], wind[1]),
@@ -150,7 +171,10 @@ def mission_plan(
     _print_summary(mission, legs, files)
 
 
-def _plan_in_field(r: Any, path: pathlib.Path, speed: float) -> FieldMission:
+def _plan_in_field(r: Any, path: pathlib.Path, speed: float, radius: float, when: Any,
+                   depth_range: tuple[float, float] | None) -> FieldMission:
+    from glideplan.cli.common import solving
+    from glideplan.cli.route import check_depart
     from glideplan.fields import open_field
     from glideplan.missions.field_mission import plan_mission_in_field
 
@@ -158,7 +182,10 @@ def _plan_in_field(r: Any, path: pathlib.Path, speed: float) -> FieldMission:
         raise InvalidParameterError("--field", str(path), "needs a geographic route (lat/lon)")
     if not path.is_file():
         raise InvalidParameterError("--field", str(path), "no such file")
-    mission = plan_mission_in_field(r, open_field(path), speed=speed)
+    flow = open_field(path, depth_range=depth_range)
+    check_depart(flow, when)
+    mission = solving("routing the legs", lambda: plan_mission_in_field(
+        r, flow, speed=speed, depart=when, radius=radius))
     for name in mission.stats["headings_not_enforced"]:
         print_warnings([f"heading given at {name} is not enforced when routing through a "
                         "field (the router steers a point mass)"])
@@ -180,11 +207,17 @@ def _failure(mission: Any) -> str:
 
 def _print_summary(mission: Any, legs: Any, files: dict[str, Any]) -> None:
     r = mission.route
+    through = " (through the field)" if hasattr(mission, "field_info") else ""
     typer.echo(f"mission {r.source}: {r.n} waypoints, {len(mission.legs)} legs, objective "
-               f"{mission.objective}{' (through the field)' if mission.radius is None else ''}")
+               f"{mission.objective}{through}")
     for i, leg in enumerate(mission.legs):
         typer.echo(f"  leg {i + 1:3d} {r.names[leg.start]:>10s} -> {r.names[leg.end]:<10s} "
                    f"{leg.word:4s} {leg.length_m:10.1f} m {leg.duration_s:10.1f} s")
+    fly = mission.stats.get("flyable")
+    if fly:
+        typer.echo(f"flyable path: R0' = {min(fly['feasible_radius_m']):.1f}.."
+                   f"{max(fly['feasible_radius_m']):.1f} m, {fly['path_length_m']:.1f} m, "
+                   f"closed-loop max cross-track error {fly['max_cross_track_m']:.2f} m")
     hd = ", ".join(f"{r.names[i]} {h:.1f}" for i, h in enumerate(mission.headings_deg))
     typer.echo(f"headings (compass deg): {hd}")
     err = mission.stats.get("max_endpoint_error")

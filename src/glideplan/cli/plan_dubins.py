@@ -7,33 +7,18 @@ from typing import Annotated
 
 import typer
 
+from glideplan.cli import common
 from glideplan.cli.app import plan_app
-from glideplan.cli.common import (
-    check_figure_file,
-    emit_solution,
-    flag_names,
-    parse_pose,
-    solving,
-)
 
 
 @plan_app.command("dubins")
 def plan_dubins_command(
     goal: Annotated[
-        tuple[float, float, float],
-        typer.Option(
-            "--goal",
-            metavar="X Y HEADING_DEG",
-            help="Goal pose X Y HEADING_DEG (m, m, degrees).",
-            show_default=False,
-        ),
+        common.PoseValues, common.goal_option("Goal pose X Y HEADING_DEG (m, m, degrees).")
     ],
     radius: Annotated[float, typer.Option("--radius", help="Minimum turn radius R0 (m).")],
     start: Annotated[
-        tuple[float, float, float],
-        typer.Option(
-            "--start", metavar="X Y HEADING_DEG", help="Start pose X Y HEADING_DEG (m, m, degrees)."
-        ),
+        common.PoseValues, common.start_option("Start pose X Y HEADING_DEG (m, m, degrees).")
     ] = (0.0, 0.0, 0.0),
     speed: Annotated[float, typer.Option("--speed", help="Constant speed v (m/s).")] = 1.0,
     eps: Annotated[
@@ -46,23 +31,21 @@ def plan_dubins_command(
     time_objective: Annotated[
         bool, typer.Option("--time", help="Minimise time (length / speed) instead of length.")
     ] = False,
-    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+    json_out: Annotated[bool, common.json_flag()] = False,
     plot: Annotated[
-        pathlib.Path | None,
-        typer.Option("--plot", metavar="FILE", help="Draw the path (and candidates) to FILE."),
+        pathlib.Path | None, common.plot_option("Draw the path (and candidates) to FILE.")
     ] = None,
 ) -> None:
     """Shortest Dubins path (dissertation 2.7) with the feasible radius of eq. 3.3 (--eps)."""
     from glideplan.planning import plan
     from glideplan.vehicles import DubinsCar
 
-    plot = check_figure_file(plot)
-    start_pose = parse_pose(start, "--start")
-    goal_pose = parse_pose(goal, "--goal")
+    plot = common.check_figure_file(plot)
+    start_pose, goal_pose = common.parse_start_goal(start, goal)
     names = {"turn_radius": "--radius", "speed": "--speed", "speed/turn_radius": "--speed/--radius"}
-    with flag_names(**names, disturbance_ratio="--eps", start="--start", goal="--goal"):
+    with common.flag_names(**names, disturbance_ratio="--eps", start="--start", goal="--goal"):
         vehicle = DubinsCar(speed=speed, turn_radius=radius)
-        solution = solving(
+        solution = common.solving(
             "planning (dubins)",
             lambda: plan(
                 start_pose,
@@ -72,4 +55,4 @@ def plan_dubins_command(
                 disturbance_ratio=eps,
             ),
         )
-    emit_solution(solution, json_out, plot, plot_candidates=True)
+    common.emit_solution(solution, json_out, plot, plot_candidates=True)

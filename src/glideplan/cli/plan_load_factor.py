@@ -7,33 +7,18 @@ from typing import Annotated
 
 import typer
 
+from glideplan.cli import common
 from glideplan.cli.app import plan_app
-from glideplan.cli.common import (
-    announce,
-    check_figure_file,
-    emit_solution,
-    flag_names,
-    parse_pose,
-    print_warnings,
-    solving,
-    time_limit_option,
-)
 
 
 @plan_app.command("load-factor")
 def plan_load_factor_command(
     goal: Annotated[
-        tuple[float, float, float],
-        typer.Option(
-            "--goal",
-            metavar="X Y HEADING_DEG",
-            help="Goal pose X Y HEADING_DEG (nondimensional lengths V^2/g, degrees).",
-            show_default=False,
-        ),
+        common.PoseValues,
+        common.goal_option("Goal pose X Y HEADING_DEG (nondimensional lengths V^2/g, degrees)."),
     ],
     start: Annotated[
-        tuple[float, float, float],
-        typer.Option("--start", metavar="X Y HEADING_DEG", help="Start pose X Y HEADING_DEG."),
+        common.PoseValues, common.start_option("Start pose X Y HEADING_DEG.")
     ] = (0.0, 0.0, 0.0),
     l_over_d: Annotated[
         float, typer.Option("--l-over-d", help="Maximum lift-to-drag ratio (L/D)max.")
@@ -52,21 +37,11 @@ def plan_load_factor_command(
     max_iterations: Annotated[
         int, typer.Option("--max-iterations", help="IPOPT iteration limit per solve.")
     ] = 1000,
-    time_limit: Annotated[
-        float | None,
-        typer.Option(
-            "--time-limit",
-            metavar="SECONDS",
-            help="Stop the direct solver after SECONDS and report what it has (direct only).",
-            show_default=False,
-        ),
-    ] = None,
-    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+    time_limit: Annotated[float | None, common.time_limit_flag()] = None,
+    json_out: Annotated[bool, common.json_flag()] = False,
     plot: Annotated[
         pathlib.Path | None,
-        typer.Option(
-            "--plot", metavar="FILE", help="Draw controls, path and control set (Fig 6.11 style)."
-        ),
+        common.plot_option("Draw controls, path and control set (Fig 6.11 style)."),
     ] = None,
 ) -> None:
     """Minimum altitude loss, speed and load-factor controls, by the direct method (6.8).
@@ -78,9 +53,8 @@ def plan_load_factor_command(
     from glideplan.planning import plan
     from glideplan.vehicles.load_factor_glider import LoadFactorGlider
 
-    plot = check_figure_file(plot)
-    start_pose = parse_pose(start, "--start")
-    goal_pose = parse_pose(goal, "--goal")
+    plot = common.check_figure_file(plot)
+    start_pose, goal_pose = common.parse_start_goal(start, goal)
     names = {
         "l_over_d_max": "--l-over-d",
         "v_min": "--v-min",
@@ -90,10 +64,10 @@ def plan_load_factor_command(
         "max_starts": "--max-starts",
         "max_iterations": "--max-iterations",
     }
-    with flag_names(**names, start="--start", goal="--goal"):
+    with common.flag_names(**names, start="--start", goal="--goal"):
         glider = LoadFactorGlider(l_over_d_max=l_over_d, v_min=v_min, v_max=v_max, n_max=n_max)
-        options = time_limit_option(glider, "altitude", "direct", time_limit)
-        solution = solving(
+        options = common.time_limit_option(glider, "altitude", "direct", time_limit)
+        solution = common.solving(
             "planning (load-factor, direct method)",
             lambda: plan(
                 start_pose,
@@ -107,7 +81,9 @@ def plan_load_factor_command(
                 **options,
             ),
         )
-    if plot is not None and solution.ok:
+
+    def draw() -> None:
+        assert plot is not None
         if "controls" in solution.extras:
             from glideplan.figures.ch6 import draw_solution
 
@@ -116,7 +92,6 @@ def plan_load_factor_command(
             from glideplan.plotting import plot_solution, save_figure
 
             save_figure(plot_solution(solution), str(plot))
-        announce(f"wrote {plot}", json_out)
-    elif plot is not None:
-        print_warnings([f"no path to draw: {plot} not written"])
-    emit_solution(solution, json_out, None)
+
+    common.write_figure(plot, json_out, draw if solution.ok else None)
+    common.emit_solution(solution, json_out, None)

@@ -7,17 +7,8 @@ from typing import Annotated
 
 import typer
 
+from glideplan.cli import common
 from glideplan.cli.app import plan_app
-from glideplan.cli.common import (
-    announce,
-    check_figure_file,
-    emit_solution,
-    flag_names,
-    parse_pose,
-    print_warnings,
-    solving,
-    time_limit_option,
-)
 from glideplan.errors import InvalidParameterError
 
 VEHICLES = ("dg1001m",)
@@ -27,21 +18,13 @@ METHODS = ("synthesis", "direct")
 @plan_app.command("min-altitude")
 def plan_min_altitude_command(
     goal: Annotated[
-        tuple[float, float, float],
-        typer.Option(
-            "--goal",
-            metavar="X Y HEADING_DEG",
-            help="Goal pose X Y HEADING_DEG (m, or units of R_stf with --normalized; degrees).",
-            show_default=False,
+        common.PoseValues,
+        common.goal_option(
+            "Goal pose X Y HEADING_DEG (m, or units of R_stf with --normalized; degrees)."
         ),
     ],
     start: Annotated[
-        tuple[float, float, float],
-        typer.Option(
-            "--start",
-            metavar="X Y HEADING_DEG",
-            help="Start pose X Y HEADING_DEG (same units as --goal).",
-        ),
+        common.PoseValues, common.start_option("Start pose X Y HEADING_DEG (same units as --goal).")
     ] = (0.0, 0.0, 0.0),
     vehicle: Annotated[
         str | None,
@@ -77,15 +60,7 @@ def plan_min_altitude_command(
     method: Annotated[
         str, typer.Option("--method", help="synthesis (default) or direct (collocation + IPOPT).")
     ] = "synthesis",
-    time_limit: Annotated[
-        float | None,
-        typer.Option(
-            "--time-limit",
-            metavar="SECONDS",
-            help="Stop the direct solver after SECONDS and report what it has (direct only).",
-            show_default=False,
-        ),
-    ] = None,
+    time_limit: Annotated[float | None, common.time_limit_flag()] = None,
     json_out: Annotated[
         bool,
         typer.Option(
@@ -95,9 +70,7 @@ def plan_min_altitude_command(
     ] = False,
     plot: Annotated[
         pathlib.Path | None,
-        typer.Option(
-            "--plot", metavar="FILE", help="Draw the candidates and the control history to FILE."
-        ),
+        common.plot_option("Draw the candidates and the control history to FILE."),
     ] = None,
 ) -> None:
     """Minimum-altitude-loss path of a glider with a quadratic polar (dissertation ch. 5).
@@ -112,7 +85,7 @@ def plan_min_altitude_command(
 
     if method not in METHODS:
         raise InvalidParameterError("--method", method, f"must be one of {', '.join(METHODS)}")
-    plot = check_figure_file(plot)
+    plot = common.check_figure_file(plot)
     names = {
         "a": "--polar A",
         "b": "--polar B",
@@ -123,17 +96,16 @@ def plan_min_altitude_command(
         "v_stall/u_max": "--v-stall/--u-max",
         "v_max/u_max": "--v-max/--u-max",
     }
-    with flag_names(**names):
+    with common.flag_names(**names):
         glider = _glider(vehicle, polar, v_stall, v_max, u_max)
-    start_pose = parse_pose(start, "--start")
-    goal_pose = parse_pose(goal, "--goal")
+    start_pose, goal_pose = common.parse_start_goal(start, goal)
     if normalized:
         k = glider.radius_stf
         start_pose = Pose(start_pose.x * k, start_pose.y * k, start_pose.heading)
         goal_pose = Pose(goal_pose.x * k, goal_pose.y * k, goal_pose.heading)
-    with flag_names(start="--start", goal="--goal"):
-        options = time_limit_option(glider, "altitude", method, time_limit)
-        solution = solving(
+    with common.flag_names(start="--start", goal="--goal"):
+        options = common.time_limit_option(glider, "altitude", method, time_limit)
+        solution = common.solving(
             f"planning (min-altitude, {method})",
             lambda: plan(start_pose, goal_pose, glider, "altitude", method, **options),
         )
@@ -143,14 +115,16 @@ def plan_min_altitude_command(
         ref = solution.extras.get("dubins_cost")
         if isinstance(ref, float):
             extra["improvement"] = ref - solution.cost
-        if plot is not None:
-            from glideplan.figures.ch5 import draw_solution
 
-            draw_solution(solution, plot)
-            announce(f"wrote {plot}", json_out)
-    elif plot is not None:
-        print_warnings([f"no path to draw: {plot} not written"])
-    emit_solution(solution, json_out, None, extra=extra)
+    def draw() -> None:
+        assert plot is not None
+        from glideplan.figures.ch5 import draw_solution
+
+        draw_solution(solution, plot)
+
+    drawable = solution.ok and solution.path is not None
+    common.write_figure(plot, json_out, draw if drawable else None)
+    common.emit_solution(solution, json_out, None, extra=extra)
 
 
 def _glider(

@@ -7,15 +7,8 @@ from typing import Annotated, Any
 
 import typer
 
+from glideplan.cli import common
 from glideplan.cli.app import plan_app
-from glideplan.cli.common import (
-    check_figure_file,
-    emit_solution,
-    flag_names,
-    parse_pose,
-    solving,
-    time_limit_option,
-)
 
 __all__ = ["control_history", "plan_time_optimal_command"]
 
@@ -46,13 +39,7 @@ def control_history(path: Any) -> dict[str, list[float]]:
 @plan_app.command("time-optimal")
 def plan_time_optimal_command(
     goal: Annotated[
-        tuple[float, float, float],
-        typer.Option(
-            "--goal",
-            metavar="X Y HEADING_DEG",
-            help="Goal pose X Y HEADING_DEG (m, m, degrees).",
-            show_default=False,
-        ),
+        common.PoseValues, common.goal_option("Goal pose X Y HEADING_DEG (m, m, degrees).")
     ],
     v_min: Annotated[
         float, typer.Option("--v-min", help="Minimum speed v_min > 0 (m/s).", show_default=False)
@@ -66,10 +53,7 @@ def plan_time_optimal_command(
         typer.Option("--u-max", help="Maximum turn rate u_max > 0 (rad/s).", show_default=False),
     ],
     start: Annotated[
-        tuple[float, float, float],
-        typer.Option(
-            "--start", metavar="X Y HEADING_DEG", help="Start pose X Y HEADING_DEG (m, m, degrees)."
-        ),
+        common.PoseValues, common.start_option("Start pose X Y HEADING_DEG (m, m, degrees).")
     ] = (0.0, 0.0, 0.0),
     method: Annotated[
         str,
@@ -78,21 +62,11 @@ def plan_time_optimal_command(
             help="synthesis (the 72 candidate types of eq. 4.26) or direct (collocation).",
         ),
     ] = "synthesis",
-    time_limit: Annotated[
-        float | None,
-        typer.Option(
-            "--time-limit",
-            metavar="SECONDS",
-            help="Stop the direct solver after SECONDS and report what it has (direct only).",
-            show_default=False,
-        ),
-    ] = None,
-    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+    time_limit: Annotated[float | None, common.time_limit_flag()] = None,
+    json_out: Annotated[bool, common.json_flag()] = False,
     plot: Annotated[
         pathlib.Path | None,
-        typer.Option(
-            "--plot", metavar="FILE", help="Draw the path with its switching points to FILE (PNG)."
-        ),
+        common.plot_option("Draw the path with its switching points to FILE (PNG)."),
     ] = None,
 ) -> None:
     """Minimum-time path with speed between v_min and v_max, |turn rate| <= u_max (chapter 4).
@@ -107,9 +81,8 @@ def plan_time_optimal_command(
 
     if method not in ("synthesis", "direct"):
         raise InvalidParameterError("--method", method, "must be synthesis or direct")
-    plot = check_figure_file(plot)
-    start_pose = parse_pose(start, "--start")
-    goal_pose = parse_pose(goal, "--goal")
+    plot = common.check_figure_file(plot)
+    start_pose, goal_pose = common.parse_start_goal(start, goal)
     names = {
         "v_min": "--v-min",
         "v_max": "--v-max",
@@ -117,10 +90,10 @@ def plan_time_optimal_command(
         "v_max/u_max": "--v-max/--u-max",
         "v_min/u_max": "--v-min/--u-max",
     }
-    with flag_names(**names, start="--start", goal="--goal"):
+    with common.flag_names(**names, start="--start", goal="--goal"):
         vehicle = VariableSpeedCar(v_min=v_min, v_max=v_max, u_max=u_max)
-        options = time_limit_option(vehicle, "time", method, time_limit)
-        solution = solving(
+        options = common.time_limit_option(vehicle, "time", method, time_limit)
+        solution = common.solving(
             f"planning (time-optimal, {method})",
             lambda: plan(start_pose, goal_pose, vehicle, "time", method, **options),
         )
@@ -130,4 +103,4 @@ def plan_time_optimal_command(
     }
     if solution.path is not None:
         extra["controls"] = control_history(solution.path)
-    emit_solution(solution, json_out, plot, extra=extra)
+    common.emit_solution(solution, json_out, plot, extra=extra)

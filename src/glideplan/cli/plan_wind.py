@@ -8,26 +8,15 @@ from typing import Annotated
 
 import typer
 
+from glideplan.cli import common
 from glideplan.cli.app import plan_app
-from glideplan.cli.common import (
-    check_figure_file,
-    emit_solution,
-    flag_names,
-    parse_pose,
-    solving,
-)
 
 
 @plan_app.command("wind")
 def plan_wind_command(
     goal: Annotated[
-        tuple[float, float, float],
-        typer.Option(
-            "--goal",
-            metavar="X Y HEADING_DEG",
-            help="Goal pose over ground X Y HEADING_DEG (m, m, degrees).",
-            show_default=False,
-        ),
+        common.PoseValues,
+        common.goal_option("Goal pose over ground X Y HEADING_DEG (m, m, degrees)."),
     ],
     speed: Annotated[float, typer.Option("--speed", help="Air- (water-) relative speed v (m/s).")],
     radius: Annotated[
@@ -43,10 +32,7 @@ def plan_wind_command(
         ),
     ],
     start: Annotated[
-        tuple[float, float, float],
-        typer.Option(
-            "--start", metavar="X Y HEADING_DEG", help="Start pose X Y HEADING_DEG (m, m, degrees)."
-        ),
+        common.PoseValues, common.start_option("Start pose X Y HEADING_DEG (m, m, degrees).")
     ] = (0.0, 0.0, 0.0),
     eps: Annotated[
         float,
@@ -56,10 +42,9 @@ def plan_wind_command(
             "R0 (1 + eps)^2 in the air frame (Corollary A.2; needs w + eps v < v).",
         ),
     ] = 0.0,
-    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+    json_out: Annotated[bool, common.json_flag()] = False,
     plot: Annotated[
-        pathlib.Path | None,
-        typer.Option("--plot", metavar="FILE", help="Draw the ground path to FILE."),
+        pathlib.Path | None, common.plot_option("Draw the ground path to FILE.")
     ] = None,
 ) -> None:
     """Time-optimal convected Dubins path in a steady wind (dissertation 3.2, appendix A).
@@ -71,7 +56,7 @@ def plan_wind_command(
     from glideplan.validation import check_finite, check_in_range, check_nonnegative, check_positive
     from glideplan.vehicles import DubinsCarInWind
 
-    plot = check_figure_file(plot)
+    plot = common.check_figure_file(plot)
     speed = check_positive("--speed", speed)
     w = check_nonnegative("--wind SPEED", wind[0])
     direction = math.radians(check_finite("--wind DIRECTION_DEG", wind[1]))
@@ -80,12 +65,12 @@ def plan_wind_command(
         raise InvalidParameterError(
             "--wind", w, f"wind speed + eps * speed must be < speed ({w:g} + {eps:g} * {speed:g})"
         )
-    start_pose, goal_pose = parse_pose(start, "--start"), parse_pose(goal, "--goal")
+    start_pose, goal_pose = common.parse_start_goal(start, goal)
     names = {"turn_radius": "--radius", "speed": "--speed", "speed/turn_radius": "--speed/--radius"}
-    with flag_names(**names, wind_speed="--wind", start="--start", goal="--goal"):
+    with common.flag_names(**names, wind_speed="--wind", start="--start", goal="--goal"):
         vehicle = DubinsCarInWind(speed, radius, w, direction)
-        solution = solving(
+        solution = common.solving(
             "planning (wind)",
             lambda: plan(start_pose, goal_pose, vehicle, disturbance_ratio=eps),
         )
-    emit_solution(solution, json_out, plot, plot_candidates=False)
+    common.emit_solution(solution, json_out, plot, plot_candidates=False)

@@ -34,6 +34,32 @@ def parse_depart(text: str | None) -> Any:
     return np.datetime64(when, "ms")
 
 
+def check_depth_range(depth_range: tuple[float, float] | None) -> tuple[float, float] | None:
+    """`--depth-range Z0 Z1`: metres, positive down, 0 <= Z0 < Z1 (None passes)."""
+    from glideplan.errors import InvalidParameterError
+
+    if depth_range is not None and not (
+        all(math.isfinite(z) and z >= 0 for z in depth_range) and depth_range[0] < depth_range[1]
+    ):
+        raise InvalidParameterError("--depth-range", depth_range, "needs 0 <= Z0 < Z1 (m, down)")
+    return depth_range
+
+
+def check_depart(flow: Any, when: Any) -> Any:
+    """`--depart` (datetime64 from `parse_depart`, or None) checked against the field's time
+    span: outside it, an error naming `--depart` and the bound."""
+    from glideplan.errors import InvalidParameterError
+    from glideplan.fields.field import to_seconds
+
+    if when is None:
+        return None
+    try:
+        flow.check_time(to_seconds(when, flow.epoch))
+    except InvalidParameterError as exc:
+        raise InvalidParameterError("--depart", str(when)[:19] + "Z", exc.rule) from None
+    return when
+
+
 @app.command("route")
 def route_command(
     from_: Annotated[
@@ -74,7 +100,10 @@ def route_command(
     ] = None,
     radius: Annotated[
         float | None,
-        typer.Option("--radius", help="Turn radius R0 (m): build and follow the flyable path.",
+        typer.Option("--radius", help="Turn radius R0 (m): build the flyable path (Dubins "
+                     "pieces of R0' for the route's largest current) and follow it in closed loop "
+                     "through the field; also the trochoid pieces (the known-current planner "
+                     "with each piece's mean current, R0' for the residual).",
                      show_default=False),
     ] = None,
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
@@ -102,10 +131,7 @@ def route_command(
         raise InvalidParameterError("--resolution", resolution, "must be finite and > 0 (m)")
     if radius is not None and not (math.isfinite(radius) and radius > 0):
         raise InvalidParameterError("--radius", radius, "must be finite and > 0 (m)")
-    if depth_range is not None and not (
-        all(math.isfinite(z) and z >= 0 for z in depth_range) and depth_range[0] < depth_range[1]
-    ):
-        raise InvalidParameterError("--depth-range", depth_range, "needs 0 <= Z0 < Z1 (m, down)")
+    check_depth_range(depth_range)
     plot = check_figure_file(plot)
     if (field is None) == (example is None):
         raise InvalidParameterError("--field", None, "give --field FILE or --example double-gyre")
@@ -125,6 +151,8 @@ def route_command(
         flow = open_field(field, depth_range=depth_range)
         source = {"file": [str(p) for p in field]}
 
+    check_depart(flow, when)
+
     from glideplan.cli.common import solving
     from glideplan.routing import route
 
@@ -133,10 +161,13 @@ def route_command(
     out = result.to_dict()
     out["field"] = {**source, **out["field"]}
     if radius is not None and result.ok:
-        from glideplan.routing.glider import follow_route
+        from glideplan.routing.glider import follow_route, trochoid_chain
 
         glider = solving("following", lambda: follow_route(result, flow, speed, radius))
         out["glider"] = glider.to_dict()
+        if glider.status != "infeasible":
+            chain = solving("trochoid pieces", lambda: trochoid_chain(result, flow, speed, radius))
+            out["glider"]["trochoid"] = chain.to_dict()
     if plot is not None:
         from glideplan.routing.plot import plot_route
 
@@ -171,5 +202,11 @@ def _print_summary(out: dict[str, Any]) -> None:
                            f"{g['final_distance_m']:.2f} m")
             else:
                 typer.echo(f"glider path: {g['status']}: {g['message']}")
+            tc = g.get("trochoid")
+            if tc is not None and tc["status"] == "planned":
+                typer.echo(f"trochoid pieces (mean current per piece): R0' = "
+                           f"{tc['feasible_radius_m']:.1f} m for the residual eps' = "
+                           f"{tc['residual_ratio']:.3f}, {hours(tc['duration_s'])}, open-loop "
+                           f"miss through the field {tc['field_endpoint_error_m']:.1f} m")
     else:
         typer.echo(f"best reachable distance to the goal: {out['best_distance_m']:.0f} m")

@@ -23,72 +23,31 @@ from glideplan.vehicles.dubins_car import DubinsCar
 _R0 = 20.0 / 0.3
 _R0_FEASIBLE = _R0 * 1.25**2
 
-register_demo_case(
-    DemoCase(
-        name="Dubins Fig 2.2(a)",
-        source="section 2.7, Fig 2.2(a)",
-        start=Pose(),
-        goal=Pose(-3.0, 2.0, 3 * math.pi / 2),
-        vehicle=DubinsCar(),
-        reference_cost=math.sqrt(5.0) + 1.5 * math.pi,
-        reference_word="LSL",
+for name, source, goal, cost, word in (
+    ("Dubins Fig 2.2(a)", "section 2.7, Fig 2.2(a)", Pose(-3.0, 2.0, 3 * math.pi / 2),
+     math.sqrt(5.0) + 1.5 * math.pi, "LSL"),
+    ("Dubins Fig 2.2(b)", "section 2.7, Fig 2.2(b)", Pose(1.0, 1.0, math.pi),
+     3 * math.pi - 2 * math.acos(-0.25), "RLR"),
+    ("Dubins LSL quarter turns", "section 2.7 (hand check)", Pose(0.0, 4.0, math.pi),
+     2 + math.pi, "LSL"),
+    ("Dubins reversal in place", "section 2.7 (hand check)", Pose(0.0, 0.0, math.pi),
+     7 * math.pi / 3, "RLR"),
+):  # fmt: skip
+    register_demo_case(
+        DemoCase(name, source, Pose(), goal, DubinsCar(), reference_cost=cost, reference_word=word)
     )
-)
-register_demo_case(
-    DemoCase(
-        name="Dubins Fig 2.2(b)",
-        source="section 2.7, Fig 2.2(b)",
-        start=Pose(),
-        goal=Pose(1.0, 1.0, math.pi),
-        vehicle=DubinsCar(),
-        reference_cost=3 * math.pi - 2 * math.acos(-0.25),
-        reference_word="RLR",
+# the feasible radius, in length and in time (length / 20 m/s)
+for objective, suffix, cost_unit in ((None, "", 1.0), ("time", ", time", 20.0)):
+    register_demo_case(
+        DemoCase(
+            name=f"Feasible radius eps=0.25{suffix}",
+            source="section 3.2, eq. 3.3",
+            start=Pose(),
+            goal=Pose(0.0, 4 * _R0_FEASIBLE, math.pi),
+            vehicle=DubinsCar(speed=20.0, turn_radius=_R0),
+            objective=objective,
+            options={"disturbance_ratio": 0.25},
+            reference_cost=(2 + math.pi) * _R0_FEASIBLE / cost_unit,
+            reference_word="LSL",
+        )
     )
-)
-register_demo_case(
-    DemoCase(
-        name="Dubins LSL quarter turns",
-        source="section 2.7 (hand check)",
-        start=Pose(),
-        goal=Pose(0.0, 4.0, math.pi),
-        vehicle=DubinsCar(),
-        reference_cost=2 + math.pi,
-        reference_word="LSL",
-    )
-)
-register_demo_case(
-    DemoCase(
-        name="Dubins reversal in place",
-        source="section 2.7 (hand check)",
-        start=Pose(),
-        goal=Pose(0.0, 0.0, math.pi),
-        vehicle=DubinsCar(),
-        reference_cost=7 * math.pi / 3,
-        reference_word="RLR",
-    )
-)
-register_demo_case(
-    DemoCase(
-        name="Feasible radius eps=0.25",
-        source="section 3.2, eq. 3.3",
-        start=Pose(),
-        goal=Pose(0.0, 4 * _R0_FEASIBLE, math.pi),
-        vehicle=DubinsCar(speed=20.0, turn_radius=_R0),
-        options={"disturbance_ratio": 0.25},
-        reference_cost=(2 + math.pi) * _R0_FEASIBLE,
-        reference_word="LSL",
-    )
-)
-register_demo_case(
-    DemoCase(
-        name="Feasible radius eps=0.25, time",
-        source="section 3.2, eq. 3.3",
-        start=Pose(),
-        goal=Pose(0.0, 4 * _R0_FEASIBLE, math.pi),
-        vehicle=DubinsCar(speed=20.0, turn_radius=_R0),
-        objective="time",
-        options={"disturbance_ratio": 0.25},
-        reference_cost=(2 + math.pi) * _R0_FEASIBLE / 20.0,
-        reference_word="LSL",
-    )
-)

@@ -19,39 +19,20 @@ from glideplan.demos import DemoCase, register_demo_case
 from glideplan.pose import Pose
 from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
 
-register_demo_case(
-    DemoCase(
-        name="Wind: convected Dubins (3, 3, pi/2)",
-        source="section 3.2 / appendix A (Techy & Woolsey 2009); issue 7 reference",
-        start=Pose(),
-        goal=Pose(3.0, 3.0, math.pi / 2),
-        vehicle=DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=0.0),
-        reference_cost=3.75342,
-        reference_word="LSL",
+# the straight cases: LSL with zero-length turns, whose word drops them ("S")
+for name, source, goal, wind_direction, cost, word in (
+    ("Wind: convected Dubins (3, 3, pi/2)",
+     "section 3.2 / appendix A (Techy & Woolsey 2009); issue 7 reference",
+     Pose(3.0, 3.0, math.pi / 2), 0.0, 3.75342, "LSL"),
+    ("Wind: straight downwind", "section 3.2, hand derivation 10 / (v + w)",
+     Pose(10.0, 0.0, 0.0), 0.0, 10.0 / 1.3, "S"),
+    ("Wind: straight upwind", "section 3.2, hand derivation 10 / (v - w)",
+     Pose(10.0, 0.0, 0.0), math.pi, 10.0 / 0.7, "S"),
+):  # fmt: skip
+    car = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=wind_direction)
+    register_demo_case(
+        DemoCase(name, source, Pose(), goal, car, reference_cost=cost, reference_word=word)
     )
-)
-register_demo_case(
-    DemoCase(
-        name="Wind: straight downwind",
-        source="section 3.2, hand derivation 10 / (v + w)",
-        start=Pose(),
-        goal=Pose(10.0, 0.0, 0.0),
-        vehicle=DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=0.0),
-        reference_cost=10.0 / 1.3,
-        reference_word="S",  # LSL with zero-length turns: the word drops them
-    )
-)
-register_demo_case(
-    DemoCase(
-        name="Wind: straight upwind",
-        source="section 3.2, hand derivation 10 / (v - w)",
-        start=Pose(),
-        goal=Pose(10.0, 0.0, 0.0),
-        vehicle=DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=math.pi),
-        reference_cost=10.0 / 0.7,
-        reference_word="S",  # LSL with zero-length turns: the word drops them
-    )
-)
 register_demo_case(
     DemoCase(
         name="Wind + unknown gusts: R0' in the air frame",

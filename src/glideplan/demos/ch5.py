@@ -34,16 +34,14 @@ for label, goal, cost, word in (
     x, y, heading = goal
     register_demo_case(
         DemoCase(
-            name=f"ch5 {label} R_stf",
-            source="section 5.9, DG-1001M (cost: independent direct solve; the dissertation "
+            f"ch5 {label} R_stf",
+            "section 5.9, DG-1001M (cost: independent direct solve; the dissertation "
             "reports only the gain over the Dubins path at v_stf)",
-            start=Pose(0.0, 0.0, 0.0),
-            goal=Pose(x * GLIDER.radius_stf, y * GLIDER.radius_stf, heading),
-            vehicle=GLIDER,
-            objective="altitude",
-            method="synthesis",
-            reference_cost=cost,
-            reference_word=word,
-            postprocess=_report,
+            Pose(0.0, 0.0, 0.0),
+            Pose(x * GLIDER.radius_stf, y * GLIDER.radius_stf, heading),
+            GLIDER,
+            "altitude",
+            "synthesis",
+            reference_cost=cost, reference_word=word, postprocess=_report,
         )
-    )
+    )  # fmt: skip

@@ -28,16 +28,7 @@ for name, goal, cost, word in (
     ("ch6 fig6.13 (1.1, 2, 0)", (1.1, 2.0, 0.0), 0.20926, "LR"),
 ):
     register_demo_case(
-        DemoCase(
-            name=name,
-            source="section 6.8, Figs 6.11-6.13 (cost: independent collocation)",
-            start=Pose(0.0, 0.0, 0.0),
-            goal=Pose(*goal),
-            vehicle=GLIDER,
-            objective="altitude",
-            method="direct",
-            reference_cost=cost,
-            reference_word=word,
-            postprocess=_arcs,
-        )
-    )
+        DemoCase(name, "section 6.8, Figs 6.11-6.13 (cost: independent collocation)",
+                 Pose(0.0, 0.0, 0.0), Pose(*goal), GLIDER, "altitude", "direct",
+                 reference_cost=cost, reference_word=word, postprocess=_arcs)
+    )  # fmt: skip

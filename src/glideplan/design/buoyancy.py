@@ -16,8 +16,8 @@ from glideplan.design.gas import (
 )
 from glideplan.errors import InvalidParameterError
 from glideplan.units import inch_to_m, psi_to_pa
+from glideplan.validation import check_fields, check_nonnegative, check_positive, scalar_or_array
 from glideplan.validation import check_finite_array as finite_array
-from glideplan.validation import check_nonnegative, check_positive, scalar_or_array
 from glideplan.validation import check_nonnegative_array as nonnegative_array
 from glideplan.validation import check_positive_array as positive_array
 
@@ -135,8 +135,7 @@ class Hull:
     drag_coefficient: float = 0.1
 
     def __post_init__(self) -> None:
-        for name in ("dry_mass_kg", "diameter_m", "drag_coefficient"):
-            object.__setattr__(self, name, check_positive(name, getattr(self, name)))
+        check_fields(self, check_positive, ("dry_mass_kg", "diameter_m", "drag_coefficient"))
 
     @property
     def cross_section_m2(self) -> float:

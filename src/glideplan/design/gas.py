@@ -9,8 +9,8 @@ from numpy.typing import ArrayLike
 
 from glideplan.errors import InvalidParameterError
 from glideplan.units import inch3_to_m3, lb_to_kg, psi_to_pa
+from glideplan.validation import check_fields, check_positive, scalar_or_array
 from glideplan.validation import check_nonnegative_array as nonnegative_array
-from glideplan.validation import check_positive, scalar_or_array
 from glideplan.validation import check_positive_array as positive_array
 
 __all__ = [
@@ -41,8 +41,7 @@ class Environment:
 
     def __post_init__(self) -> None:
         names = ("water_density_kg_m3", "gravity_m_s2", "atmospheric_pressure_pa", "temperature_k")
-        for name in names:
-            object.__setattr__(self, name, check_positive(name, getattr(self, name)))
+        check_fields(self, check_positive, names)
 
     @property
     def specific_weight_n_m3(self) -> float:
@@ -100,8 +99,9 @@ class Tank:
     def __post_init__(self) -> None:
         if not isinstance(self.name, str):
             raise InvalidParameterError("name", self.name, "must be a string")
-        for name in ("max_pressure_pa", "internal_volume_m3", "empty_mass_kg"):
-            object.__setattr__(self, name, check_positive(name, getattr(self, name)))
+        check_fields(
+            self, check_positive, ("max_pressure_pa", "internal_volume_m3", "empty_mass_kg")
+        )
 
     def moles(self, temperature_k: ArrayLike, pressure_pa: ArrayLike | None = None):
         """Air in the tank n_tank = pV/(RT) (7.1); full tank unless `pressure_pa` is given."""

@@ -15,8 +15,8 @@ from scipy.optimize import minimize_scalar
 
 from glideplan.design.gas import SEA_WATER, Environment
 from glideplan.errors import InvalidParameterError
+from glideplan.validation import check_fields, check_positive, scalar_or_array
 from glideplan.validation import check_finite_array as finite_array
-from glideplan.validation import check_positive, scalar_or_array
 from glideplan.validation import check_positive_array as positive_array
 
 __all__ = [
@@ -45,13 +45,16 @@ class DragPolar:
     name: str = "custom"
 
     def __post_init__(self) -> None:
-        for name in (
-            "zero_lift_drag_coefficient",
-            "induced_drag_factor",
-            "lift_slope_per_rad",
-            "reference_area_m2",
-        ):
-            object.__setattr__(self, name, check_positive(name, getattr(self, name)))
+        check_fields(
+            self,
+            check_positive,
+            (
+                "zero_lift_drag_coefficient",
+                "induced_drag_factor",
+                "lift_slope_per_rad",
+                "reference_area_m2",
+            ),
+        )
         if not isinstance(self.name, str):
             raise InvalidParameterError("name", self.name, "must be a string")
 

@@ -17,8 +17,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from glideplan.errors import InvalidParameterError
+from glideplan.validation import check_fields, check_nonnegative, check_positive, scalar_or_array
 from glideplan.validation import check_finite_array as finite_array
-from glideplan.validation import check_nonnegative, check_positive, scalar_or_array
 from glideplan.validation import check_probability as probability
 
 __all__ = [
@@ -214,10 +214,10 @@ class LBLConfig:
     def __post_init__(self) -> None:
         b = check_beacon_geometry(self.beacons_m)
         object.__setattr__(self, "beacons_m", tuple((float(x), float(y)) for x, y in b))
-        for name in ("beacon_depth_m", "receiver_depth_m", "range_noise_std_m"):
-            object.__setattr__(self, name, check_nonnegative(name, getattr(self, name)))
-        for name in ("sound_speed_assumed_m_s", "sound_speed_true_m_s"):
-            object.__setattr__(self, name, check_positive(name, getattr(self, name)))
+        check_fields(
+            self, check_nonnegative, ("beacon_depth_m", "receiver_depth_m", "range_noise_std_m")
+        )
+        check_fields(self, check_positive, ("sound_speed_assumed_m_s", "sound_speed_true_m_s"))
         object.__setattr__(
             self,
             "ping_success_probability",

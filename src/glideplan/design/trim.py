@@ -15,7 +15,13 @@ from numpy.typing import ArrayLike
 
 from glideplan.design.gas import FRESH_WATER, Environment
 from glideplan.errors import InvalidParameterError
-from glideplan.validation import check_finite, check_nonnegative, check_positive, scalar_or_array
+from glideplan.validation import (
+    check_fields,
+    check_finite,
+    check_nonnegative,
+    check_positive,
+    scalar_or_array,
+)
 from glideplan.validation import check_finite_array as finite_array
 from glideplan.validation import check_nonnegative_array as nonnegative_array
 
@@ -49,19 +55,22 @@ class TrimLayout:
     bladder_station_m: float = 1.60
 
     def __post_init__(self) -> None:
-        for name in ("moving_mass_kg", "moving_mass_offset_m", "body_volume_m3"):
-            object.__setattr__(self, name, check_positive(name, getattr(self, name)))
-        for name in ("tank_mass_kg", "body_mass_kg"):
-            object.__setattr__(self, name, check_nonnegative(name, getattr(self, name)))
-        for name in (
-            "moving_mass_min_station_m",
-            "moving_mass_max_station_m",
-            "tank_station_m",
-            "body_station_m",
-            "body_buoyancy_station_m",
-            "bladder_station_m",
-        ):
-            object.__setattr__(self, name, check_finite(name, getattr(self, name)))
+        check_fields(
+            self, check_positive, ("moving_mass_kg", "moving_mass_offset_m", "body_volume_m3")
+        )
+        check_fields(self, check_nonnegative, ("tank_mass_kg", "body_mass_kg"))
+        check_fields(
+            self,
+            check_finite,
+            (
+                "moving_mass_min_station_m",
+                "moving_mass_max_station_m",
+                "tank_station_m",
+                "body_station_m",
+                "body_buoyancy_station_m",
+                "bladder_station_m",
+            ),
+        )
         if self.moving_mass_min_station_m > self.moving_mass_max_station_m:
             raise InvalidParameterError(
                 "moving_mass_min_station_m",

@@ -82,6 +82,20 @@ def _pressure_factor(p1: np.ndarray, p2: np.ndarray, sg: np.ndarray, t1: np.ndar
     return np.where(p2 < 0.5 * p1, _CHOKE_FACTOR * p1 / np.sqrt(sg * t1), subsonic)
 
 
+def _flow_factor(
+    inlet_pressure_psia: ArrayLike,
+    outlet_pressure_psia: ArrayLike,
+    temperature_rankine: ArrayLike,
+    specific_gravity: float,
+    choked: str,
+) -> np.ndarray:
+    """q / (N C_v) of (7.8) after checking pressures (psia), temperature (degR), sg and mode."""
+    p1, p2 = _check_pressures(inlet_pressure_psia, outlet_pressure_psia, "psia")
+    t1 = positive_array("temperature_rankine", temperature_rankine)
+    sg = check_positive("specific_gravity", specific_gravity)
+    return _pressure_factor(p1, p2, np.asarray(sg), t1, _check_mode(choked))
+
+
 def _check_mode(choked: str) -> str:
     if choked not in _MODES:
         raise InvalidParameterError("choked", choked, f"must be one of {', '.join(_MODES)}")
@@ -116,11 +130,10 @@ def gas_flow_scfm(
     `choked="never"` applies (7.8) as printed even past the choking point.
     """
     c = positive_array("cv", cv)
-    p1, p2 = _check_pressures(inlet_pressure_psia, outlet_pressure_psia, "psia")
-    t1 = positive_array("temperature_rankine", temperature_rankine)
-    sg = check_positive("specific_gravity", specific_gravity)
-    q = N_SWAGELOK * c * _pressure_factor(p1, p2, np.asarray(sg), t1, _check_mode(choked))
-    return scalar_or_array(q)
+    f = _flow_factor(
+        inlet_pressure_psia, outlet_pressure_psia, temperature_rankine, specific_gravity, choked
+    )
+    return scalar_or_array(N_SWAGELOK * c * f)
 
 
 def flow_coefficient(
@@ -136,10 +149,9 @@ def flow_coefficient(
     q = finite_array("q_scfm", q_scfm)
     if np.any(q < 0.0):
         raise InvalidParameterError("q_scfm", float(np.min(q)), "must be >= 0")
-    p1, p2 = _check_pressures(inlet_pressure_psia, outlet_pressure_psia, "psia")
-    t1 = positive_array("temperature_rankine", temperature_rankine)
-    sg = check_positive("specific_gravity", specific_gravity)
-    f = _pressure_factor(p1, p2, np.asarray(sg), t1, _check_mode(choked))
+    f = _flow_factor(
+        inlet_pressure_psia, outlet_pressure_psia, temperature_rankine, specific_gravity, choked
+    )
     return scalar_or_array(q / (N_SWAGELOK * f))
 
 

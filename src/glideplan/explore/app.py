@@ -45,6 +45,13 @@ from glideplan.explore.texts import error_html, html_pane, strip_html, table_htm
 __all__ = ["Explorer", "create_page"]
 
 
+def _download_button(callback: Callable[[], Any], filename: str, label: str) -> Any:
+    """A download button that builds the file `filename` on click (not embedded in the page)."""
+    return pn.widgets.FileDownload(
+        callback=callback, filename=filename, label=label, color="primary", width=92, embed=False
+    )
+
+
 class Explorer:
     """One page: widgets, figures and the state they show (see the module docstring).
 
@@ -136,30 +143,9 @@ class Explorer:
         self.strip = html_pane(sizing_mode="stretch_width")
         self.busy = html_pane(width=200, height=24)
         self.downloads = pn.Row(
-            pn.widgets.FileDownload(
-                callback=self._json_file,
-                filename="glideplan-solution.json",
-                label="JSON",
-                color="primary",
-                width=92,
-                embed=False,
-            ),
-            pn.widgets.FileDownload(
-                callback=self._csv_file,
-                filename="glideplan-path.csv",
-                label="CSV",
-                color="primary",
-                width=92,
-                embed=False,
-            ),
-            pn.widgets.FileDownload(
-                callback=self._png_file,
-                filename="glideplan-figure.png",
-                label="PNG",
-                color="primary",
-                width=92,
-                embed=False,
-            ),
+            _download_button(self._json_file, "glideplan-solution.json", "JSON"),
+            _download_button(self._csv_file, "glideplan-path.csv", "CSV"),
+            _download_button(self._png_file, "glideplan-figure.png", "PNG"),
             margin=(5, 0),
         )
 

@@ -173,37 +173,10 @@ class PlanFigures:
             ),
         )
         self.prof_src = ColumnDataSource({"t": [], "speed": [], "second": [], "third": []})
-        self.speed_fig = figure(
-            height=170,
-            width=430,
-            x_axis_label="time",
-            y_axis_label="speed",
-            tools="save,reset",
-            toolbar_location=None,
-        )
-        self.speed_fig.line("t", "speed", source=self.prof_src, line_color=BLUE, line_width=2)
-        self.second_fig = figure(
-            height=170,
-            width=430,
-            x_range=self.speed_fig.x_range,
-            x_axis_label="time",
-            y_axis_label="turn rate",
-            tools="save,reset",
-            toolbar_location=None,
-        )
-        self.second_fig.line(
-            "t", "second", source=self.prof_src, line_color="#8e44ad", line_width=2
-        )
-        self.third_fig = figure(
-            height=170,
-            width=430,
-            x_range=self.speed_fig.x_range,
-            x_axis_label="time",
-            y_axis_label="load factor",
-            tools="save,reset",
-            toolbar_location=None,
-        )
-        self.third_fig.line("t", "third", source=self.prof_src, line_color="#d35400", line_width=2)
+        self.speed_fig = self._profile_figure("speed", "speed", BLUE)
+        x_range = self.speed_fig.x_range
+        self.second_fig = self._profile_figure("second", "turn rate", "#8e44ad", x_range)
+        self.third_fig = self._profile_figure("third", "load factor", "#d35400", x_range)
         for f in (self.speed_fig, self.second_fig, self.third_fig):
             f.background_fill_color = "#fbfcfe"
             f.grid.grid_line_color = "#e3e9f0"
@@ -213,6 +186,23 @@ class PlanFigures:
             self.second_fig,
             self.third_fig,
         )
+
+    def _profile_figure(
+        self, key: str, label: str, color: str, x_range: Any | None = None
+    ) -> Any:
+        """A small plot of the profile column `key` against time (shared time axis)."""
+        extra = {} if x_range is None else {"x_range": x_range}
+        fig = figure(
+            height=170,
+            width=430,
+            **extra,
+            x_axis_label="time",
+            y_axis_label=label,
+            tools="save,reset",
+            toolbar_location=None,
+        )
+        fig.line("t", key, source=self.prof_src, line_color=color, line_width=2)
+        return fig
 
     def box(self) -> tuple[float, float, float, float]:
         """The view's data box (x0, x1, y0, y1) in m."""

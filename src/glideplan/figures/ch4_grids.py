@@ -8,7 +8,13 @@ import pathlib
 import numpy as np
 
 from glideplan.figures._common import pyplot, save_png
-from glideplan.figures.registry import FigureReport, Printed, compare, reproducible, yes_no
+from glideplan.figures.registry import (
+    FigureReport,
+    Printed,
+    compare,
+    reproducible_each,
+    yes_no,
+)
 from glideplan.pose import Pose
 from glideplan.studies.min_time_table import example_car
 
@@ -118,31 +124,23 @@ def _grid_figure(fid: str, out_dir: pathlib.Path, full: bool) -> FigureReport:
     return FigureReport(files=(f.name,), rows=tuple(rows), notes=text)
 
 
-@reproducible(
-    "fig4.9",
-    title="Optimal paths over a grid of goals, psi1 = 0",
-    dissertation="Fig 4.9: lowest-cost paths to a grid of endpoints on [-3, 3]^2 with psi1 = 0; "
-    "some are Dubins paths, e.g. x1 = (2, 2, 0) and (2, -2, 0).",
+reproducible_each(
+    {
+        "fig4.9": (
+            "Optimal paths over a grid of goals, psi1 = 0",
+            "Fig 4.9: lowest-cost paths to a grid of endpoints on [-3, 3]^2 with psi1 = 0; "
+            "some are Dubins paths, e.g. x1 = (2, 2, 0) and (2, -2, 0).",
+        ),
+        "fig4.10": (
+            "Optimal paths over a grid of goals, psi1 = 2pi/3",
+            "Fig 4.10: lowest-cost paths to a grid of endpoints on [-3, 3]^2 with "
+            "psi1 = 2pi/3; most involve cornering turns.",
+        ),
+        "fig4.11": (
+            "Optimal paths over a grid of goals, psi1 = pi",
+            "Fig 4.11: lowest-cost paths to a grid of endpoints on [-3, 3]^2 with psi1 = pi; "
+            "the path to x1 = (-2, 0, pi) and its mirror image have equal cost.",
+        ),
+    },
+    _grid_figure,
 )
-def fig4_9(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    return _grid_figure("fig4.9", out_dir, full)
-
-
-@reproducible(
-    "fig4.10",
-    title="Optimal paths over a grid of goals, psi1 = 2pi/3",
-    dissertation="Fig 4.10: lowest-cost paths to a grid of endpoints on [-3, 3]^2 with "
-    "psi1 = 2pi/3; most involve cornering turns.",
-)
-def fig4_10(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    return _grid_figure("fig4.10", out_dir, full)
-
-
-@reproducible(
-    "fig4.11",
-    title="Optimal paths over a grid of goals, psi1 = pi",
-    dissertation="Fig 4.11: lowest-cost paths to a grid of endpoints on [-3, 3]^2 with psi1 = pi; "
-    "the path to x1 = (-2, 0, pi) and its mirror image have equal cost.",
-)
-def fig4_11(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    return _grid_figure("fig4.11", out_dir, full)

@@ -15,7 +15,14 @@ from typing import Any
 import numpy as np
 
 from glideplan.figures._common import pyplot, save_png
-from glideplan.figures.registry import FigureReport, Printed, compare, reproducible, yes_no
+from glideplan.figures.registry import (
+    FigureReport,
+    Printed,
+    compare,
+    reproducible,
+    reproducible_each,
+    yes_no,
+)
 from glideplan.pose import Pose
 from glideplan.solution import Solution
 from glideplan.units import ms_to_kmh
@@ -393,30 +400,22 @@ def _example_figure(figure_id: str, out_dir: pathlib.Path) -> FigureReport:
     )  # fmt: skip
 
 
-@reproducible(
-    "fig5.5",
-    title="Path synthesis for the goal (0, 1, 2pi/3) R_stf",
-    dissertation="Fig 5.5: candidate paths with costs, Dubins at v_stf dashed, optimal "
-    "control history; best BBB RLR, 2.4 m (11%) less altitude than the Dubins path",
+reproducible_each(
+    {
+        "fig5.5": (
+            "Path synthesis for the goal (0, 1, 2pi/3) R_stf",
+            "Fig 5.5: candidate paths with costs, Dubins at v_stf dashed, optimal "
+            "control history; best BBB RLR, 2.4 m (11%) less altitude than the Dubins path",
+        ),
+        "fig5.6": (
+            "Path synthesis for the goal (-3, 4, 0) R_stf",
+            "Fig 5.6: best BSB LSR, 1.8 m (6.5%) less altitude than the Dubins path",
+        ),
+        "fig5.7": (
+            "Path synthesis for the goal (0, 2, 7pi/4) R_stf",
+            "Fig 5.7: best BSB LSL (the Dubins path is LSL too), 1.7 m (7.8%) less "
+            "altitude than the Dubins path",
+        ),
+    },
+    lambda fid, out_dir, full: _example_figure(fid, out_dir),
 )
-def fig5_5(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    return _example_figure("fig5.5", out_dir)
-
-
-@reproducible(
-    "fig5.6",
-    title="Path synthesis for the goal (-3, 4, 0) R_stf",
-    dissertation="Fig 5.6: best BSB LSR, 1.8 m (6.5%) less altitude than the Dubins path",
-)
-def fig5_6(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    return _example_figure("fig5.6", out_dir)
-
-
-@reproducible(
-    "fig5.7",
-    title="Path synthesis for the goal (0, 2, 7pi/4) R_stf",
-    dissertation="Fig 5.7: best BSB LSL (the Dubins path is LSL too), 1.7 m (7.8%) less "
-    "altitude than the Dubins path",
-)
-def fig5_7(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    return _example_figure("fig5.7", out_dir)

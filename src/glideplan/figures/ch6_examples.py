@@ -13,7 +13,13 @@ from typing import Any
 
 from glideplan.errors import PlanningError
 from glideplan.figures.ch6 import draw_solution, solve_example
-from glideplan.figures.registry import FigureReport, Printed, compare, reproducible, yes_no
+from glideplan.figures.registry import (
+    FigureReport,
+    Printed,
+    compare,
+    reproducible_each,
+    yes_no,
+)
 
 __all__ = ["EXAMPLES"]
 
@@ -67,31 +73,23 @@ def _example(fig_id: str, out_dir: pathlib.Path) -> FigureReport:
     return FigureReport(files=(name,), rows=rows, data={"cost": sol.cost})
 
 
-@reproducible(
-    "fig6.11",
-    title="Locally optimal solution for x1 = (-2, 4, 7 pi/4)",
-    dissertation="Fig 6.11: one long left turn on the extremal locus and stall boundary, wings "
-    "level only at an isolated point; independent cost 0.36138",
+reproducible_each(
+    {
+        "fig6.11": (
+            "Locally optimal solution for x1 = (-2, 4, 7 pi/4)",
+            "Fig 6.11: one long left turn on the extremal locus and stall boundary, wings "
+            "level only at an isolated point; independent cost 0.36138",
+        ),
+        "fig6.12": (
+            "Locally optimal solution for x1 = (0, -0.5, pi)",
+            "Fig 6.12: L-R-L; the speed along the locus mirrors about (1, 1); independent "
+            "cost 0.26256",
+        ),
+        "fig6.13": (
+            "Locally optimal solution for x1 = (1.1, 2, 0)",
+            "Fig 6.13: L-R, the only example that reaches the corner; independent cost "
+            "0.20926 with 84% of the path at the corner",
+        ),
+    },
+    lambda fid, out_dir, full: _example(fid, out_dir),
 )
-def fig6_11(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    return _example("fig6.11", out_dir)
-
-
-@reproducible(
-    "fig6.12",
-    title="Locally optimal solution for x1 = (0, -0.5, pi)",
-    dissertation="Fig 6.12: L-R-L; the speed along the locus mirrors about (1, 1); independent "
-    "cost 0.26256",
-)
-def fig6_12(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    return _example("fig6.12", out_dir)
-
-
-@reproducible(
-    "fig6.13",
-    title="Locally optimal solution for x1 = (1.1, 2, 0)",
-    dissertation="Fig 6.13: L-R, the only example that reaches the corner; independent cost "
-    "0.20926 with 84% of the path at the corner",
-)
-def fig6_13(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    return _example("fig6.13", out_dir)

@@ -7,6 +7,7 @@ verdict is computed by `verdict()` from the numbers and the tolerance, never wri
 
 from __future__ import annotations
 
+import functools
 import math
 import pathlib
 import re
@@ -31,6 +32,7 @@ __all__ = [
     "get_figure",
     "half_unit",
     "reproducible",
+    "reproducible_each",
     "run_figure",
     "verdict",
     "yes_no",
@@ -244,6 +246,27 @@ def reproducible(
         return function
 
     return deco
+
+
+def reproducible_each(
+    figures: Mapping[str, tuple[str, str]],
+    draw: Callable[[str, pathlib.Path, bool], FigureReport],
+) -> None:
+    """Register one figure per id (title, dissertation text), drawn by `draw(id, out, full)`."""
+    for figure_id, (title, dissertation) in figures.items():
+        reproducible(figure_id, title=title, dissertation=dissertation)(
+            functools.partial(_draw_one, draw, figure_id)
+        )
+
+
+def _draw_one(
+    draw: Callable[[str, pathlib.Path, bool], FigureReport],
+    figure_id: str,
+    out_dir: pathlib.Path,
+    *,
+    full: bool = False,
+) -> FigureReport:
+    return draw(figure_id, out_dir, full)
 
 
 def _sort_key(fid: str) -> tuple[int, int, str]:

@@ -10,6 +10,7 @@ from __future__ import annotations
 import csv
 import json
 import pathlib
+from dataclasses import dataclass
 from typing import Any
 from xml.sax.saxutils import escape
 
@@ -22,27 +23,42 @@ from glideplan.missions.straight_legs import StraightLegList
 __all__ = ["write_csv", "write_geojson", "write_gpx", "write_kml"]
 
 
-def _track_latlon(
-    plan: MissionPlan | FieldMission, track: Track
-) -> tuple[np.ndarray, np.ndarray]:
-    assert plan.route.projection is not None
-    lat, lon = plan.route.projection.to_geographic(track.x, track.y)
-    return lat, lon
+@dataclass(frozen=True)
+class _LatLon:
+    """A mission's waypoints, straight legs and planned track in WGS84 degrees."""
+
+    lat: np.ndarray
+    lon: np.ndarray
+    legs_lat: np.ndarray
+    legs_lon: np.ndarray
+    track_lat: np.ndarray
+    track_lon: np.ndarray
+
+
+def _latlon(plan: MissionPlan | FieldMission, legs: StraightLegList, track: Track) -> _LatLon:
+    """The geographic coordinates every interchange writer needs (the track projected back)."""
+    r = plan.route
+    assert r.lat is not None and r.lon is not None and legs.lat is not None
+    assert legs.lon is not None and r.projection is not None
+    lat, lon = r.projection.to_geographic(track.x, track.y)
+    return _LatLon(r.lat, r.lon, legs.lat, legs.lon, lat, lon)
+
+
+def _lonlat_pairs(lon: np.ndarray, lat: np.ndarray) -> list[list[float]]:
+    """GeoJSON positions [lon, lat] (degrees) as plain floats."""
+    return [[float(a), float(b)] for a, b in zip(lon, lat, strict=True)]
 
 
 def write_geojson(
     plan: MissionPlan | FieldMission, legs: StraightLegList, track: Track, path: pathlib.Path
 ) -> pathlib.Path:
     """A FeatureCollection: mission waypoints (Points), straight legs and track (LineStrings)."""
-    r = plan.route
-    assert r.lat is not None and r.lon is not None and legs.lat is not None
-    assert legs.lon is not None
-    lat, lon = _track_latlon(plan, track)
+    r, g = plan.route, _latlon(plan, legs, track)
     hd = plan.headings_deg
     feats: list[dict[str, Any]] = [
         {
             "type": "Feature",
-            "geometry": {"type": "Point", "coordinates": [float(r.lon[i]), float(r.lat[i])]},
+            "geometry": {"type": "Point", "coordinates": [float(g.lon[i]), float(g.lat[i])]},
             "properties": {"name": r.names[i], "kind": "waypoint", "heading_deg": hd[i],
                            "heading_given": not bool(r.free[i])},
         }
@@ -51,15 +67,14 @@ def write_geojson(
     feats.append({
         "type": "Feature",
         "geometry": {"type": "LineString",
-                     "coordinates": [[float(a), float(b)] for a, b in zip(legs.lon, legs.lat,
-                                                                          strict=True)]},
+                     "coordinates": _lonlat_pairs(g.legs_lon, g.legs_lat)},
         "properties": {"name": "straight legs", "kind": "straight_legs",
                        "max_deviation_m": legs.max_deviation_m},
     })
     feats.append({
         "type": "Feature",
         "geometry": {"type": "LineString",
-                     "coordinates": [[float(a), float(b)] for a, b in zip(lon, lat, strict=True)]},
+                     "coordinates": _lonlat_pairs(g.track_lon, g.track_lat)},
         "properties": {"name": "track", "kind": "track",
                        "length_m": plan.total_length_m, "duration_s": plan.total_duration_s},
     })
@@ -75,10 +90,7 @@ def write_kml(
     plan: MissionPlan | FieldMission, legs: StraightLegList, track: Track, path: pathlib.Path
 ) -> pathlib.Path:
     """KML 2.2: a Document with waypoint Placemarks, the straight legs and the track."""
-    r = plan.route
-    assert r.lat is not None and r.lon is not None and legs.lat is not None
-    assert legs.lon is not None
-    lat, lon = _track_latlon(plan, track)
+    r, g = plan.route, _latlon(plan, legs, track)
     hd = plan.headings_deg
     parts = [
         '<?xml version="1.0" encoding="UTF-8"?>',
@@ -94,18 +106,18 @@ def write_kml(
         parts.append(
             f"<Placemark><name>{escape(r.names[i])}</name>"
             f"<description>heading {hd[i]:.1f} deg</description>"
-            f"<Point><coordinates>{r.lon[i]:.9f},{r.lat[i]:.9f},0</coordinates></Point>"
+            f"<Point><coordinates>{g.lon[i]:.9f},{g.lat[i]:.9f},0</coordinates></Point>"
             "</Placemark>"
         )
     parts.append(
         "<Placemark><name>straight legs</name><styleUrl>#legs</styleUrl><LineString>"
-        f"<tessellate>1</tessellate><coordinates>{_kml_coords(legs.lon, legs.lat)}"
+        f"<tessellate>1</tessellate><coordinates>{_kml_coords(g.legs_lon, g.legs_lat)}"
         "</coordinates></LineString></Placemark>"
     )
     parts.append(
         "<Placemark><name>track</name><styleUrl>#track</styleUrl><LineString>"
-        f"<tessellate>1</tessellate><coordinates>{_kml_coords(lon, lat)}</coordinates>"
-        "</LineString></Placemark>"
+        f"<tessellate>1</tessellate><coordinates>{_kml_coords(g.track_lon, g.track_lat)}"
+        "</coordinates></LineString></Placemark>"
     )
     parts += ["</Document>", "</kml>", ""]
     path.write_text("\n".join(parts), encoding="utf-8")
@@ -118,24 +130,21 @@ def write_gpx(
     """GPX 1.1: waypoints (wpt), the straight-leg route (rte) and the track (trk)."""
     import gpxpy.gpx
 
-    r = plan.route
-    assert r.lat is not None and r.lon is not None and legs.lat is not None
-    assert legs.lon is not None
-    lat, lon = _track_latlon(plan, track)
+    r, g = plan.route, _latlon(plan, legs, track)
     gpx = gpxpy.gpx.GPX()
     gpx.creator = "glideplan"
     hd = plan.headings_deg
     for i in range(r.n):
         gpx.waypoints.append(gpxpy.gpx.GPXWaypoint(
-            float(r.lat[i]), float(r.lon[i]), name=r.names[i],
+            float(g.lat[i]), float(g.lon[i]), name=r.names[i],
             comment=f"heading {hd[i]:.1f} deg"))
     rte = gpxpy.gpx.GPXRoute(name="straight legs")
-    for name, a, b in zip(legs.names, legs.lat, legs.lon, strict=True):
+    for name, a, b in zip(legs.names, g.legs_lat, g.legs_lon, strict=True):
         rte.points.append(gpxpy.gpx.GPXRoutePoint(float(a), float(b), name=name))
     gpx.routes.append(rte)
     trk = gpxpy.gpx.GPXTrack(name="track")
     seg = gpxpy.gpx.GPXTrackSegment()
-    for a, b in zip(lat, lon, strict=True):
+    for a, b in zip(g.track_lat, g.track_lon, strict=True):
         seg.points.append(gpxpy.gpx.GPXTrackPoint(float(a), float(b)))
     trk.segments.append(seg)
     gpx.tracks.append(trk)

@@ -12,7 +12,7 @@ import csv
 import json
 import math
 import pathlib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from glideplan.errors import InvalidParameterError
@@ -27,11 +27,19 @@ ROUTE_EXTENSIONS = (".csv", ".gpx", ".kml", ".geojson", ".json")
 class _Points:
     """Waypoints as read: names, first and second coordinate, headings (deg, NaN free)."""
 
-    names: list[str]
-    a: list[float]  # lat or x
-    b: list[float]  # lon or y
-    headings: list[float]
-    where: list[str]  # "line 3", "rtept 2", "feature 4": for error messages
+    names: list[str] = field(default_factory=list)
+    a: list[float] = field(default_factory=list)  # lat or x
+    b: list[float] = field(default_factory=list)  # lon or y
+    headings: list[float] = field(default_factory=list)
+    where: list[str] = field(default_factory=list)  # "line 3", "rtept 2": for error messages
+
+    def add(self, name: str, a: float, b: float, where: str, heading: float = math.nan) -> None:
+        """Append one waypoint (heading in degrees, NaN when free)."""
+        self.names.append(name)
+        self.a.append(a)
+        self.b.append(b)
+        self.headings.append(heading)
+        self.where.append(where)
 
 
 def _bad(path: pathlib.Path, where: str, value: Any, rule: str) -> InvalidParameterError:
@@ -122,20 +130,18 @@ def _read_csv(p: pathlib.Path, data: bytes) -> tuple[_Points, bool]:
                    "heading_deg)")
     kn = cols.index("name") if "name" in cols else None
     kh = next((cols.index(c) for c in ("heading_deg", "heading") if c in cols), None)
-    out = _Points([], [], [], [], [])
+    out = _Points()
     for n, row in rows[1:]:
         where = f"line {n}"
         if len(row) != len(cols):
             raise _bad(p, where, ",".join(row),
                        f"has {len(row)} fields, the header has {len(cols)}")
-        out.a.append(_number(p, where, cols[ka], row[ka]))
-        out.b.append(_number(p, where, cols[kb], row[kb]))
-        out.headings.append(
-            math.nan if kh is None else _number(p, where, cols[kh], row[kh], empty_nan=True)
-        )
-        out.names.append(row[kn].strip() if kn is not None and row[kn].strip()
-                         else f"WP{len(out.names) + 1:02d}")
-        out.where.append(where)
+        a = _number(p, where, cols[ka], row[ka])
+        b = _number(p, where, cols[kb], row[kb])
+        h = math.nan if kh is None else _number(p, where, cols[kh], row[kh], empty_nan=True)
+        name = (row[kn].strip() if kn is not None and row[kn].strip()
+                else f"WP{len(out.names) + 1:02d}")
+        out.add(name, a, b, where, h)
     return out, local
 
 
@@ -158,13 +164,10 @@ def _read_gpx(p: pathlib.Path, data: bytes) -> _Points:
     else:
         pts = [q for t in gpx.tracks[:1] for s in t.segments for q in s.points]
         kind = "trkpt"
-    out = _Points([], [], [], [], [])
+    out = _Points()
     for i, q in enumerate(pts, start=1):
-        out.names.append((q.name or "").strip() or f"WP{i:02d}")
-        out.a.append(float(q.latitude))
-        out.b.append(float(q.longitude))
-        out.headings.append(math.nan)
-        out.where.append(f"{kind} {i}")
+        out.add((q.name or "").strip() or f"WP{i:02d}", float(q.latitude), float(q.longitude),
+                f"{kind} {i}")
     if not out.names:
         raise _bad(p, "", "GPX", "has no route points, waypoints or track points")
     return out
@@ -188,26 +191,20 @@ def _read_kml(p: pathlib.Path, data: bytes) -> _Points:
             walk(f)
 
     walk(doc)
-    out = _Points([], [], [], [], [])
+    out = _Points()
     for k, pm in enumerate(placemarks, start=1):
         g = pm.geometry
         if type(g).__name__ == "LineString":
             name = (pm.name or "").strip() or "WP"
             for i, c in enumerate(g.coords, start=1):
-                out.names.append(f"{name}{i:02d}" if name == "WP" else f"{name}-{i}")
-                out.a.append(float(c[1]))
-                out.b.append(float(c[0]))
-                out.headings.append(math.nan)
-                out.where.append(f"placemark {k} ({pm.name or 'LineString'}) point {i}")
+                out.add(f"{name}{i:02d}" if name == "WP" else f"{name}-{i}", float(c[1]),
+                        float(c[0]), f"placemark {k} ({pm.name or 'LineString'}) point {i}")
             return out
     for k, pm in enumerate(placemarks, start=1):
         g = pm.geometry
         if type(g).__name__ == "Point":
-            out.names.append((pm.name or "").strip() or f"WP{len(out.names) + 1:02d}")
-            out.a.append(float(g.y))
-            out.b.append(float(g.x))
-            out.headings.append(math.nan)
-            out.where.append(f"placemark {k} ({pm.name or 'Point'})")
+            out.add((pm.name or "").strip() or f"WP{len(out.names) + 1:02d}", float(g.y),
+                    float(g.x), f"placemark {k} ({pm.name or 'Point'})")
     if not out.names:
         raise _bad(p, "", "KML", "has no LineString or Point placemarks")
     return out
@@ -229,7 +226,7 @@ def _read_geojson(p: pathlib.Path, data: bytes) -> _Points:
         feats = [obj]
     else:
         feats = [{"type": "Feature", "geometry": obj, "properties": {}}]
-    out = _Points([], [], [], [], [])
+    out = _Points()
     geoms = []
     for k, f in enumerate(feats, start=1):
         g = f.get("geometry") if isinstance(f, dict) else None
@@ -244,24 +241,16 @@ def _read_geojson(p: pathlib.Path, data: bytes) -> _Points:
             for i, c in enumerate(coords, start=1):
                 where = f"feature {k} point {i}"
                 lon, lat = _position(p, where, c)
-                out.names.append(f"WP{i:02d}")
-                out.a.append(lat)
-                out.b.append(lon)
-                out.headings.append(math.nan)
-                out.where.append(where)
+                out.add(f"WP{i:02d}", lat, lon, where)
             return out
     for k, g, props in geoms:
         if g.get("type") == "Point":
             where = f"feature {k}"
             lon, lat = _position(p, where, g.get("coordinates"))
-            out.names.append(str(props.get("name") or f"WP{len(out.names) + 1:02d}"))
-            out.a.append(lat)
-            out.b.append(lon)
+            name = str(props.get("name") or f"WP{len(out.names) + 1:02d}")
             h = props.get("heading_deg")
-            out.headings.append(
-                math.nan if h is None else _number(p, where, "heading_deg", str(h))
-            )
-            out.where.append(where)
+            heading = math.nan if h is None else _number(p, where, "heading_deg", str(h))
+            out.add(name, lat, lon, where, heading)
     if not out.names:
         raise _bad(p, "", "GeoJSON", "has no LineString or Point features")
     return out

@@ -8,6 +8,14 @@ arrives. The router models a point mass steering its heading freely, so waypoint
 not constrained: the heading reported at a waypoint is the heading through the water when
 leaving it (at the last waypoint, when arriving); a heading given in the route is noted as
 not enforced.
+
+With a turn radius R0 (`radius`), each routed leg becomes the glider-scale flyable path of
+`glideplan.routing.glider`: Dubins pieces of the feasible radius R0' = R0 (1 + eps)^2 (eq. 3.3)
+with eps = max |c| / V along that leg, joined at every waypoint with a continuous course (each
+leg ends on the next leg's initial ground course), and followed in closed loop through the same
+field (the current at the vehicle's position as the disturbance; cross-track error reported per
+leg). The mission's track, and so every exported file, is then that flyable path; its times are
+the route's times at the same fraction of the distance.
 """
 
 from __future__ import annotations
@@ -20,7 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
-from glideplan.geodesy import compass_to_heading
+from glideplan.geodesy import LocalProjection, compass_to_heading
 from glideplan.missions.plan import Track
 from glideplan.missions.route import Route
 from glideplan.validation import check_positive
@@ -38,6 +46,7 @@ class FieldLeg:
     result: Any  # glideplan.routing.RouteResult
     length_m: float
     duration_s: float
+    glider: Any = None  # glideplan.routing.glider.GliderFollow with `radius`
 
     @property
     def word(self) -> str:
@@ -79,13 +88,27 @@ class FieldMission:
         """Compass heading through the water at each waypoint (leaving it; the last: arriving)."""
         return [float((90.0 - math.degrees(h)) % 360.0) for h in self.headings]
 
+    @property
+    def smallest_radius(self) -> float | None:
+        """The smallest feasible radius R0' of the legs' flyable paths (m), None without."""
+        radii = [leg.glider.feasible_radius_m for leg in self.legs
+                 if leg.glider is not None and leg.glider.feasible_radius_m is not None]
+        return min(radii) if radii else None
+
     def track_spacing(self, tolerance: float) -> float:
-        """The router's own samples are used (no closed form to resample)."""
-        return 0.0
+        """Flyable paths: the spacing whose arcs of radius R0' leave their chords by <= 1 % of
+        `tolerance` (sagitta s^2 / (8 R0')); otherwise the router's own samples (0)."""
+        r = self.smallest_radius
+        if r is None:
+            return 0.0
+        return min(r / 10.0, math.sqrt(0.08 * r * tolerance))
 
     def track(self, spacing: float | None = None) -> Track:
-        """The legs' route samples in the mission's local plane (m), chained in time."""
+        """The track in the mission's local plane (m), chained in time: the legs' flyable paths
+        sampled every `spacing` m (default R0' / 10) with a radius, else the route samples."""
         assert self.route.projection is not None
+        if self.smallest_radius is not None:
+            return self._flyable_track(spacing or self.smallest_radius / 10.0)
         xs, ys, hs, legs, ts = [], [], [], [], []
         t0 = 0.0
         for leg in self.legs:
@@ -103,6 +126,34 @@ class FieldMission:
         return Track(np.concatenate(xs), np.concatenate(ys), np.concatenate(hs),
                      np.concatenate(legs).astype(np.intp), np.concatenate(ts))
 
+    def _flyable_track(self, spacing: float) -> Track:
+        proj = self.route.projection
+        assert proj is not None
+        xs, ys, hs, legs, ts = [], [], [], [], []
+        t0 = 0.0
+        for leg in self.legs:
+            fp = leg.glider.flyable
+            s, lx, ly, chi = fp.sample(spacing)
+            lat, lon = fp.proj.to_geographic(lx, ly)
+            x, y = proj.to_local(lat, lon)
+            # course: the tangent carried into the mission's plane by a short step along it
+            lat2, lon2 = fp.proj.to_geographic(lx + np.cos(chi), ly + np.sin(chi))
+            x2, y2 = proj.to_local(lat2, lon2)
+            res = leg.result
+            first = 0 if leg.index == 0 else 1
+            x[0], y[0] = self.route.x[leg.start], self.route.y[leg.start]
+            x[-1], y[-1] = self.route.x[leg.end], self.route.y[leg.end]
+            rs = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(res.x), np.diff(res.y)))])
+            t = np.interp(s / s[-1] * rs[-1], rs, np.asarray(res.t, dtype=float))
+            xs.append(x[first:])
+            ys.append(y[first:])
+            hs.append(np.arctan2(y2 - y, x2 - x)[first:])
+            legs.append(np.full(x.size - first, leg.index))
+            ts.append(t0 + t[first:])
+            t0 += leg.duration_s
+        return Track(np.concatenate(xs), np.concatenate(ys), np.concatenate(hs),
+                     np.concatenate(legs).astype(np.intp), np.concatenate(ts))
+
     def to_dict(self) -> dict[str, Any]:
         r = self.route
         assert r.lat is not None and r.lon is not None
@@ -110,7 +161,7 @@ class FieldMission:
             "status": "solved" if self.ok else "unreachable",
             "objective": "time",
             "speed": self.speed,
-            "radius": None,
+            "radius": self.radius,
             "wind": None,
             "field": self.field_info,
             "total_length_m": self.total_length_m,
@@ -129,6 +180,11 @@ class FieldMission:
                     "status": leg.result.status,
                     "endpoint_error": {"position": leg.result.endpoint_error_m},
                     "straight_line_duration_s": leg.result.straight_line_duration_s,
+                    "depart": _iso(leg.result.depart),
+                    "arrive": _iso(leg.result.arrive),
+                    "depart_s": float(leg.result.depart_s),
+                    "glider": None if leg.glider is None else {
+                        k: v for k, v in leg.glider.to_dict().items() if k != "track"},
                 }
                 for leg in self.legs
             ],
@@ -136,25 +192,47 @@ class FieldMission:
         }
 
 
+def _iso(when: np.datetime64 | None) -> str | None:
+    """ISO 8601 UTC with milliseconds (None without a calendar)."""
+    return None if when is None else str(when.astype("datetime64[ms]")) + "Z"
+
+
 def plan_mission_in_field(
     route: Route, flow: Any, *, speed: float, depart: Any = None,
     depth_range: tuple[float, float] | None = None, resolution: float | None = None,
+    radius: float | None = None,
 ) -> FieldMission:
     """Route every leg of a geographic `route` through `flow` (a FlowField or file paths).
 
     `depart` (datetime64, seconds since the field's epoch, or None: its first time), the
-    `depth_range` (m) and grid `resolution` (m) go to `glideplan.routing.route`.
+    `depth_range` (m) and grid `resolution` (m) go to `glideplan.routing.route`; leg i + 1
+    departs when leg i arrives. `radius` R0 (m): build and follow each leg's flyable path
+    (module docstring). A leg that would depart at or after the field's last time raises
+    `PlanningError`.
     """
+    from glideplan.errors import PlanningError
+    from glideplan.fields.field import FlowField
     from glideplan.routing import route as route_leg
 
     speed = check_positive("speed", speed)
+    if radius is not None:
+        radius = check_positive("radius", radius)
     if route.lat is None or route.lon is None:
         raise InvalidParameterError(
             "field", "local route", "routing through a field needs a geographic route (lat/lon)")
+    if not isinstance(flow, FlowField):
+        from glideplan.fields import open_field
+
+        flow, depth_range = open_field(flow, depth_range=depth_range), None
     legs: list[FieldLeg] = []
     t = depart
     info: dict[str, Any] = {}
     for i in range(route.n - 1):
+        if i > 0 and flow.time_span is not None and float(t) >= flow.time_span[1]:
+            raise PlanningError(
+                f"leg {i + 1} ({route.names[i]} -> {route.names[i + 1]}) would depart at "
+                f"{flow.format_time(float(t))}, at or after the field's last time "
+                f"{flow.format_time(flow.time_span[1])}")
         res = route_leg(flow, (float(route.lat[i]), float(route.lon[i])),
                         (float(route.lat[i + 1]), float(route.lon[i + 1])), speed,
                         depart=t, depth_range=depth_range, resolution=resolution)
@@ -165,6 +243,8 @@ def plan_mission_in_field(
         duration = float(res.duration_s or 0.0)
         legs.append(FieldLeg(i, i, i + 1, res, float(res.distance_m), duration))
         t = float(res.depart_s) + duration
+    if radius is not None and all(leg.ok for leg in legs):
+        legs = _fly_legs(legs, flow, speed, radius)
     h = np.full(route.n, np.nan)
     for leg in legs:
         if leg.ok and len(leg.result.heading_deg):
@@ -181,4 +261,41 @@ def plan_mission_in_field(
             "roundtrip_error_deg": route.roundtrip_error_deg,
         },
     }
-    return FieldMission(route, np.nan_to_num(h), tuple(legs), speed, info, stats)
+    if radius is not None:
+        stats["flyable"] = {
+            "feasible_radius_m": [leg.glider.feasible_radius_m for leg in legs],
+            "path_length_m": sum(leg.glider.path_length_m for leg in legs),
+            "max_cross_track_m": max((leg.glider.max_cross_track_m or 0.0) for leg in legs),
+        } if all(leg.glider is not None for leg in legs) else None
+    return FieldMission(route, np.nan_to_num(h), tuple(legs), speed, info, stats,
+                        radius=radius)
+
+
+def _fly_legs(legs: list[FieldLeg], flow: Any, speed: float, radius: float) -> list[FieldLeg]:
+    """Each leg's flyable path, ending on the next leg's initial ground course, followed in
+    closed loop through `flow` (glideplan.routing.glider.follow_route)."""
+    from glideplan.errors import PlanningError
+    from glideplan.routing.glider import flyable_path, follow_route
+    from glideplan.routing.grid import local_rotation, rotate_to_local
+
+    # Initial course of each leg: in its own aeqd plane, whose axes are east/north at its start.
+    first = []
+    for leg in legs:
+        fp = flyable_path(leg.result, flow, speed, radius)
+        if fp.path is None:
+            raise PlanningError(f"leg {leg.index + 1}: no flyable path: {fp.message}")
+        first.append(float(fp.path.h0[0, 0]))
+    out = []
+    for k, leg in enumerate(legs):
+        end_course = None
+        if k + 1 < len(legs):
+            res = leg.result
+            proj = LocalProjection(float(res.lat[0]), float(res.lon[0]))
+            lat, lon = np.atleast_1d(res.lat[-1]), np.atleast_1d(res.lon[-1])
+            cg, sg = local_rotation(proj, lat, lon)
+            ex, ny = rotate_to_local(np.cos(first[k + 1]), np.sin(first[k + 1]), cg, sg)
+            end_course = float(np.arctan2(ny[0], ex[0]))
+        glider = follow_route(leg.result, flow, speed, radius, end_course=end_course)
+        out.append(FieldLeg(leg.index, leg.start, leg.end, leg.result, leg.length_m,
+                            leg.duration_s, glider))
+    return out

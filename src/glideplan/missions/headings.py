@@ -30,6 +30,7 @@ from glideplan.errors import InvalidParameterError
 from glideplan.missions.leg_costs import dubins_length_matrix
 from glideplan.missions.wind_costs import convected_times
 from glideplan.planners.dubins import dubins_distance
+from glideplan.pose import TWO_PI, mod_2pi
 
 __all__ = [
     "HeadingPlan",
@@ -43,7 +44,6 @@ __all__ = [
     "point_at_next_headings",
 ]
 
-TWO_PI = 2.0 * math.pi
 _GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
 
 
@@ -201,7 +201,7 @@ def _candidates(
             sets.append(np.array([h]))
         else:
             more = np.array([e[i] for e in extra])
-            sets.append(np.unique(np.concatenate([grid, np.mod(more, TWO_PI)])))
+            sets.append(np.unique(np.concatenate([grid, mod_2pi(more)])))
     return sets
 
 
@@ -313,7 +313,7 @@ def optimise_headings(
         "dp_seconds": t1 - t0,
         "refine_seconds": t2 - t1,
     }
-    return HeadingPlan(np.mod(h, TWO_PI), legs, total, stats)
+    return HeadingPlan(np.asarray(mod_2pi(h)), legs, total, stats)
 
 
 def _refine(

@@ -18,21 +18,20 @@ final legs are planned (and verified) with the planner itself.
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from glideplan.planners.dubins import dubins_word_lengths
+from glideplan.pose import TWO_PI
 
 __all__ = ["convected_times"]
 
-TWO_PI = 2.0 * math.pi
 
-
-def _f(s: NDArray[np.float64], g: NDArray[np.float64], w: NDArray[np.float64],
-       tau: NDArray[np.float64]) -> NDArray[np.float64]:
+def _f(
+    s: NDArray[np.float64], g: NDArray[np.float64], w: NDArray[np.float64], tau: NDArray[np.float64]
+) -> NDArray[np.float64]:
     """F_W(tau) for all six words: `(m, 6)` (NaN where a word does not exist)."""
     goal = g.copy()
     goal[:, 0] -= w[0] * tau
@@ -123,8 +122,14 @@ def _scan(
         out_fb.append(f_next[hit])
         keep = ~hit & (t_next < hi)
         active, tau, f_prev, hi = active[keep], t_next[keep], f_next[keep], hi[keep]
-    return (np.concatenate(out_rows), np.concatenate(out_a), np.concatenate(out_b),
-            np.concatenate(out_fa), np.concatenate(out_x), np.concatenate(out_fb))
+    return (
+        np.concatenate(out_rows),
+        np.concatenate(out_a),
+        np.concatenate(out_b),
+        np.concatenate(out_fa),
+        np.concatenate(out_x),
+        np.concatenate(out_fb),
+    )
 
 
 def _roots(

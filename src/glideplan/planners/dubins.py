@@ -5,11 +5,8 @@ RLR, LRL) and the feasible turn radius R0' = R0 (1 + eps)^2 of section 3.2 (eq. 
 appendix A). The closed forms are those of REFERENCE_NOTES section 4.2 (Shkel & Lumelsky
 2001), rewritten in the start frame with the turning-circle centres: for a unit radius the
 start circles are centred at (0, +-1), the goal circles at (x -+ sin psi, y +- cos psi), and
-every word follows from the vector V between the two circle centres it uses:
-
-- LSL / RSR: straight length |V|, straight heading atan2(V);
-- LSR / RSL: straight length sqrt(|V|^2 - 4), heading atan2(V) +- atan2(2, p);
-- LRL / RLR: middle arc 2 pi - acos(1 - |V|^2 / 8) (needs |V| <= 4).
+every word follows from the vector V between the two circle centres it uses; the formulas
+are written once, in `glideplan.planners.dubins_kernel`, and this module wraps them.
 
 All functions broadcast over `(..., 3)` pose arrays (x, y, heading in rad) without a Python
 loop per query.
@@ -26,8 +23,10 @@ from numpy.typing import ArrayLike
 
 from glideplan.errors import InvalidParameterError
 from glideplan.path import Path
+from glideplan.planners.dubins_kernel import flat_word_totals, mod_2pi_snapped, segment_table
 from glideplan.planning import PlannerOutput, Problem, register_planner
-from glideplan.pose import TWO_PI, Pose
+from glideplan.pose import TWO_PI as TWO_PI  # re-exported: callers use dubins.TWO_PI
+from glideplan.pose import Pose
 from glideplan.segments import Arc, Segment, Straight
 from glideplan.solution import Candidate, Status
 from glideplan.validation import check_finite_array, check_in_range, check_positive
@@ -57,15 +56,6 @@ _DIRECTIONS: dict[str, tuple[int, int, int]] = {
     "LRL": (1, -1, 1),
 }
 
-_INV_2PI = 1.0 / TWO_PI
-# Angles within _SNAP turns below a multiple of 2 pi count as that multiple: a heading change of
-# -1e-17 rad from rounding is a zero-length arc, not a full circle (6e-11 rad at most).
-_SNAP = 1e-11
-# Words whose squared straight length (or CCC cosine) misses feasibility by rounding only.
-_FEAS_TOL = 1e-10
-_ZERO_TURN = 2.0 * TWO_PI * _SNAP  # turns shorter than this (rad, unit radius) are rounding
-_CHUNK = 8192
-
 
 def word_directions(word: str) -> tuple[int, int, int]:
     """Turn directions (+1 left, -1 right, 0 straight) of the three segments of a word."""
@@ -94,12 +84,7 @@ def feasible_radius(radius: ArrayLike, eps: ArrayLike) -> np.ndarray | float:
     return float(out) if out.ndim == 0 else out
 
 
-# ----- kernels on normalised start-frame goals (x, y, psi), unit radius ---------------------
-
-
-def mod_2pi_snapped(a: np.ndarray) -> np.ndarray:
-    """Angles to [-2 pi * _SNAP, 2 pi - 2 pi * _SNAP) (mod 2 pi; rounding noise below 0 kept)."""
-    return a - TWO_PI * np.floor(a * _INV_2PI + _SNAP)
+# ----- query handling (the word formulas are in `dubins_kernel`) --------------------------
 
 
 def _normalise(start: ArrayLike, goal: ArrayLike, radius: ArrayLike) -> tuple[np.ndarray, ...]:
@@ -114,186 +99,6 @@ def _normalise(start: ArrayLike, goal: ArrayLike, radius: ArrayLike) -> tuple[np
     psi = mod_2pi_snapped(g[:, 2] - s[:, 2])
     r = np.broadcast_to(r, x.shape)
     return tuple(a.reshape(shape) for a in (x, y, psi, r))
-
-
-def segment_table(x: np.ndarray, y: np.ndarray, psi: np.ndarray) -> np.ndarray:
-    """Segment lengths (t, p, q) of the six words for unit radius: `(..., 6, 3)`, NaN infeasible.
-
-    Dissertation eq. 2.11; closed forms of REFERENCE_NOTES 4.2 in circle-centre form.
-    """
-    sp, cp = np.sin(psi), np.cos(psi)
-    out = np.full((*x.shape, 6, 3), np.nan)
-    # LSL: start left circle (0, 1), goal left circle (x - sin, y + cos).
-    vx, vy = x - sp, y + cp - 1.0
-    d2_ll = vx * vx + vy * vy
-    phi_ll = np.arctan2(vy, vx)
-    out[..., 0, :] = np.stack(
-        [mod_2pi_snapped(phi_ll), np.sqrt(d2_ll), mod_2pi_snapped(psi - phi_ll)], axis=-1
-    )
-    # RSR: start right circle (0, -1), goal right circle (x + sin, y - cos).
-    vx, vy = x + sp, y - cp + 1.0
-    d2_rr = vx * vx + vy * vy
-    phi_rr = np.arctan2(vy, vx)
-    out[..., 3, :] = np.stack(
-        [mod_2pi_snapped(-phi_rr), np.sqrt(d2_rr), mod_2pi_snapped(phi_rr - psi)], axis=-1
-    )
-    # LSR: start left (0, 1) to goal right circle; internal tangent.
-    vx, vy = x + sp, y - cp - 1.0
-    p2 = vx * vx + vy * vy - 4.0
-    ok = p2 >= -_FEAS_TOL
-    p = np.sqrt(np.maximum(p2, 0.0))
-    phi = np.arctan2(vy * p + 2.0 * vx, vx * p - 2.0 * vy)
-    row = np.stack([mod_2pi_snapped(phi), p, mod_2pi_snapped(phi - psi)], axis=-1)
-    out[..., 1, :] = np.where(ok[..., None], row, np.nan)
-    # RSL: start right (0, -1) to goal left circle.
-    vx, vy = x - sp, y + cp + 1.0
-    p2 = vx * vx + vy * vy - 4.0
-    ok = p2 >= -_FEAS_TOL
-    p = np.sqrt(np.maximum(p2, 0.0))
-    phi = np.arctan2(vy * p - 2.0 * vx, vx * p + 2.0 * vy)
-    row = np.stack([mod_2pi_snapped(-phi), p, mod_2pi_snapped(psi - phi)], axis=-1)
-    out[..., 2, :] = np.where(ok[..., None], row, np.nan)
-    # RLR: both right circles, |V| <= 4; middle arc p = 2 pi - acos(1 - |V|^2 / 8).
-    c = 1.0 - d2_rr * 0.125
-    ok = c >= -1.0 - _FEAS_TOL
-    pm = TWO_PI - np.arccos(np.clip(c, -1.0, 1.0))
-    t = mod_2pi_snapped(0.5 * pm - phi_rr)
-    row = np.stack([t, pm, mod_2pi_snapped(pm - t - psi)], axis=-1)
-    out[..., 4, :] = np.where(ok[..., None], row, np.nan)
-    # LRL: both left circles.
-    c = 1.0 - d2_ll * 0.125
-    ok = c >= -1.0 - _FEAS_TOL
-    pm = TWO_PI - np.arccos(np.clip(c, -1.0, 1.0))
-    t = mod_2pi_snapped(phi_ll + 0.5 * pm)
-    row = np.stack([t, pm, mod_2pi_snapped(psi - t + pm)], axis=-1)
-    out[..., 5, :] = np.where(ok[..., None], row, np.nan)
-    # Rounding noise around zero (see mod_2pi_snapped) is a zero-length turn.
-    turns = out[..., [0, 2]]
-    turns[np.abs(turns) < _ZERO_TURN] = 0.0
-    out[..., [0, 2]] = turns
-    np.maximum(out, 0.0, out=out, where=~np.isnan(out))
-    return out
-
-
-def _word_totals_chunk(
-    start: np.ndarray, goal: np.ndarray, inv_radius: np.ndarray | float, tot: np.ndarray
-) -> None:
-    """Fill `tot` (6, m) with the six words' total lengths in units of R (inf infeasible).
-
-    The fast path of `segment_table` for flat `(m, 3)` start/goal chunks: the goal is moved into the
-    start frame here, and each word's two turn angles are summed in closed form. With
-    t' = M(phi), psi' = M(psi) in [0, 2 pi): LSL turns sum to psi' (+ 2 pi when t' > psi'),
-    RSR to M(-psi) (+ 2 pi when M(-phi) > M(-psi)), LSR to 2 t' - psi' (+ 2 pi when t' < psi'),
-    RSL to 2 M(-phi) + psi' (- 2 pi when that reaches 2 pi). The CCC words are evaluated only
-    where their circle centres are at most 4 R apart.
-    """
-    tiny = TWO_PI * _SNAP
-    sh = start[:, 2]
-    c0, s0 = np.cos(sh), np.sin(sh)
-    dx = goal[:, 0] - start[:, 0]
-    dy = goal[:, 1] - start[:, 1]
-    x = c0 * dx
-    x += s0 * dy
-    x *= inv_radius
-    y = c0 * dy
-    y -= s0 * dx
-    y *= inv_radius
-    psi = goal[:, 2] - sh
-    psi = mod_2pi_snapped(psi)  # [-tiny, 2 pi - tiny)
-    sp, cp = np.sin(psi), np.cos(psi)
-    np.maximum(psi, 0.0, out=psi)
-    psi_neg = TWO_PI - psi  # M(-psi), with M(-0) = 0
-    psi_neg[psi <= tiny] = 0.0
-    xm = x - sp
-    xp = x + sp
-    yp = y + cp
-    ym = y - cp
-
-    # LSL: left-left centre vector (xm, yp - 1).
-    vy = yp - 1.0
-    d2_ll = xm * xm
-    d2_ll += vy * vy
-    phi_ll = np.arctan2(vy, xm)
-    t = phi_ll + TWO_PI * (phi_ll < -tiny)
-    row = tot[0]
-    np.sqrt(d2_ll, out=row)
-    row += psi
-    row += TWO_PI * (t > psi + tiny)
-
-    # RSR: right-right centre vector (xp, ym + 1).
-    vy = ym + 1.0
-    d2_rr = xp * xp
-    d2_rr += vy * vy
-    phi_rr = np.arctan2(vy, xp)
-    t = TWO_PI * (phi_rr > tiny)
-    t -= phi_rr
-    row = tot[3]
-    np.sqrt(d2_rr, out=row)
-    row += psi_neg
-    row += TWO_PI * (t > psi_neg + tiny)
-
-    # LSR: left to right circle, straight sqrt(|V|^2 - 4), heading atan2(V) + atan2(2, p).
-    vy = ym - 1.0
-    p = xp * xp
-    p += vy * vy
-    p -= 4.0
-    bad = p < -_FEAS_TOL
-    np.maximum(p, 0.0, out=p)
-    np.sqrt(p, out=p)
-    phi = np.arctan2(vy * p + 2.0 * xp, xp * p - 2.0 * vy)
-    t = phi + TWO_PI * (phi < -tiny)
-    np.maximum(t, 0.0, out=t)  # rounding noise below zero is a zero-length turn
-    row = tot[1]
-    np.subtract(p, psi, out=row)
-    row += 2.0 * t
-    row += TWO_PI * (t < psi - tiny)
-    row[bad] = np.inf
-
-    # RSL: right to left circle, heading atan2(V) - atan2(2, p).
-    vy = yp + 1.0
-    p = xm * xm
-    p += vy * vy
-    p -= 4.0
-    bad = p < -_FEAS_TOL
-    np.maximum(p, 0.0, out=p)
-    np.sqrt(p, out=p)
-    phi = np.arctan2(vy * p - 2.0 * xm, xm * p + 2.0 * vy)
-    t = TWO_PI * (phi > tiny)
-    t -= phi
-    np.maximum(t, 0.0, out=t)
-    t += psi  # t + psi' in [0, 4 pi): the last turn is its value mod 2 pi
-    row = tot[2]
-    np.add(p, t, out=row)
-    row += t
-    row -= psi
-    row -= TWO_PI * (t >= TWO_PI - tiny)
-    row[bad] = np.inf
-
-    # RLR / LRL: middle arc 2 pi - acos(1 - |V|^2 / 8), only where |V| <= 4.
-    for k, d2, phi_c, sign in ((4, d2_rr, phi_rr, -1.0), (5, d2_ll, phi_ll, 1.0)):
-        row = tot[k]
-        row.fill(np.inf)
-        near = np.flatnonzero(d2 <= 16.0 + 8.0 * _FEAS_TOL)
-        if near.size == 0:
-            continue
-        c = 1.0 - 0.125 * d2[near]
-        np.clip(c, -1.0, 1.0, out=c)
-        pm = TWO_PI - np.arccos(c)
-        ps = psi[near]
-        t = mod_2pi_snapped(0.5 * pm + sign * phi_c[near])
-        row[near] = pm + t + mod_2pi_snapped(pm - t + sign * ps)
-
-
-def _word_totals(start: np.ndarray, goal: np.ndarray, radius: np.ndarray) -> np.ndarray:
-    """Total lengths `(6, m)` (units of R, inf infeasible) for flat `(m, 3)` poses, in chunks."""
-    m = start.shape[0]
-    tot = np.empty((6, m))
-    inv = 1.0 / radius
-    scalar = inv.ndim == 0
-    for i in range(0, m, _CHUNK):
-        j = min(m, i + _CHUNK)
-        _word_totals_chunk(start[i:j], goal[i:j], inv if scalar else inv[i:j], tot[:, i:j])
-    return tot
 
 
 def _flat_queries(
@@ -332,7 +137,7 @@ def dubins_segment_lengths(start: ArrayLike, goal: ArrayLike, radius: ArrayLike)
 def dubins_word_lengths(start: ArrayLike, goal: ArrayLike, radius: ArrayLike) -> np.ndarray:
     """Total lengths (m) of the six Dubins words (eq. 2.11): `(..., 6)`, NaN when infeasible."""
     s, g, r, shape = _flat_queries(start, goal, radius)
-    tot = _word_totals(s, g, r)
+    tot = flat_word_totals(s, g, r)
     tot[np.isinf(tot)] = np.nan
     np.maximum(tot, 0.0, out=tot, where=~np.isnan(tot))
     tot *= r
@@ -349,7 +154,7 @@ def dubins_distance(
     (ties go to the first word).
     """
     s, g, r, shape = _flat_queries(start, goal, radius)
-    tot = _word_totals(s, g, r)
+    tot = flat_word_totals(s, g, r)
     length = tot[0].copy()
     if return_index:
         idx = np.zeros(length.shape, dtype=np.intp)

@@ -11,7 +11,7 @@ smallest root of
     F_W(T) = L_W(start -> g(T)) - v T            (REFERENCE_NOTES §3.4)
 
 with L_W the air-frame length of W (F_W(0) > 0). T* = min_W T_W. The roots are bracketed on a
-grid of T (one vectorised call of `dubins_word_lengths` for all words) and polished with
+grid of T (one vectorised call of the Dubins kernel `word_totals` for all words) and polished with
 Brent's method on a scalar, independent implementation of the six words (REFERENCE_NOTES
 §4.2, the (alpha, beta) form). A bracket across one of L_W's 2 pi R jumps (an arc wrapping
 through a full turn) is not a root and is discarded.
@@ -41,12 +41,10 @@ from glideplan.errors import InvalidParameterError
 from glideplan.path import Path
 from glideplan.planners.dubins import (
     WORDS,
-    dubins_word_lengths,
     feasible_radius,
-    mod_2pi_snapped,
-    segment_table,
     word_directions,
 )
+from glideplan.planners.dubins_kernel import NUMPY64, word_segments, word_totals
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import TWO_PI, Pose
 from glideplan.segments import DriftingStraight, Segment, TrochoidArc
@@ -83,12 +81,10 @@ _MAX_TAU = 1e9
 def _word_tpq(k: int, x: float, y: float, psi: float) -> tuple[float, float, float] | None:
     """Segment lengths (t, p, q) of word WORDS[k] to (x, y, psi), unit radius; None infeasible.
 
-    The one Dubins kernel, `glideplan.planners.dubins.segment_table` (eq. 2.11).
+    The one Dubins kernel (`glideplan.planners.dubins_kernel`, eq. 2.11) on Python floats:
+    root polishing evaluates one word hundreds of times per query.
     """
-    row = segment_table(np.array(x), np.array(y), mod_2pi_snapped(np.array(psi)))[k]
-    if np.isnan(row[0]):
-        return None
-    return float(row[0]), float(row[1]), float(row[2])
+    return word_segments(k, x, y, psi)
 
 
 def virtual_target_residual(
@@ -174,7 +170,9 @@ def _polish(
 
     best: float | None = None
     failed = False
-    for fn in (unwrapped, raw):
+    # without a 2 pi jump across the cell the two branches are the same function: solve once
+    branches = (unwrapped, raw) if round((fb - fa) / TWO_PI) else (raw,)
+    for fn in branches:
         fend = fn(b)
         if not fend <= 0.0:
             continue
@@ -269,14 +267,16 @@ def _first_roots(
         if tpq is not None and sum(tpq) <= 1e-12:
             taus[k], tpqs[k] = 0.0, (0.0, 0.0, 0.0)
     lo, hi, count = _root_window(goal, wind)
+    psi = float(NUMPY64.mod(psi1))
+    psi_sc = (psi, math.sin(psi), math.cos(psi))
     open_words = [k for k in range(6) if taus[k] != 0.0]
     for first in range(0, count - 1, _CHUNK):
         idx = np.arange(first, min(count, first + _CHUNK + 1))
         grid = lo + (hi - lo) * idx / (count - 1)
-        targets = np.stack(
-            [x1 - wind[0] * grid, y1 - wind[1] * grid, np.full_like(grid, psi1)], axis=-1
-        )
-        f = dubins_word_lengths(np.zeros(3), targets, 1.0) - grid[:, None]  # (n, 6)
+        # the six words' lengths to the virtual targets g(grid), one vectorised kernel call
+        f = np.stack(word_totals(x1 - wind[0] * grid, y1 - wind[1] * grid, *psi_sc, NUMPY64), -1)
+        f[np.isinf(f)] = np.nan
+        f -= grid[:, None]  # (n, 6)
         fa, fb = f[:-1], f[1:]
         with np.errstate(invalid="ignore"):
             # L_W jumps by multiples of 2 pi where an arc wraps through a full turn; within a

@@ -7,9 +7,11 @@ eps = max |c| / V over the route (the current is the disturbance of bound eps V,
 is trackable, appendix A). The vehicle (speed V, turn rate |u| <= V / R0) follows the chained
 path with Breivik-Fossen lookahead guidance (`glideplan.simulation.guidance`) and the control
 law of `glideplan.simulation.closed_loop` (saturated course feedback plus the path's turn rate
-as feedforward), pushed by the field's current at its own position and time; we report the
-cross-track error along the way and the miss distance at the goal. eps >= 1 (a current as fast
-as the vehicle) has no feasible radius: the result says so.
+as feedforward), pushed by the field's current at its own position and time (the simulator's
+`FieldDisturbance`, evaluated every step); we report the cross-track error along the way and
+the miss distance at the goal: where the vehicle crosses the goal's finish line (the line
+through the goal orthogonal to the final course), as in the cross-track study. eps >= 1 (a
+current as fast as the vehicle) has no feasible radius: the result says so.
 """
 
 from __future__ import annotations
@@ -21,12 +23,15 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import FlowField
 from glideplan.geodesy import LocalProjection
 from glideplan.routing.route import RouteResult
 from glideplan.routing.verify import local_current
+from glideplan.simulation.disturbances import VelocityFunction
 
-__all__ = ["GliderFollow", "follow_route"]
+__all__ = ["FlyablePath", "GliderFollow", "TrochoidChain", "flyable_path", "follow_route",
+           "trochoid_chain"]
 
 FloatArray = NDArray[np.float64]
 
@@ -47,6 +52,7 @@ class GliderFollow:
     final_distance_m: float | None = None
     message: str = ""
     track: dict[str, Any] = field(default_factory=dict)
+    flyable: FlyablePath | None = None
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -79,37 +85,68 @@ def _waypoints(x: FloatArray, y: FloatArray, spacing: float) -> FloatArray:
     return np.stack([wx, wy, np.arctan2(by - ay, bx - ax)], axis=1)
 
 
-def follow_route(
+@dataclass(frozen=True, eq=False)
+class FlyablePath:
+    """The Dubins chain of radius R0' along a route, in the route's local plane (aeqd about its
+    start; m, rad): `path` one row of `PathArrays` (None when eps >= 1), `pieces` Dubins pieces."""
+
+    proj: LocalProjection
+    path: Any  # glideplan.simulation.PathArrays, one row, or None
+    disturbance_ratio: float
+    feasible_radius_m: float | None
+    pieces: int
+    message: str = ""
+
+    @property
+    def length_m(self) -> float:
+        return 0.0 if self.path is None else float(self.path.length[0])
+
+    def sample(self, spacing: float) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """Points every <= `spacing` m along the path: arc length s, x, y (m), course (rad)."""
+        if self.path is None:
+            raise InvalidParameterError("radius", self.feasible_radius_m, self.message)
+        n = max(2, math.ceil(self.length_m / spacing) + 1)
+        s = np.linspace(0.0, self.length_m, n)
+        x, y, chi = self.path.points_along(0, s)
+        return s, x, y, chi
+
+
+def flyable_path(
     result: RouteResult,
     field_: FlowField,
     speed: float,
     radius: float,
     spacing: float | None = None,
-    dt: float | None = None,
-    refresh: int = 10,
-) -> GliderFollow:
-    """Build the flyable path of `result` for turn radius `radius` (m) and follow it."""
-    from glideplan.errors import InvalidParameterError
+    end_course: float | None = None,
+) -> FlyablePath:
+    """The route's flyable path for turn radius `radius` (m) (module docstring).
+
+    spacing: distance between the route's waypoint poses (m; default max(10 R0', L / 300));
+    end_course: the ground course (rad, in the route's local plane) to end with, e.g. the
+    next leg's initial course so that a chain of legs keeps a continuous course (default: the
+    route's own final course).
+    """
     from glideplan.planners.dubins import WORDS, dubins_shortest, feasible_radius, word_directions
-    from glideplan.simulation.guidance import PathArrays, lookahead_guidance
+    from glideplan.simulation import PathArrays
 
     if not (math.isfinite(radius) and radius > 0):
         raise InvalidParameterError("radius", radius, "must be finite and > 0 (m)")
     if not result.ok:
         raise InvalidParameterError("route", result.status, "needs a solved route")
     proj = LocalProjection(float(result.lat[0]), float(result.lon[0]))
-    t0 = result.depart_s
-    u, v = field_.velocity(t0 + result.t, result.lat, result.lon)
+    u, v = field_.velocity(result.depart_s + result.t, result.lat, result.lon)
     eps = float(np.nanmax(np.hypot(u, v))) / speed
     if eps >= 1.0:
-        return GliderFollow("infeasible", radius, eps, None,
-                            message=f"the current reaches {eps:.2f} x the speed: no feasible "
-                            "radius R0' = R0 (1 + eps)^2 exists for eps >= 1")
+        return FlyablePath(proj, None, eps, None, 0,
+                           message=f"the current reaches {eps:.2f} x the speed: no feasible "
+                           "radius R0' = R0 (1 + eps)^2 exists for eps >= 1")
     r_f = float(feasible_radius(radius, eps))
     x, y = result.x, result.y
     total = float(np.sum(np.hypot(np.diff(x), np.diff(y))))
     spacing = spacing if spacing is not None else max(10.0 * r_f, total / 300.0)
     poses = _waypoints(x, y, spacing)
+    if end_course is not None:
+        poses[-1, 2] = end_course
     starts, goals = poses[:-1], poses[1:]
     # Each Dubins piece in its own start frame: the goal relative to the start pose.
     c, s = np.cos(starts[:, 2]), np.sin(starts[:, 2])
@@ -117,74 +154,185 @@ def follow_route(
     rel = np.stack([c * dx + s * dy, -s * dx + c * dy, goals[:, 2] - starts[:, 2]], axis=1)
     batch = dubins_shortest(np.zeros(3), rel, r_f)
     dirs = np.array([word_directions(WORDS[k]) for k in batch.word_index], dtype=float)
-    legs = [PathArrays.from_segments(starts[i:i + 1], dirs[i:i + 1],
-                                     batch.segment_lengths[i:i + 1], r_f)
-            for i in range(starts.shape[0])]
-    path_length = float(sum(leg.length[0] for leg in legs))
+    # One path of every piece in turn (each piece ends at the next one's start pose).
+    path = PathArrays.from_segments(starts[:1], dirs.reshape(1, -1),
+                                    batch.segment_lengths.reshape(1, -1), r_f)
+    return FlyablePath(proj, path, eps, r_f, int(starts.shape[0]))
 
-    umax = speed / radius
-    dt = dt if dt is not None else 0.1 * radius / speed
-    # gamma = V / R0 (1/s) keeps the path-parameter update stable: gamma dt = 0.1.
-    lookahead, gamma, phi_b = radius, speed / radius, 0.2
-    px, py, psi = float(poses[0, 0]), float(poses[0, 1]), float(poses[0, 2])
-    varpi, k, t = 0.0, 0, t0
-    cross: list[float] = []
-    out_t, out_x, out_y = [0.0], [px], [py]
-    t_max = t0 + 3.0 * (result.duration_s or 0.0) + 10 * path_length / speed
-    c_now = np.zeros(2)
-    step = 0
-    status, message = "followed", ""
-    while True:
-        if step % refresh == 0:
-            try:
-                ccx, ccy = local_current(field_, proj, t, px, py)
-            except InvalidParameterError as exc:
-                status, message = "lost", f"the vehicle left the field ({exc})"
-                break
-            c_now = np.array([ccx[0], ccy[0]])
-            if not np.all(np.isfinite(c_now)):
-                status, message = "lost", "the vehicle reached land"
-                break
-        gvx, gvy = speed * math.cos(psi) + c_now[0], speed * math.sin(psi) + c_now[1]
-        leg = legs[k]
-        cmd = lookahead_guidance(leg, np.array([varpi]), np.array([px]), np.array([py]),
-                                 np.array([gvx]), np.array([gvy]),
-                                 lookahead=lookahead, gamma=gamma)
-        cross.append(float(cmd.cross_track[0]))
-        chi = math.atan2(gvy, gvx)
-        err = (float(cmd.course[0]) - chi + math.pi) % (2 * math.pi) - math.pi
-        turn = umax * max(-1.0, min(1.0, err / phi_b)) + float(cmd.path_turn_rate[0])
-        turn = max(-umax, min(umax, turn))
-        if abs(turn) > 1e-12:
-            px += speed / turn * (math.sin(psi + turn * dt) - math.sin(psi))
-            py += -speed / turn * (math.cos(psi + turn * dt) - math.cos(psi))
-        else:
-            px += speed * math.cos(psi) * dt
-            py += speed * math.sin(psi) * dt
-        px += c_now[0] * dt
-        py += c_now[1] * dt
-        psi += turn * dt
-        varpi += float(cmd.varpi_rate[0]) * dt
-        t += dt
-        step += 1
-        if step % 20 == 0:
-            out_t.append(t - t0)
-            out_x.append(px)
-            out_y.append(py)
-        while varpi >= leg.length[0] and k < len(legs) - 1:
-            varpi -= leg.length[0]
-            k += 1
-            leg = legs[k]
-        if k == len(legs) - 1 and varpi >= leg.length[0]:
-            break
-        if t > t_max:
-            status, message = "lost", "timed out before the end of the path"
-            break
-    gx, gy = float(result.x[-1]), float(result.y[-1])
-    lat, lon = proj.to_geographic(np.array(out_x), np.array(out_y))
-    e = np.abs(np.array(cross)) if cross else np.zeros(1)
-    return GliderFollow(
-        status, radius, eps, r_f, len(legs), path_length, t - t0, float(e.max()),
-        float(np.sqrt(np.mean(e**2))), math.hypot(px - gx, py - gy), message,
-        {"t": out_t, "lat": lat.tolist(), "lon": lon.tolist()},
+
+def follow_route(
+    result: RouteResult,
+    field_: FlowField,
+    speed: float,
+    radius: float,
+    spacing: float | None = None,
+    dt: float | None = None,
+    end_course: float | None = None,
+) -> GliderFollow:
+    """Build the flyable path of `result` for turn radius `radius` (m) and follow it.
+
+    spacing, end_course: as `flyable_path`; dt: simulation step (s; default 0.1 R0 / V). The
+    follower is `simulation.follow_paths` with the field as a `FieldDisturbance` (evaluated
+    at the vehicle's position every step). The result's `flyable` holds the path.
+    """
+    from glideplan.simulation import FieldDisturbance, FollowerSettings, follow_paths
+
+    fp = flyable_path(result, field_, speed, radius, spacing, end_course)
+    eps, r_f, proj = fp.disturbance_ratio, fp.feasible_radius_m, fp.proj
+    if fp.path is None:
+        return GliderFollow("infeasible", radius, eps, None, message=fp.message, flyable=fp)
+    path_length = fp.length_m
+    t0 = result.depart_s
+    settings = FollowerSettings(
+        speed=speed, max_turn_rate=speed / radius, lookahead=radius,
+        # gamma = V / R0 (1/s) keeps the path-parameter update stable: gamma dt = 0.1
+        gamma=speed / radius, boundary_layer=0.2,
+        dt=dt if dt is not None else 0.1 * radius / speed, timeout_factor=3.0,
     )
+    current = FieldDisturbance(_local_velocity(field_, proj), t0=float(t0))
+    res = follow_paths(fp.path, current.stream(1, settings.dt), settings=settings,
+                       disturbance_bound=eps * speed, record=True)
+    assert res.tracks is not None and res.cross_track is not None
+    xy = res.tracks[:, 0, :]
+    steps = res.cross_track.shape[0]
+    e = np.abs(res.cross_track[:, 0])
+    e = e[np.isfinite(e)] if np.isfinite(e).any() else np.zeros(1)
+    every = np.unique(np.r_[np.arange(0, steps + 1, 20), steps])
+    lat, lon = proj.to_geographic(xy[every, 0], xy[every, 1])
+    status, message = "followed", ""
+    if not res.crossed[0]:
+        status = "lost"
+        if res.stopped is not None and res.stopped[0]:
+            message = _why_stopped(field_, proj, t0 + steps * settings.dt, xy[-1])
+        else:
+            message = "did not cross the goal's finish line before the time-out"
+    end = fp.path.end[0]
+    final = float(res.error[0]) if res.crossed[0] else math.hypot(
+        xy[-1, 0] - end[0], xy[-1, 1] - end[1])
+    return GliderFollow(
+        status, radius, eps, r_f, fp.pieces, path_length, float(res.time[0]),
+        float(e.max()), float(np.sqrt(np.mean(e**2))), final, message,
+        {"t": (every * settings.dt).tolist(), "lat": lat.tolist(), "lon": lon.tolist()},
+        flyable=fp,
+    )
+
+
+def _local_velocity(field_: FlowField, proj: LocalProjection) -> VelocityFunction:
+    """The field's current in local axes at (t, x, y), NaN off the field or on land."""
+
+    def velocity(t: float, x: FloatArray, y: FloatArray) -> tuple[FloatArray, FloatArray]:
+        try:
+            return local_current(field_, proj, t, x, y)
+        except InvalidParameterError:
+            if np.size(x) == 1:
+                return np.full(1, np.nan), np.full(1, np.nan)
+            pairs = [velocity(t, x[i:i + 1], y[i:i + 1]) for i in range(np.size(x))]
+            return np.concatenate([p[0] for p in pairs]), np.concatenate([p[1] for p in pairs])
+
+    return velocity
+
+
+def _why_stopped(field_: FlowField, proj: LocalProjection, t: float, xy: FloatArray) -> str:
+    try:
+        local_current(field_, proj, t, xy[:1], xy[1:2])
+    except InvalidParameterError as exc:
+        return f"the vehicle left the field ({exc})"
+    return "the vehicle reached land"
+
+
+@dataclass(frozen=True, eq=False)
+class TrochoidChain:
+    """The route's flyable path from trochoid pieces (m, s): each piece the minimum-time path of
+    the Dubins car in the piece's mean current (`planners.wind.convected_dubins`, dissertation
+    §3.2), planned with R0' = R0 (1 + eps')^2 for the residual eps' = max |c - c_mean| / V.
+
+    duration_s: the pieces' times in their mean currents, summed; max_piece_error_m: largest
+    endpoint error of a piece, its controls integrated through its mean current (`verify`);
+    field_endpoint_error_m: the whole chain's heading controls flown open loop through the
+    field itself (`routing.verify.integrate_headings`), distance from the route's end.
+    """
+
+    status: str
+    residual_ratio: float
+    feasible_radius_m: float | None
+    pieces: int = 0
+    duration_s: float | None = None
+    ground_length_m: float = 0.0
+    max_piece_error_m: float | None = None
+    field_endpoint_error_m: float | None = None
+    message: str = ""
+
+    def to_dict(self) -> dict[str, Any]:
+        return {k: getattr(self, k) for k in (
+            "status", "residual_ratio", "feasible_radius_m", "pieces", "duration_s",
+            "ground_length_m", "max_piece_error_m", "field_endpoint_error_m", "message")}
+
+
+def trochoid_chain(
+    result: RouteResult,
+    field_: FlowField,
+    speed: float,
+    radius: float,
+    spacing: float | None = None,
+) -> TrochoidChain:
+    """Join the route's waypoint poses (as `flyable_path`) by convected-Dubins pieces, each in
+    the mean of the current sampled on the route between its poses (TrochoidChain)."""
+    from glideplan.planners.dubins import WORDS, feasible_radius
+    from glideplan.planners.wind import convected_dubins, convected_dubins_path
+    from glideplan.pose import Pose
+    from glideplan.routing.verify import integrate_headings
+    from glideplan.verify import endpoint_error
+
+    if not (math.isfinite(radius) and radius > 0):
+        raise InvalidParameterError("radius", radius, "must be finite and > 0 (m)")
+    if not result.ok:
+        raise InvalidParameterError("route", result.status, "needs a solved route")
+    proj = LocalProjection(float(result.lat[0]), float(result.lon[0]))
+    x, y = result.x, result.y
+    cx, cy = local_current(field_, proj, result.depart_s + result.t, x, y)  # type: ignore[arg-type]
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x), np.diff(y)))])
+    total = float(s[-1])
+    eps_all = float(np.nanmax(np.hypot(cx, cy))) / speed
+    r_guess = float(feasible_radius(radius, min(eps_all, 0.99)))
+    spacing = spacing if spacing is not None else max(10.0 * r_guess, total / 300.0)
+    poses = _waypoints(x, y, spacing)
+    n = poses.shape[0] - 1
+    edges = np.linspace(0.0, total, n + 1)
+    piece = np.clip(np.searchsorted(edges, s, side="right") - 1, 0, n - 1)
+    mean = np.stack([np.bincount(piece, c, n) / np.maximum(np.bincount(piece, None, n), 1)
+                     for c in (cx, cy)], axis=1)
+    residual = float(np.max(np.hypot(cx - mean[piece, 0], cy - mean[piece, 1]))) / speed
+    if float(np.max(np.hypot(mean[:, 0], mean[:, 1]))) / speed + residual >= 1.0:
+        return TrochoidChain("infeasible", residual, None,
+                             message="mean current + residual reach the speed: no feasible "
+                             "radius (|c| + eps' V must be < V)")
+    r_f = float(feasible_radius(radius, residual))
+    duration, ground, worst = 0.0, 0.0, 0.0
+    nodes_t, nodes_h = [0.0], [float(poses[0, 2])]
+    for i in range(n):
+        a, b = poses[i], poses[i + 1]
+        c, sn = math.cos(a[2]), math.sin(a[2])
+        dx, dy = b[0] - a[0], b[1] - a[1]
+        goal = (c * dx + sn * dy, -sn * dx + c * dy, b[2] - a[2])
+        wind = (c * mean[i, 0] + sn * mean[i, 1], -sn * mean[i, 0] + c * mean[i, 1])
+        sol = convected_dubins(goal, speed=speed, radius=radius, wind=wind, eps=residual)
+        if not math.isfinite(sol.time):
+            return TrochoidChain("infeasible", residual, r_f, i,
+                                 message=f"piece {i + 1}: no convected Dubins path found")
+        k = sol.best
+        path = convected_dubins_path(Pose(*a), WORDS[k], sol.segment_lengths[k], radius=r_f,
+                                     speed=speed, wind=(float(mean[i, 0]), float(mean[i, 1])))
+        worst = max(worst, endpoint_error(path, Pose(*b)).position)
+        for seg in path.segments:
+            # heading nodes: at the segment's ends and every <= pi/4 of turn in between
+            turn = abs(getattr(seg, "angle", 0.0))
+            m = max(1, math.ceil(turn / (math.pi / 4)))
+            local = np.linspace(0.0, seg.duration, m + 1)[1:]
+            nodes_t.extend((duration + local).tolist())
+            nodes_h.extend(seg.states(local)[2].tolist())
+            duration += seg.duration
+        ground += sum(float(getattr(seg, "ground_length", seg.length)) for seg in path.segments)
+    flown = integrate_headings(field_, proj, speed, result.depart_s + np.array(nodes_t),
+                               np.array(nodes_h), (float(x[-1]), float(y[-1])))
+    return TrochoidChain("planned", residual, r_f, n, duration, ground, worst,
+                         float(flown.endpoint_error_m))

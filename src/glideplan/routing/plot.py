@@ -1,65 +1,364 @@
-"""Draw a route over its field (Matplotlib, imported inside; no plotting in the algorithms)."""
+"""Draw a route over its field (Matplotlib, imported inside; no plotting in the algorithms).
+
+The figure reads on its own: the title states the problem (field, water speed, start, goal,
+departure) and the answer (status, duration in h, distance sailed in km, the straight-line
+crabbing time for comparison, the verified endpoint error); axes are longitude / latitude in
+degrees with the aspect set so that a km east is as long as a km north (ratio of the WGS84
+lengths of a degree of latitude and of longitude at the frame's mean latitude, ~1 / cos(lat)),
+with a km scale of the local plane about the start on the top and right axes; the current
+arrows show the field at one stated time (the departure) with a key in m/s; land (NaN in the
+field) is shaded as land; start and goal are marked with the heading through the water there;
+the legend and the arrow key sit outside the axes.
+"""
 
 from __future__ import annotations
 
+import math
 import pathlib
-from typing import Any
+import textwrap
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from glideplan.fields.field import FlowField
 from glideplan.routing.route import RouteResult
 
-__all__ = ["plot_route"]
+if TYPE_CHECKING:
+    from glideplan.routing.glider import GliderFollow
+
+__all__ = [
+    "frame_scales",
+    "plot_route",
+    "route_figure",
+    "route_title",
+    "water_speed_from_track",
+]
+
+_LAND_COLOUR = "#d8c9a3"
+_TITLE_WIDTH = 95
 
 
-def plot_route(result: RouteResult, field_: FlowField, filename: str | pathlib.Path,
-               arrows: int = 25) -> pathlib.Path:
-    """Track (lon, lat) over the field's current at departure (quiver; land shaded)."""
+def frame_scales(lat_mid: float, lon_mid: float) -> tuple[float, float]:
+    """(m per degree of latitude, m per degree of longitude) on WGS84 at (lat_mid, lon_mid):
+    geodesic lengths of 0.1-degree steps centred there (the aspect is their ratio,
+    ~1 / cos(lat_mid))."""
+    from glideplan.geodesy import geodesic_distance_bearing
+
+    d, _ = geodesic_distance_bearing(
+        [lat_mid - 0.05, lat_mid], [lon_mid, lon_mid - 0.05],
+        [lat_mid + 0.05, lat_mid], [lon_mid, lon_mid + 0.05],
+    )
+    return float(d[0]) / 0.1, float(d[1]) / 0.1
+
+
+def water_speed_from_track(result: RouteResult, field_: FlowField) -> float | None:
+    """The water speed V (m/s) the route was planned for, recovered from its track:
+    V = median |v_ground - c| over the steps, v_ground from the track's positions and times
+    (local east/north metres per degree at each step), c the current at the step's midpoint.
+    None when the track is too short or the field cannot be sampled along it."""
+    if result.t.size < 3:
+        return None
+    lat, lon, t = result.lat, result.lon, result.t
+    lat_m, lon_m = 0.5 * (lat[1:] + lat[:-1]), 0.5 * (lon[1:] + lon[:-1])
+    dt = np.diff(t)
+    ok = dt > 0.0
+    m_lat, m_lon = frame_scales(float(np.mean(lat)), float(np.mean(lon)))
+    ve = np.diff(lon)[ok] * m_lon / dt[ok]
+    vn = np.diff(lat)[ok] * m_lat / dt[ok]
+    try:
+        u, v = field_.velocity(result.depart_s + 0.5 * (t[1:] + t[:-1])[ok], lat_m[ok], lon_m[ok])
+    except ValueError:
+        return None
+    speed = np.hypot(ve - u, vn - v)
+    speed = speed[np.isfinite(speed)]
+    return float(np.median(speed)) if speed.size else None
+
+
+def _field_name(info: Mapping[str, Any]) -> str:
+    if info.get("name"):
+        return f"{info['name']} ({info.get('kind', 'field')})"
+    source = info.get("source")
+    if isinstance(source, (list, tuple)) and source:
+        names = [pathlib.Path(str(s)).name for s in source]
+        return ", ".join(names[:2]) + (f" (+{len(names) - 2} files)" if len(names) > 2 else "")
+    if source:
+        return pathlib.Path(str(source)).name
+    return str(info.get("kind", "field"))
+
+
+def _latlon_text(lat: float, lon: float) -> str:
+    lon = (lon + 180.0) % 360.0 - 180.0
+    return f"{abs(lat):.4g}°{'N' if lat >= 0 else 'S'} {abs(lon):.4g}°{'E' if lon >= 0 else 'W'}"
+
+
+def _time_text(field_: FlowField, t: float) -> str:
+    text = field_.format_time(t)
+    return text[:16] + "Z" if field_.epoch is not None else text
+
+
+def route_title(
+    result: RouteResult,
+    field_: FlowField,
+    start: tuple[float, float] | None,
+    goal: tuple[float, float] | None,
+    speed: float | None,
+    speed_inferred: bool = False,
+    glider: GliderFollow | None = None,
+) -> str:
+    """The title: the problem (field, water speed, start, goal, departure), then the answer
+    (status, duration h, distance km, straight-line crabbing time, endpoint error)."""
+    sp = "water speed not given" if speed is None else (
+        f"water speed {speed:.3g} m/s" + (" (from the track)" if speed_inferred else ""))
+    head = f"Time-optimal route through {_field_name(result.field_info)}, {sp}"
+    where = ""
+    if start is not None and goal is not None:
+        from glideplan.geodesy import geodesic_distance_bearing
+
+        d, _ = geodesic_distance_bearing(start[0], start[1], goal[0], goal[1])
+        where = (f"from {_latlon_text(*start)} to {_latlon_text(*goal)} "
+                 f"({float(d) / 1000:.4g} km apart), ")
+    problem = f"{where}departing {_time_text(field_, result.depart_s)}"
+    straight = result.straight_line_duration_s
+    if result.ok and result.duration_s is not None:
+        hours = result.duration_s / 3600.0
+        answer = (f"{result.status}: {hours:.2f} h over {result.distance_m / 1000:.4g} km "
+                  f"({result.method})")
+        if result.endpoint_error_m is not None:
+            answer += f", verified endpoint error {result.endpoint_error_m:.3g} m"
+        if straight is not None and math.isfinite(straight):
+            gain = 1.0 - result.duration_s / straight
+            answer += f"; straight line with crabbing {straight / 3600:.2f} h"
+            if gain > 0.0:
+                answer += f" (the route takes {gain:.0%} less time)"
+        else:
+            answer += "; no straight-line crossing (land or too strong a current in the way)"
+        if result.message:
+            answer += f". Note: {result.message}"
+    else:
+        answer = f"{result.status}: " + (result.message or (
+            f"the reachable set came within {result.best_distance_m / 1000:.3g} km of the goal"))
+    lines = [head, problem, answer]
+    if glider is not None:
+        g = f"glider R0 = {glider.radius_m:.4g} m: {glider.status}"
+        if glider.max_cross_track_m is not None:
+            g += f", max cross-track {glider.max_cross_track_m:.3g} m"
+        if glider.final_distance_m is not None:
+            g += f", miss at goal {glider.final_distance_m:.3g} m"
+        if glider.message:
+            g += f" ({glider.message})"
+        lines.append(g)
+    return "\n".join(textwrap.fill(s, _TITLE_WIDTH, break_long_words=False) for s in lines)
+
+
+def _nice(value: float) -> float:
+    """The largest of 1, 2, 5 x 10^k not above `value` (> 0)."""
+    k = math.floor(math.log10(value))
+    for m in (5.0, 2.0, 1.0):
+        if m * 10.0**k <= value:
+            return m * 10.0**k
+    return 10.0**k  # pragma: no cover - m = 1 always fits
+
+
+def _heading_arrow(ax: Any, lat: float, lon: float, compass_deg: float, size_m: float,
+                   m_lat: float, m_lon: float, colour: str) -> None:
+    """An arrow of `size_m` ground metres from (lat, lon) along a compass heading."""
+    b = math.radians(compass_deg)
+    tip = (lon + size_m * math.sin(b) / m_lon, lat + size_m * math.cos(b) / m_lat)
+    ax.annotate("", xy=tip, xytext=(lon, lat), zorder=6,
+                arrowprops={"arrowstyle": "-|>", "color": colour, "lw": 1.6,
+                            "mutation_scale": 14})
+
+
+def plot_route(
+    result: RouteResult,
+    field_: FlowField,
+    filename: str | pathlib.Path,
+    arrows: int = 25,
+    *,
+    speed: float | None = None,
+    start: tuple[float, float] | None = None,
+    goal: tuple[float, float] | None = None,
+    glider: GliderFollow | None = None,
+) -> pathlib.Path:
+    """Draw the route (`route_figure`, same arguments) to `filename`; returns its path."""
+    import matplotlib.pyplot as plt
+
+    fig = route_figure(result, field_, arrows, speed=speed, start=start, goal=goal,
+                       glider=glider)
+    path = pathlib.Path(filename)
+    fig.savefig(path, dpi=120, bbox_inches="tight")
+    plt.close(fig)
+    return path
+
+
+def route_figure(
+    result: RouteResult,
+    field_: FlowField,
+    arrows: int = 25,
+    *,
+    speed: float | None = None,
+    start: tuple[float, float] | None = None,
+    goal: tuple[float, float] | None = None,
+    glider: GliderFollow | None = None,
+) -> Any:
+    """The Matplotlib figure of a route: track (lon, lat) over the field's current at
+    departure (`arrows` across the longer side).
+
+    speed: the water speed (m/s) for the title (default: recovered from the track,
+    `water_speed_from_track`); start, goal: (lat, lon) (default: the track's ends);
+    glider: the followed flyable path (`routing.glider.follow_route`), drawn when given.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
 
-    fig, ax = plt.subplots(figsize=(7, 5))
+    has_track = result.lat.size > 0
+    if start is None and has_track:
+        start = (float(result.lat[0]), float(result.lon[0]))
+    if goal is None and has_track:
+        goal = (float(result.lat[-1]), float(result.lon[-1]))
+    inferred = speed is None
+    if speed is None:
+        speed = water_speed_from_track(result, field_)
+
     ext = field_.extent
-    if result.lat.size:
-        la0, la1 = float(result.lat.min()), float(result.lat.max())
-        lo0, lo1 = float(result.lon.min()), float(result.lon.max())
-        pad_la, pad_lo = max(0.3 * (la1 - la0), 0.05), max(0.3 * (lo1 - lo0), 0.05)
-        la0, la1, lo0, lo1 = la0 - pad_la, la1 + pad_la, lo0 - pad_lo, lo1 + pad_lo
-    else:
-        la0, la1, lo0, lo1 = -1.0, 1.0, -1.0, 1.0
     centre = 0.0 if ext is None else 0.5 * (ext.lon_min + ext.lon_max)
 
     def frame(lon_deg: Any) -> Any:  # the field's longitude frame (0..360 or -180..180)
-        return centre + np.mod(np.asarray(lon_deg) - centre + 180.0, 360.0) - 180.0
+        return centre + np.mod(np.asarray(lon_deg, dtype=float) - centre + 180.0, 360.0) - 180.0
 
+    lats = [p[0] for p in (start, goal) if p is not None]
+    lons = [float(frame(p[1])) for p in (start, goal) if p is not None]
+    if has_track:
+        lats += [float(result.lat.min()), float(result.lat.max())]
+        lons += [float(np.min(frame(result.lon))), float(np.max(frame(result.lon)))]
+    if not lats:  # nothing to centre on: the whole field (or a 2-degree box)
+        lats, lons = ([ext.lat_min, ext.lat_max], [ext.lon_min, ext.lon_max]) if ext else (
+            [-1.0, 1.0], [centre - 1.0, centre + 1.0])
+    la_mid, lo_mid = 0.5 * (min(lats) + max(lats)), 0.5 * (min(lons) + max(lons))
+    m_lat, m_lon = frame_scales(max(min(la_mid, 89.0), -89.0), (lo_mid + 180) % 360 - 180)
+    span_m = max((max(lats) - min(lats)) * m_lat, (max(lons) - min(lons)) * m_lon, 1000.0)
+    # The data with a margin of 0.15 of its span, each side at least 0.6 of the span long (a
+    # thin strip along a straight route hides the field around it), cut to the field.
+    half_la = max(0.5 * (max(lats) - min(lats)) * m_lat + 0.15 * span_m, 0.3 * span_m) / m_lat
+    half_lo = max(0.5 * (max(lons) - min(lons)) * m_lon + 0.15 * span_m, 0.3 * span_m) / m_lon
+    la0, la1 = la_mid - half_la, la_mid + half_la
+    lo0, lo1 = lo_mid - half_lo, lo_mid + half_lo
     if ext is not None:
         la0, la1 = max(la0, ext.lat_min), min(la1, ext.lat_max)
-        lo0, lo1 = max(float(frame(lo0)), ext.lon_min), min(float(frame(lo1)), ext.lon_max)
-    lat = np.linspace(la0, la1, arrows)
-    lon = np.linspace(lo0, lo1, arrows)
-    LA, LO = np.meshgrid(lat, lon, indexing="ij")
+        lo0, lo1 = max(lo0, ext.lon_min), min(lo1, ext.lon_max)
+    # The aspect: equal ground distances at the frame's mean latitude.
+    m_lat, m_lon = frame_scales(0.5 * (la0 + la1), ((lo0 + lo1) / 2 + 180) % 360 - 180)
+
+    fig, ax = plt.subplots(figsize=(10.5, 6.2))
+    handles: list[Any] = []
+    quiver_key: tuple[Any, float] | None = None
+    # Current arrows on a grid square in ground distance; land on a finer grid.
+    w_m, h_m = (lo1 - lo0) * m_lon, (la1 - la0) * m_lat
+    n_lo = arrows if w_m >= h_m else max(5, round(arrows * w_m / h_m))
+    n_la = arrows if h_m > w_m else max(5, round(arrows * h_m / w_m))
+    snapshot = _time_text(field_, result.depart_s)
     try:
-        u, v = field_.velocity(result.depart_s, LA, LO)
-        land = ~np.isfinite(u)
+        LA, LO = np.meshgrid(np.linspace(la0, la1, 4 * n_la), np.linspace(lo0, lo1, 4 * n_lo),
+                             indexing="ij")
+        uf, _ = field_.velocity(result.depart_s, LA, LO)
+        land = ~np.isfinite(uf)
         if np.any(land):
-            ax.contourf(LO, LA, land.astype(float), levels=[0.5, 1.5], colors=["0.8"])
-        ax.quiver(LO, LA, np.where(land, 0, u), np.where(land, 0, v), color="0.5")
+            ax.contourf(LO, LA, land.astype(float), levels=[0.5, 1.5], colors=[_LAND_COLOUR],
+                        zorder=1)
+            handles.append(Patch(facecolor=_LAND_COLOUR, label="land (no current data)"))
+        LA, LO = np.meshgrid(np.linspace(la0, la1, n_la), np.linspace(lo0, lo1, n_lo),
+                             indexing="ij")
+        u, v = field_.velocity(result.depart_s, LA, LO)
+        water = np.isfinite(u) & np.isfinite(v)
+        if np.any(water):
+            q = ax.quiver(LO[water], LA[water], u[water], v[water], color="0.55", zorder=2,
+                          width=0.0022)
+            c_max = float(np.max(np.hypot(u[water], v[water])))
+            if c_max > 0.0:
+                quiver_key = (q, _nice(c_max))
+            handles.append(Line2D([], [], ls="none", marker=r"$\rightarrow$", ms=12,
+                                  color="0.55", label=f"current at departure, {snapshot}"))
     except ValueError:  # a field that cannot be drawn here: draw the track alone
         pass
-    kwargs: dict[str, Any] = {"color": "C3", "lw": 2, "label": f"route ({result.method})"}
-    if result.lat.size:
+
+    if start is not None and goal is not None:
+        (line,) = ax.plot([frame(start[1]), frame(goal[1])], [start[0], goal[0]], ":",
+                          color="0.25", lw=1.2, zorder=3)
+        line.set_label("straight line (crabbing time in the title)")
+        handles.append(line)
+    if has_track:
         lon_t = frame(result.lon)
-        ax.plot(lon_t, result.lat, **kwargs)
-        ax.plot(lon_t[0], result.lat[0], "go", label="start")
-        ax.plot(lon_t[-1], result.lat[-1], "ks", label="goal")
-    title = result.status if result.duration_s is None else (
-        f"{result.status}: {result.duration_s / 3600:.2f} h")
-    ax.set(xlabel="longitude (deg)", ylabel="latitude (deg)", title=title)
-    ax.legend(loc="best")
-    path = pathlib.Path(filename)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+        label = f"route ({result.method})"
+        if result.duration_s is not None:
+            label += f", {result.duration_s / 3600:.2f} h"
+        (line,) = ax.plot(lon_t, result.lat, color="C3", lw=2.2, label=label, zorder=4)
+        handles.append(line)
+    if glider is not None and glider.track.get("lat"):
+        (line,) = ax.plot(frame(np.asarray(glider.track["lon"])), glider.track["lat"], "--",
+                          color="black", lw=1.0, zorder=4,
+                          label=f"glider following, R0 = {glider.radius_m:.4g} m")
+        handles.append(line)
+    arrow_m = 0.07 * span_m
+    for p, colour, marker, name, k in ((start, "tab:green", "o", "start", 0),
+                                       (goal, "tab:red", "s", "goal", -1)):
+        if p is None:
+            continue
+        text = name
+        if has_track and result.heading_deg.size:
+            hdg = float(result.heading_deg[k])
+            _heading_arrow(ax, p[0], float(frame(p[1])), hdg, arrow_m, m_lat, m_lon, colour)
+            text += f", heading {hdg:.0f}° (through water)"
+        (mk,) = ax.plot(frame(p[1]), p[0], marker, color=colour, ms=8, zorder=5, ls="none",
+                        label=text)
+        handles.append(mk)
+
+    ax.set_xlim(lo0, lo1)
+    ax.set_ylim(la0, la1)
+    ax.set_aspect(m_lat / m_lon, adjustable="box")
+    ax.set_xlabel("longitude (deg E)")
+    ax.set_ylabel("latitude (deg N)")
+    ref_lat = la0 if start is None else start[0]
+    ref_lon = lo0 if start is None else float(frame(start[1]))
+    ref = "the frame's corner" if start is None else "start"
+
+    def east_km(lon_deg: Any) -> Any:
+        return (np.asarray(lon_deg, dtype=float) - ref_lon) * m_lon / 1000.0
+
+    def km_east(km: Any) -> Any:
+        return ref_lon + np.asarray(km, dtype=float) * 1000.0 / m_lon
+
+    def north_km(lat_deg: Any) -> Any:
+        return (np.asarray(lat_deg, dtype=float) - ref_lat) * m_lat / 1000.0
+
+    def km_north(km: Any) -> Any:
+        return ref_lat + np.asarray(km, dtype=float) * 1000.0 / m_lat
+
+    top = ax.secondary_xaxis("top", functions=(east_km, km_east))
+    top.set_xlabel(f"km east of {ref}", fontsize=8)
+    right = ax.secondary_yaxis("right", functions=(north_km, km_north))
+    right.set_ylabel(f"km north of {ref}", fontsize=8)
+    for sec in (top, right):
+        sec.tick_params(labelsize=8)
+    ax.grid(True, lw=0.4, alpha=0.5)
+    ax.set_title(route_title(result, field_, start, goal, speed, inferred, glider),
+                 fontsize=9, loc="left", pad=30)
+    if handles:
+        legend = ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.12, 1.0),
+                           borderaxespad=0.0, fontsize=8)
+    if quiver_key is not None:  # the arrow key just below the legend, outside the axes
+        fig.canvas.draw()
+        if handles:
+            box = legend.get_window_extent().transformed(fig.transFigure.inverted())
+            x, y = box.x0 + 0.025, box.y0 - 0.05
+        else:
+            box = ax.get_position()
+            x, y = box.x1 + 0.12, box.y1 - 0.05
+        q, key = quiver_key
+        ax.quiverkey(q, x, y, key, f"key: current {key:g} m/s", labelpos="E",
+                     coordinates="figure", fontproperties={"size": 8})
+    return fig

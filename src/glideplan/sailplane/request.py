@@ -12,7 +12,7 @@ start heading (`planners.final_glide.best_start_heading`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -27,7 +27,9 @@ __all__ = ["FinalGlideDrawing", "run_final"]
 
 @dataclass(frozen=True, eq=False)
 class FinalGlideDrawing:
-    """What a figure needs: local track (m), distance along it (m), altitude (m), levels."""
+    """What a figure needs: local track (m; x east, y north), distance along it (m), altitude
+    (m), levels (m), the problem in words (`title`), and the wind: speed (m/s) and the compass
+    direction it blows FROM (deg; None when no wind was given)."""
 
     x: np.ndarray
     y: np.ndarray
@@ -37,6 +39,8 @@ class FinalGlideDrawing:
     safety_height: float
     title: str
     straight: dict[str, np.ndarray] = field(default_factory=dict)
+    wind_speed: float = 0.0
+    wind_from_deg: float | None = None
 
 
 def _finite(v: float | None) -> float | None:
@@ -114,7 +118,10 @@ def run_final(
         "wind": {"speed_ms": wind_speed, "from_deg": None if wind is None else wind[1]},
     }
     floor = elev1 + safety
-    title = f"{polar.name}: final glide {dist / 1000:.1f} km"
+    title = (
+        f"{polar.name} ({polar.mass_kg:.0f} kg): final glide {dist / 1000:.1f} km "
+        f"on bearing {data['bearing_deg']:.0f}°, MC {mc:g} m/s"
+    )
     if arrival_heading is None:
         loss = row["altitude_loss"]
         data.update(
@@ -130,7 +137,8 @@ def run_final(
             x=np.array([0.0, gx]),
             y=np.array([0.0, gy]),
             distance=s,
-            altitude=alt0 - (s / dist) * (loss if math.isfinite(loss) else np.nan),
+            # the start altitude is known even when the goal is not reachable (loss inf)
+            altitude=alt0 - (s / dist) * loss if math.isfinite(loss) else np.array([alt0, np.nan]),
             goal_elevation=elev1,
             safety_height=safety,
             title=title,
@@ -189,6 +197,11 @@ def run_final(
     )
     if not math.isfinite(loss):
         data["message"] = "the wind is too strong to make progress towards the goal"
+    drawing = replace(
+        drawing,
+        wind_speed=wind_speed,
+        wind_from_deg=None if wind is None else float(wind[1]) % 360.0,
+    )
     return data, drawing
 
 
@@ -275,7 +288,10 @@ def _arrival(
         altitude=alt,
         goal_elevation=elev1,
         safety_height=safety,
-        title=f"{title}, arrival {arrival_heading:.0f} deg ({sol.word})",
+        title=(
+            f"{title}, arrival heading {float(arrival_heading) % 360.0:.0f}° "
+            f"(path {sol.word}, start heading {heading_to_compass(psi0):.0f}°)"
+        ),
     )
     return data, drawing
 

@@ -46,6 +46,9 @@ class Segment(ABC):
     # True when speed and turn rate do not change along the segment (verification uses it to
     # evaluate them once; it checks the claim at the start, middle and end)
     constant_controls: ClassVar[bool] = False
+    # True when speed and turn rate are linear between consecutive `breakpoints()` (node
+    # arrays of a direct method): verification integrates each interval by quadrature
+    piecewise_linear_controls: ClassVar[bool] = False
 
     start: Pose
     label: str

@@ -18,9 +18,9 @@ from numpy.typing import ArrayLike
 
 from glideplan.errors import InvalidParameterError
 from glideplan.pose import Pose
-from glideplan.segments.base import Segment, _check_direction
+from glideplan.segments.base import Segment
 from glideplan.segments.constant import Arc, Straight
-from glideplan.validation import check_finite, check_nonnegative, check_positive
+from glideplan.validation import check_finite
 
 __all__ = ["DriftingStraight", "TrochoidArc"]
 
@@ -44,11 +44,33 @@ def _check_drift(drift: Any) -> tuple[float, float]:
 
 
 class _Drifting(Segment):
-    """Shared parts of the segments flown in a steady uniform wind."""
+    """Shared parts of the segments flown in a steady uniform wind: the air-frame segment
+    (`_air_segment`, which also validates the fields) plus the drift w t."""
 
     constant_controls: ClassVar[bool] = True
+    # the fields shared with the air-frame segment (validated and normalised by it)
+    _air_fields: ClassVar[tuple[str, ...]] = ()
     drift: tuple[float, float]
     speed: float
+
+    def _air(self) -> Arc | Straight:
+        """The same manoeuvre in the air-relative frame F_A (no drift)."""
+        raise NotImplementedError
+
+    def __post_init__(self) -> None:
+        air = self._air()  # validates the air-frame fields
+        for name in self._air_fields:
+            object.__setattr__(self, name, getattr(air, name))
+        object.__setattr__(self, "drift", _check_drift(self.drift))
+
+    @functools.cached_property
+    def _air_segment(self) -> Arc | Straight:
+        """The air-frame segment, built once."""
+        return self._air()
+
+    @property
+    def duration(self) -> float:
+        return self._air_segment.duration
 
     @property
     def length(self) -> float:
@@ -56,11 +78,6 @@ class _Drifting(Segment):
 
     def time_at_length(self, s: ArrayLike) -> np.ndarray:
         return np.asarray(s, dtype=float) / self.speed
-
-    @functools.cached_property
-    def _air_segment(self) -> Arc | Straight:
-        """The same manoeuvre in the air-relative frame F_A (no drift); built once."""
-        raise NotImplementedError
 
     def states(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Ground position (air-frame position plus drift w t) and heading at local times t."""
@@ -70,6 +87,12 @@ class _Drifting(Segment):
 
     def controls(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         return self._air_segment.controls(t)
+
+    @property
+    def end(self) -> Pose:
+        """The air-frame segment's end (closed form) moved by the drift w T."""
+        air, T = self._air_segment.end, self.duration
+        return Pose(air.x + self.drift[0] * T, air.y + self.drift[1] * T, air.heading)
 
     @property
     def ground_length(self) -> float:
@@ -86,8 +109,8 @@ class _Drifting(Segment):
 
     def to_dict(self) -> dict[str, Any]:
         return {
+            **self._air_segment.to_dict(),
             **super().to_dict(),
-            "speed": self.speed,
             "drift": list(self.drift),
             "ground_length": self.ground_length,
         }
@@ -108,36 +131,15 @@ class TrochoidArc(_Drifting):
     label: str = "B"
 
     kind: ClassVar[str] = "trochoid_arc"
+    _air_fields: ClassVar[tuple[str, ...]] = ("angle", "radius", "direction", "speed")
 
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "angle", check_nonnegative("angle", self.angle))
-        object.__setattr__(self, "radius", check_positive("radius", self.radius))
-        object.__setattr__(self, "direction", _check_direction(self.direction))
-        object.__setattr__(self, "speed", check_positive("speed", self.speed))
-        object.__setattr__(self, "drift", _check_drift(self.drift))
-
-    @property
-    def duration(self) -> float:
-        return self.radius * self.angle / self.speed
+    def _air(self) -> Arc:
+        return Arc(self.start, self.angle, self.radius, self.direction, self.speed, self.label)
 
     @property
     def turn_rate(self) -> float:
         """Signed turn rate (rad/s)."""
         return self.direction * self.speed / self.radius
-
-    @functools.cached_property
-    def _air_segment(self) -> Arc:
-        return Arc(self.start, self.angle, self.radius, self.direction, self.speed, self.label)
-
-    @property
-    def end(self) -> Pose:
-        s, r, d, T = self.start, self.radius, self.direction, self.duration
-        h = s.heading + d * self.angle
-        return Pose(
-            s.x + d * r * (math.sin(h) - math.sin(s.heading)) + self.drift[0] * T,
-            s.y - d * r * (math.cos(h) - math.cos(s.heading)) + self.drift[1] * T,
-            h,
-        )
 
     def transformed(self, frame: Pose, reflect: bool = False) -> TrochoidArc:
         return TrochoidArc(
@@ -149,14 +151,6 @@ class TrochoidArc(_Drifting):
             _map_drift(self.drift, frame, reflect),
             self.label,
         )
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            **super().to_dict(),
-            "angle": self.angle,
-            "radius": self.radius,
-            "turn_rate": self.turn_rate,
-        }
 
 
 @dataclass(frozen=True)
@@ -172,32 +166,14 @@ class DriftingStraight(_Drifting):
     label: str = "S"
 
     kind: ClassVar[str] = "drifting_straight"
+    _air_fields: ClassVar[tuple[str, ...]] = ("length_m", "speed")
 
     @property
     def direction(self) -> int:  # type: ignore[override]
         return 0
 
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "length_m", check_nonnegative("length", self.length_m))
-        object.__setattr__(self, "speed", check_positive("speed", self.speed))
-        object.__setattr__(self, "drift", _check_drift(self.drift))
-
-    @property
-    def duration(self) -> float:
-        return self.length_m / self.speed
-
-    @functools.cached_property
-    def _air_segment(self) -> Straight:
+    def _air(self) -> Straight:
         return Straight(self.start, self.length_m, self.speed, self.label)
-
-    @property
-    def end(self) -> Pose:
-        s, T = self.start, self.duration
-        return Pose(
-            s.x + self.length_m * math.cos(s.heading) + self.drift[0] * T,
-            s.y + self.length_m * math.sin(s.heading) + self.drift[1] * T,
-            s.heading,
-        )
 
     def transformed(self, frame: Pose, reflect: bool = False) -> DriftingStraight:
         return DriftingStraight(

@@ -43,6 +43,7 @@ class Sampled(Segment):
     info: dict[str, Any] = field(default_factory=dict)
 
     kind: ClassVar[str] = "sampled"
+    piecewise_linear_controls: ClassVar[bool] = True
 
     @property
     def direction(self) -> int:  # type: ignore[override]

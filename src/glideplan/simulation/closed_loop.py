@@ -24,6 +24,12 @@ once the path point has reached the path's last segment; a vehicle that has not 
 the time-out t_max = timeout_factor (L + 2 pi R0) / (v - delta_max), or whose path point has
 run 2 R0 past the path's end (it passed the finish line without crossing it forwards while
 armed), is a failure.
+
+The disturbance is either a stream stepped once per step (`DisturbanceStream`: steady wind,
+Dryden gusts; vehicles share rows of one realisation) or a `PositionalStream` evaluated at
+each flying vehicle's position and the step's start time (a current or wind field,
+`disturbances.FieldDisturbance`); a vehicle whose disturbance is undefined there (NaN: off
+the field, on land) stops as a failure, flagged in `FollowResult.stopped`.
 """
 
 from __future__ import annotations
@@ -35,7 +41,7 @@ import numpy as np
 
 from glideplan.errors import InvalidParameterError
 from glideplan.pose import TWO_PI
-from glideplan.simulation.disturbances import DisturbanceStream
+from glideplan.simulation.disturbances import DisturbanceStream, PositionalStream
 from glideplan.simulation.guidance import PathArrays
 from glideplan.validation import check_in_range, check_nonnegative, check_positive
 
@@ -91,12 +97,18 @@ class FollowerSettings:
 @dataclass(frozen=True, eq=False)
 class FollowResult:
     """Per vehicle: final cross-track error (m; NaN for failures), whether it crossed the
-    finish line, and the crossing (or time-out) time (s). `tracks` (steps, N, 2) when recorded."""
+    finish line, and the crossing (or time-out) time (s). When recorded: `tracks` (steps, N, 2)
+    positions (m) and `cross_track` (steps - 1, N) the cross-track error e (m, + left of the
+    path) the guidance saw at the start of each step (NaN once a vehicle has finished).
+    `stopped` (N,): the disturbance was undefined (NaN) where the vehicle was (positional
+    disturbances only; None otherwise)."""
 
     error: np.ndarray
     crossed: np.ndarray
     time: np.ndarray
     tracks: np.ndarray | None = field(default=None)
+    cross_track: np.ndarray | None = field(default=None)
+    stopped: np.ndarray | None = field(default=None)
 
     @property
     def failures(self) -> int:
@@ -211,6 +223,7 @@ class _Fleet:
     arm: np.ndarray
     s_breaks: np.ndarray
     base: np.ndarray
+    seg: np.ndarray
 
     @classmethod
     def start(cls, paths: PathArrays, t_max: np.ndarray, rows: np.ndarray) -> _Fleet:
@@ -236,6 +249,7 @@ class _Fleet:
             arm=paths.arm.copy(),
             s_breaks=paths.s0[:, 1:].copy(),
             base=np.arange(n) * kk,
+            seg=np.zeros(n, dtype=np.intp),
         )
 
     def keep(self, mask: np.ndarray) -> None:
@@ -245,9 +259,12 @@ class _Fleet:
 
     def path_point(self, table: _SegmentTable) -> _PathPoint:
         """The path point at each vehicle's varpi (guidance.PathArrays.point_curvature)."""
-        seg = self.base.copy()
-        for j in range(self.s_breaks.shape[1]):
-            seg += self.varpi >= self.s_breaks[:, j]
+        if self.s_breaks.shape[1] <= _SCAN_BREAKS:
+            seg = self.base.copy()
+            for j in range(self.s_breaks.shape[1]):
+                seg += self.varpi >= self.s_breaks[:, j]
+        else:
+            seg = self.base + self._walk_segments()
         wc = np.clip(self.varpi, 0.0, self.length)
         dd = wc - table.s0[seg]
         chi = table.h0[seg] + table.kappa[seg] * dd
@@ -259,12 +276,39 @@ class _Fleet:
         return _PathPoint(xp, yp, c, s, table.kappa[seg], beyond)
 
 
+    def _walk_segments(self) -> np.ndarray:
+        """Segment index within each path, walked from the last step's (long paths): the
+        number of break points <= varpi, as the scan over every break point gives, since the
+        break points are sorted."""
+        j, w, br = self.seg, self.varpi, self.s_breaks
+        nb = br.shape[1]
+        r = np.arange(j.size)
+        while True:
+            up = j < nb
+            up[up] = w[up] >= br[r[up], j[up]]
+            if not up.any():
+                break
+            j = j + up
+        while True:
+            down = j > 0
+            down[down] = w[down] < br[r[down], j[down] - 1]
+            if not down.any():
+                break
+            j = j - down
+        self.seg = j
+        return j
+
+
+#: paths with at most this many break points scan them all each step; longer ones walk
+_SCAN_BREAKS = 8
+
+
 def _guidance(
     fleet: _Fleet, point: _PathPoint, gx: np.ndarray, gy: np.ndarray, cfg: FollowerSettings
-) -> tuple[np.ndarray, np.ndarray]:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Lookahead guidance (guidance.lookahead_guidance): the course error (rad) of the ground
     velocity (gx, gy) against the commanded course, the tangent turned by -atan(e / Delta),
-    and the rate of the path parameter (m/s)."""
+    the rate of the path parameter (m/s) and the cross-track error e (m)."""
     c, s = point.cos, point.sin
     delta = cfg.lookahead_distance
     ex, ey = fleet.x - point.x, fleet.y - point.y
@@ -273,7 +317,7 @@ def _guidance(
     inv = 1.0 / np.sqrt(delta * delta + cross * cross)
     dirx = (c * delta + s * cross) * inv
     diry = (s * delta - c * cross) * inv
-    return np.arctan2(gx * diry - gy * dirx, gx * dirx + gy * diry), rate
+    return np.arctan2(gx * diry - gy * dirx, gx * dirx + gy * diry), rate, cross
 
 
 def _turn_rate(
@@ -322,7 +366,7 @@ def _move(
 
 def follow_paths(
     paths: PathArrays,
-    disturbance: DisturbanceStream,
+    disturbance: DisturbanceStream | PositionalStream,
     *,
     rows: np.ndarray | None = None,
     settings: FollowerSettings | None = None,
@@ -331,10 +375,11 @@ def follow_paths(
 ) -> FollowResult:
     """Fly every path of `paths` from its start pose under guidance (module docstring).
 
-    disturbance: a stream giving (rows, 2) velocities (m/s) per step; `rows` (N,) maps each
+    disturbance: a stream giving (rows, 2) velocities (m/s) per step, or a positional stream
+    evaluated at the vehicles' positions (module docstring); `rows` (N,) maps each
     vehicle to a row (default: vehicle i uses row i), so several vehicles can share one
     realisation. disturbance_bound: delta_max (m/s) for the time-out. record: keep every
-    vehicle's positions (for figures; memory grows with N x steps).
+    vehicle's positions and cross-track errors (memory grows with N x steps).
 
     Each step: the path point, the guidance's course error, the turn rate, the exact motion,
     then the finish-line check (crossings interpolated within the step), the time-out and the
@@ -352,22 +397,36 @@ def follow_paths(
     error = np.full(n, np.nan)
     crossed = np.zeros(n, dtype=bool)
     t_end = np.zeros(n)
+    positional = isinstance(disturbance, PositionalStream)
+    stopped = np.zeros(n, dtype=bool) if positional else None
     t_max = cfg.timeout_factor * (paths.length + TWO_PI * cfg.min_radius) / (v - dmax)
     table = _SegmentTable.of(paths)
     fleet = _Fleet.start(paths, t_max, row_of)
     t = 0.0
     step = 0
     track_list: list[np.ndarray] = []
+    cross_list: list[np.ndarray] = []
     if record:
         full = np.stack([fleet.x, fleet.y], axis=-1)
         track_list.append(full.copy())
     live = np.ones(n, dtype=bool)
+    undefined = live & False
     while live.any():
-        drift = disturbance.next()[fleet.row]
+        if isinstance(disturbance, PositionalStream):
+            drift = disturbance.at(t, fleet.x, fleet.y, fleet.row)
+            bad = ~np.isfinite(drift).all(axis=1)
+            drift[bad] = 0.0
+            undefined = live & bad
+        else:
+            drift = disturbance.next()[fleet.row]
         gx = v * fleet.cp + drift[:, 0]
         gy = v * fleet.sp + drift[:, 1]
         point = fleet.path_point(table)
-        err, rate = _guidance(fleet, point, gx, gy, cfg)
+        err, rate, cross = _guidance(fleet, point, gx, gy, cfg)
+        if record:
+            row = np.full(n, np.nan)
+            row[fleet.ids[live]] = cross[live]
+            cross_list.append(row)
         u = _turn_rate(err, rate, point, cfg)
         x_new, y_new = _move(fleet, u, drift, cfg)
         step += 1
@@ -378,6 +437,8 @@ def follow_paths(
         t = step * dt
         a = (x_new - fleet.xf) * fleet.cf + (y_new - fleet.yf) * fleet.sf
         hit = live & (fleet.varpi >= fleet.arm) & (fleet.a_prev < 0.0) & (a >= 0.0)
+        if positional:
+            hit &= ~undefined
         if hit.any():
             frac, err_h = _crossing(
                 fleet.x[hit],
@@ -400,6 +461,9 @@ def follow_paths(
         # lost: the path point is far past the end, so the vehicle went beyond the finish
         # line without crossing it forwards while armed (it will not come back)
         done = live & (hit | (t >= fleet.tmax) | (fleet.varpi > fleet.length + lost_margin))
+        if stopped is not None and undefined.any():
+            stopped[fleet.ids[undefined]] = True
+            done |= undefined
         if done.any():
             t_end[fleet.ids[done & ~hit]] = t
             live &= ~done
@@ -409,4 +473,6 @@ def follow_paths(
                 fleet.keep(live)
                 live = np.ones(n_live, dtype=bool)
     tracks = np.stack(track_list) if record else None
-    return FollowResult(error=error, crossed=crossed, time=t_end, tracks=tracks)
+    cross_track = (np.stack(cross_list) if cross_list else np.empty((0, n))) if record else None
+    return FollowResult(error=error, crossed=crossed, time=t_end, tracks=tracks,
+                        cross_track=cross_track, stopped=stopped)

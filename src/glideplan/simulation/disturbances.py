@@ -19,13 +19,20 @@ vector is saturated at |delta| <= saturation (the dissertation's eps v) after th
 RMS becomes f sigma while the saturation stays as given. The literal reading of §3.4
 (sigma = eps v) is f = 1; f = 1/sqrt(pi) is the slip of unit-intensity white noise, and
 f = 0.3-0.4 brings the Fig 3.4(b) curves under the dissertation's axis (issue 10).
+
+A disturbance that depends on where the vehicle is and when (a current or wind field) is a
+`FieldDisturbance(velocity)`: its stream is a `PositionalStream`, whose `at(t, x, y, rows)`
+the simulator calls once per step with every flying vehicle's position (vectorised), giving
+delta = velocity(t0 + t, x, y). NaN components mean "undefined here" (off a field, on land):
+the simulator stops those vehicles.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Protocol
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -36,6 +43,8 @@ from glideplan.validation import check_finite_array, check_nonnegative, check_po
 __all__ = [
     "DisturbanceStream",
     "DrydenTurbulence",
+    "FieldDisturbance",
+    "PositionalStream",
     "SteadyDisturbance",
     "saturate",
 ]
@@ -197,3 +206,57 @@ class DrydenTurbulence:
         """A realisation as an array (steps, rows, 2) in m/s (for analysis and tests)."""
         s = self.stream(rows, dt, rng)
         return np.stack([s.next() for _ in range(int(steps))])
+
+
+@runtime_checkable
+class PositionalStream(Protocol):
+    """A disturbance evaluated at each vehicle's position and time (a current or wind field)."""
+
+    @property
+    def rows(self) -> int:
+        """Number of vehicles (rows) of the realisation."""
+        ...
+
+    def at(self, t: float, x: np.ndarray, y: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """Disturbance velocity (n, 2) in m/s over the step starting at time t (s) for vehicles
+        at (x, y) (n,) in m, which use realisation rows `rows` (n,); NaN where undefined."""
+        ...
+
+
+#: velocity(t, x, y) -> (u, v): the disturbance (m/s, local axes) at time t (s) and local
+#: positions x, y (m), arrays of one shape; NaN where it is undefined.
+VelocityFunction = Callable[[float, np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
+
+
+@dataclass(frozen=True, eq=False)
+class _FieldStream:
+    model: FieldDisturbance
+    rows: int
+
+    def at(self, t: float, x: np.ndarray, y: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        u, v = self.model.velocity(self.model.t0 + t, x, y)
+        out = np.empty((np.shape(x)[0], 2))
+        out[:, 0], out[:, 1] = u, v
+        return out
+
+
+@dataclass(frozen=True, eq=False)
+class FieldDisturbance:
+    """A disturbance that varies in space and time: delta = velocity(t0 + t, x, y) (m/s) at
+    each vehicle's position (m, the simulator's plane) and the simulation time t (s) plus the
+    offset t0 (s, e.g. the departure time in the field's clock). The same field for every row."""
+
+    velocity: VelocityFunction
+    t0: float = 0.0
+
+    def __post_init__(self) -> None:
+        if not callable(self.velocity):
+            raise InvalidParameterError("velocity", self.velocity, "must be callable")
+        if not math.isfinite(self.t0):
+            raise InvalidParameterError("t0", self.t0, "must be finite (s)")
+
+    def stream(
+        self, rows: int, dt: float, rng: np.random.Generator | None = None
+    ) -> PositionalStream:
+        """A stream for `rows` vehicles (deterministic: dt and rng are not used)."""
+        return _FieldStream(self, int(rows))

@@ -163,6 +163,17 @@ class PathArrays:
         """Path point (x, y) and tangent angle chi_p at arc lengths varpi (N,)."""
         return self.point_curvature(varpi)[:3]
 
+    def points_along(
+        self, i: int, varpi: ArrayLike
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Points (x, y) and tangent angles of row `i` at many arc lengths varpi (M,) within
+        [0, length] (m): one path sampled densely (`point` takes one varpi per row)."""
+        w = np.clip(np.asarray(varpi, dtype=float), 0.0, self.length[i])
+        idx = np.searchsorted(self.s0[i], w, side="right") - 1
+        idx = np.clip(idx, 0, self.s0.shape[1] - 1)
+        return _advance(self.x0[i, idx], self.y0[i, idx], self.h0[i, idx], self.kappa[i, idx],
+                        w - self.s0[i, idx])
+
     def point_curvature(
         self, varpi: ArrayLike
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

@@ -7,12 +7,12 @@ from typing import ClassVar
 
 from glideplan.vehicles.base import Vehicle, check_length, check_speed, check_turn_rate
 
-__all__ = ["DubinsCar"]
+__all__ = ["ConstantSpeedCar", "DubinsCar"]
 
 
 @dataclass(frozen=True)
-class DubinsCar(Vehicle):
-    """Constant speed `speed` (m/s) and minimum turn radius `turn_radius` (m); u_max = v / R.
+class ConstantSpeedCar(Vehicle):
+    """Shared part of the Dubins cars: speed `speed` (m/s), minimum turn radius `turn_radius` (m).
 
     Supported range (`glideplan.vehicles.base`): speed in [1e-6, 1e6] m/s, turn radius in
     [1e-6, 1e7] m, u_max = v / R in [1e-6, 1e6] rad/s; anything else is refused.
@@ -20,9 +20,6 @@ class DubinsCar(Vehicle):
 
     speed: float = 1.0
     turn_radius: float = 1.0
-
-    model: ClassVar[str] = "dubins_car"
-    default_objective: ClassVar[str] = "length"
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "speed", check_speed("speed", self.speed))
@@ -37,3 +34,15 @@ class DubinsCar(Vehicle):
     @property
     def length_scale(self) -> float:
         return self.turn_radius
+
+
+@dataclass(frozen=True)
+class DubinsCar(ConstantSpeedCar):
+    """Constant speed `speed` (m/s) and minimum turn radius `turn_radius` (m); u_max = v / R.
+
+    Supported range (`glideplan.vehicles.base`): speed in [1e-6, 1e6] m/s, turn radius in
+    [1e-6, 1e7] m, u_max = v / R in [1e-6, 1e6] rad/s; anything else is refused.
+    """
+
+    model: ClassVar[str] = "dubins_car"
+    default_objective: ClassVar[str] = "length"

@@ -8,13 +8,38 @@ from typing import ClassVar
 
 from glideplan.errors import InvalidParameterError
 from glideplan.validation import check_finite, check_nonnegative
-from glideplan.vehicles.base import Vehicle, check_length, check_speed, check_turn_rate
+from glideplan.vehicles.dubins_car import ConstantSpeedCar
 
-__all__ = ["DubinsCarInWind"]
+__all__ = ["DubinsCarInWind", "SteadyWind"]
+
+
+class SteadyWind:
+    """Mixin of the vehicles flown in a steady uniform wind of `wind_speed` (m/s) blowing
+    TOWARDS `wind_direction` (rad, counter-clockwise from +x); the dataclass declares both."""
+
+    wind_speed: float
+    wind_direction: float
+
+    def _check_wind(self, speed_limit: float, rule: str) -> None:
+        """Validate the wind fields in place; the wind speed must stay below `speed_limit`."""
+        object.__setattr__(self, "wind_speed", check_nonnegative("wind_speed", self.wind_speed))
+        object.__setattr__(
+            self, "wind_direction", check_finite("wind_direction", self.wind_direction)
+        )
+        if self.wind_speed >= speed_limit:
+            raise InvalidParameterError("wind_speed", self.wind_speed, rule)
+
+    @property
+    def wind(self) -> tuple[float, float]:
+        """The wind velocity (wx, wy) in m/s (world frame)."""
+        return (
+            self.wind_speed * math.cos(self.wind_direction),
+            self.wind_speed * math.sin(self.wind_direction),
+        )
 
 
 @dataclass(frozen=True)
-class DubinsCarInWind(Vehicle):
+class DubinsCarInWind(SteadyWind, ConstantSpeedCar):
     """Air- (or water-) relative speed `speed` (m/s), minimum turn radius `turn_radius` (m) in the
     air frame, and a steady uniform wind of `wind_speed` (m/s) blowing towards `wind_direction`
     (rad, counter-clockwise from +x). Kinematics (A.4) with no unknown part:
@@ -25,8 +50,6 @@ class DubinsCarInWind(Vehicle):
     [1e-6, 1e7] m, u_max = v / R in [1e-6, 1e6] rad/s; anything else is refused.
     """
 
-    speed: float = 1.0
-    turn_radius: float = 1.0
     wind_speed: float = 0.0
     wind_direction: float = 0.0
 
@@ -34,33 +57,8 @@ class DubinsCarInWind(Vehicle):
     default_objective: ClassVar[str] = "time"
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "speed", check_speed("speed", self.speed))
-        object.__setattr__(self, "turn_radius", check_length("turn_radius", self.turn_radius))
-        check_turn_rate("speed/turn_radius", self.speed / self.turn_radius)
-        object.__setattr__(self, "wind_speed", check_nonnegative("wind_speed", self.wind_speed))
-        object.__setattr__(
-            self, "wind_direction", check_finite("wind_direction", self.wind_direction)
+        super().__post_init__()
+        self._check_wind(
+            self.speed,
+            f"must be < the vehicle's speed {self.speed:g} (else some goals are unreachable)",
         )
-        if self.wind_speed >= self.speed:
-            raise InvalidParameterError(
-                "wind_speed",
-                self.wind_speed,
-                f"must be < the vehicle's speed {self.speed:g} (else some goals are unreachable)",
-            )
-
-    @property
-    def wind(self) -> tuple[float, float]:
-        """The wind velocity (wx, wy) in m/s."""
-        return (
-            self.wind_speed * math.cos(self.wind_direction),
-            self.wind_speed * math.sin(self.wind_direction),
-        )
-
-    @property
-    def max_turn_rate(self) -> float:
-        """u_max = v / R0 (rad/s)."""
-        return self.speed / self.turn_radius
-
-    @property
-    def length_scale(self) -> float:
-        return self.turn_radius

@@ -23,14 +23,15 @@ from numpy.typing import ArrayLike
 
 from glideplan.errors import InvalidParameterError
 from glideplan.sailplane.polar import GRAVITY, SailplanePolar
-from glideplan.validation import check_finite, check_nonnegative, check_positive
+from glideplan.validation import check_positive
 from glideplan.vehicles.base import Vehicle
+from glideplan.vehicles.dubins_car_in_wind import SteadyWind
 
 __all__ = ["Sailplane"]
 
 
 @dataclass(frozen=True)
-class Sailplane(Vehicle):
+class Sailplane(SteadyWind, Vehicle):
     """A sailplane: `polar` (SI), `bank_max` (rad, in (0, 80 deg]), a steady wind of
     `wind_speed` (m/s) blowing TOWARDS `wind_direction` (rad, CCW from +x: the same
     convention as `DubinsCarInWind`), optional `turn_rate_max` (rad/s) and `turning_polar`.
@@ -55,27 +56,12 @@ class Sailplane(Vehicle):
                 "bank_max", math.degrees(bank), "must be <= 80 degrees (load factor <= 5.8)"
             )
         object.__setattr__(self, "bank_max", bank)
-        object.__setattr__(self, "wind_speed", check_nonnegative("wind_speed", self.wind_speed))
-        object.__setattr__(
-            self, "wind_direction", check_finite("wind_direction", self.wind_direction)
-        )
         if self.turn_rate_max is not None:
             object.__setattr__(
                 self, "turn_rate_max", check_positive("turn_rate_max", self.turn_rate_max)
             )
-        if self.wind_speed >= self.polar.v_max:
-            raise InvalidParameterError(
-                "wind_speed",
-                self.wind_speed,
-                f"must be < the polar's top speed {self.polar.v_max:.4g} m/s",
-            )
-
-    @property
-    def wind(self) -> tuple[float, float]:
-        """The wind velocity (wx, wy) in m/s (world frame)."""
-        return (
-            self.wind_speed * math.cos(self.wind_direction),
-            self.wind_speed * math.sin(self.wind_direction),
+        self._check_wind(
+            self.polar.v_max, f"must be < the polar's top speed {self.polar.v_max:.4g} m/s"
         )
 
     @property

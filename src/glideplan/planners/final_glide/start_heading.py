@@ -20,12 +20,10 @@ import numpy as np
 
 from glideplan.planners.final_glide.direct import guess_speed_and_radius
 from glideplan.planners.wind import convected_dubins
-from glideplan.pose import Pose, wrap_to_pi
+from glideplan.pose import TWO_PI, Pose, mod_2pi, wrap_to_pi
 from glideplan.vehicles.sailplane import Sailplane
 
 __all__ = ["best_start_heading", "straight_turn_arrival"]
-
-TWO_PI = 2.0 * math.pi
 
 
 def straight_turn_arrival(
@@ -46,7 +44,7 @@ def straight_turn_arrival(
     ok = dc2 > radius**2
     t = np.sqrt(np.where(ok, dc2 - radius**2, 1.0))
     theta = np.arctan2(cy, cx) - d * np.arctan2(radius, t)
-    arc = np.mod(d * (goal.heading - theta), TWO_PI)
+    arc = mod_2pi(d * (goal.heading - theta))
     F = np.where(ok, t + radius * arc - speed * T, np.nan)
     # first cell where F goes from > 0 to <= 0 without an arc wrap (a jump of 2 pi R)
     cells = np.nonzero((F[:-1] > 0.0) & (F[1:] <= 0.0) & (np.abs(F[1:] - F[:-1]) < np.pi * radius))[
@@ -62,7 +60,7 @@ def straight_turn_arrival(
         cyy = goal.y - wind[1] * tt + d * radius * ny
         tl = math.sqrt(max(cxx**2 + cyy**2 - radius**2, 0.0))
         th = math.atan2(cyy, cxx) - d * math.atan2(radius, tl)
-        ar = (d * (goal.heading - th)) % TWO_PI
+        ar = float(mod_2pi(d * (goal.heading - th)))
         return tl + radius * ar - speed * tt, th
 
     for _ in range(60):

@@ -34,13 +34,12 @@ from scipy.optimize import brentq
 from glideplan.path import Path
 from glideplan.planners.final_glide.segment import DriftingSegment
 from glideplan.planners.min_altitude.extremals import b_arc_change, b_arc_segments
-from glideplan.pose import Pose
+from glideplan.pose import Pose, mod_2pi
 from glideplan.segments import Segment, Straight
 from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider
 
 __all__ = ["BSBDrift", "bsb_with_drift", "straight_speed"]
 
-TWO_PI = 2.0 * math.pi
 _GRID = 720
 
 
@@ -74,8 +73,8 @@ def _pieces(theta: np.ndarray, goal: Pose, glider: QuadraticPolarGlider, wind, d
     lam_s = np.where(ok, lam, 0.0)
     vs_s = np.where(ok, vs, glider.v_stf)
     psi_s = theta + math.pi
-    delta1 = d1 * np.mod(d1 * psi_s, TWO_PI)
-    delta2 = d2 * np.mod(d2 * (goal.heading - psi_s), TWO_PI)
+    delta1 = d1 * mod_2pi(d1 * psi_s)
+    delta2 = d2 * mod_2pi(d2 * (goal.heading - psi_s))
     c1 = b_arc_change(0.0, delta1, theta, lam_s, glider)
     c2 = b_arc_change(psi_s, delta2, theta, lam_s, glider)
     t_arcs = c1.dt + c2.dt

@@ -138,8 +138,6 @@ def _finish(
     ctype: CandidateType,
     first: str,
     last: str,
-    d1: int,
-    d2: int,
     u1: float,
     u2: float,
     a: float,
@@ -148,6 +146,9 @@ def _finish(
     goal: np.ndarray,
     extra: dict[str, Any],
 ) -> Extremal | None:
+    """The extremal of type `ctype` with end pieces `first`/`last` and the given middle moves,
+    or None when it misses the goal by more than the end tolerance."""
+    d1, d2 = ctype.directions[0], ctype.directions[-1]
     moves = piece_moves(first, "first", d1, u1, a) + middle + piece_moves(last, "last", d2, u2, a)
     moves_f: tuple[Move, ...] = tuple((lab, d, float(x)) for lab, d, x in moves)
     p, h = compose(moves_f, rho, ())
@@ -361,19 +362,9 @@ def _solve_tst(goal: np.ndarray, rho: float, key: str = "TST") -> list[Extremal]
     out = []
     for i in np.nonzero(good)[0]:
         t, first, last = st.items[rows[i]]
+        li = float(length[i])
         sol = _finish(
-            t,
-            first,
-            last,
-            t.directions[0],
-            t.directions[-1],
-            float(u1[i]),
-            float(u2[i]),
-            PI / 2,
-            [("S", 0, float(length[i]))],
-            rho,
-            goal,
-            {"L": float(length[i])},
+            t, first, last, float(u1[i]), float(u2[i]), PI / 2, [("S", 0, li)], rho, goal, {"L": li}
         )
         if sol is not None:
             out.append(sol)
@@ -424,20 +415,7 @@ def _solve_tttt(goal: np.ndarray, rho: float, key: str = "TTTT") -> list[Extrema
         for _ in range(t.interior):
             middle += piece_moves("T", "interior", d, None, ai)
             d = -d
-        sol = _finish(
-            t,
-            first,
-            last,
-            t.directions[0],
-            t.directions[-1],
-            float(u1[i]),
-            float(u2[i]),
-            ai,
-            middle,
-            rho,
-            goal,
-            {"a": ai},
-        )
+        sol = _finish(t, first, last, float(u1[i]), float(u2[i]), ai, middle, rho, goal, {"a": ai})
         if sol is not None:
             out.append(sol)
     return out
