@@ -130,10 +130,10 @@ def _integrate_piecewise_linear(
     w = h[:, None] * wts[None, :]
     dx = float(np.sum(w * vs * np.cos(psi))) + drift[0] * seg.duration
     dy = float(np.sum(w * vs * np.sin(psi))) + drift[1] * seg.duration
-    cost = float(np.sum(w * rate(vs.ravel(), us.ravel()).reshape(vs.shape))) if rate is not None else 0.0
-    return np.array(
-        [state[0] + dx, state[1] + dy, state[2] + float(np.sum(dpsi)), state[3] + cost]
-    )
+    cost = 0.0
+    if rate is not None:
+        cost = float(np.sum(w * np.asarray(rate(vs.ravel(), us.ravel())).reshape(vs.shape)))
+    return np.array([state[0] + dx, state[1] + dy, state[2] + float(np.sum(dpsi)), state[3] + cost])
 
 
 def integrate_path(

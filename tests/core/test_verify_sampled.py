@@ -1,4 +1,4 @@
-"""Verification of sampled (direct-method) paths: per-interval quadrature of piecewise-linear controls."""
+"""Verification of sampled (direct-method) paths: per-interval quadrature of linear controls."""
 
 from __future__ import annotations
 

@@ -14,7 +14,7 @@ import numpy as np
 import typer
 
 from glideplan.cli.app import design_app
-from glideplan.cli.common import flag_names, print_json, print_warnings
+from glideplan.cli.common import flag_names, json_flag, print_json, print_warnings
 from glideplan.errors import InvalidParameterError
 from glideplan.validation import check_finite, check_in_range, check_positive
 
@@ -29,7 +29,7 @@ ParamsOpt = Annotated[
 ]
 MAX_STATIONS = 1001  # `design trim --steps`: a table, not a sweep
 
-JsonOpt = Annotated[bool, typer.Option("--json", help="Print JSON instead of a table.")]
+JsonOpt = Annotated[bool, json_flag("Print JSON instead of a table.")]
 
 
 def _params(path: pathlib.Path | None) -> Any:

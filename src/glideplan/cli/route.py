@@ -160,6 +160,7 @@ def route_command(
                                               resolution=resolution))
     out = result.to_dict()
     out["field"] = {**source, **out["field"]}
+    glider = None
     if radius is not None and result.ok:
         from glideplan.routing.glider import follow_route, trochoid_chain
 
@@ -171,7 +172,7 @@ def route_command(
     if plot is not None:
         from glideplan.routing.plot import plot_route
 
-        plot_route(result, flow, plot)
+        plot_route(result, flow, plot, speed=speed, start=from_, goal=to, glider=glider)
     if json_out:
         print_json(out)
     else:

@@ -106,32 +106,28 @@ MATH = Ops(
     1e-11,
     1e-10,
 )
-NUMPY64 = Ops(
-    np.sin,
-    np.cos,
-    np.arctan2,
-    np.sqrt,
-    np.arccos,
-    np.floor,
-    lambda a: np.maximum(a, 0.0),
-    lambda c: np.clip(c, -1.0, 1.0),
-    _array_mod_with(1e-11),
-    1e-11,
-    1e-10,
-)
-NUMPY32 = Ops(
-    np.sin,
-    np.cos,
-    np.arctan2,
-    np.sqrt,
-    np.arccos,
-    np.floor,
-    lambda a: np.maximum(a, np.float32(0.0)),
-    lambda c: np.clip(c, np.float32(-1.0), np.float32(1.0)),
-    _array_mod_with(2e-6),
-    2e-6,
-    1e-5,
-)
+
+
+def _numpy_ops(dtype: type[np.floating[Any]], snap: float, feas: float) -> Ops:
+    """Array `Ops` whose constants keep arrays of `dtype` in that precision."""
+    zero, one = dtype(0.0), dtype(1.0)
+    return Ops(
+        np.sin,
+        np.cos,
+        np.arctan2,
+        np.sqrt,
+        np.arccos,
+        np.floor,
+        lambda a: np.maximum(a, zero),
+        lambda c: np.clip(c, -one, one),
+        _array_mod_with(snap),
+        snap,
+        feas,
+    )
+
+
+NUMPY64 = _numpy_ops(np.float64, 1e-11, 1e-10)
+NUMPY32 = _numpy_ops(np.float32, 2e-6, 1e-5)
 
 
 def ops_for(dtype: Any) -> Ops:

@@ -29,7 +29,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from glideplan.errors import InvalidParameterError
 from glideplan.sailplane.plr import PolarFile, PolarFileError
-from glideplan.validation import check_finite, check_nonnegative, check_positive
+from glideplan.units import G0
+from glideplan.validation import check_fields, check_finite, check_nonnegative, check_positive
 
 __all__ = [
     "GRAVITY",
@@ -40,7 +41,7 @@ __all__ = [
     "polar_from_file",
 ]
 
-GRAVITY = 9.80665  # m/s^2
+GRAVITY = G0  # standard gravity, m/s^2 (glideplan.units)
 STALL_FRACTION = 0.85  # v_min = min(v1, STALL_FRACTION * v_ms) when the file gives no stall speed
 MAX_BUGS_PCT = 50.0
 KMH = 1.0 / 3.6  # m/s per km/h
@@ -75,10 +76,8 @@ class SailplanePolar:
     max_ballast_l: float = 0.0
 
     def __post_init__(self) -> None:
-        for f in ("a", "b", "c"):
-            object.__setattr__(self, f, check_finite(f, getattr(self, f)))
-        for f in ("v_min", "v_max", "mass_kg", "reference_mass_kg"):
-            object.__setattr__(self, f, check_positive(f, getattr(self, f)))
+        check_fields(self, check_finite, ("a", "b", "c"))
+        check_fields(self, check_positive, ("v_min", "v_max", "mass_kg", "reference_mass_kg"))
         if self.a <= 0.0:
             raise InvalidParameterError(
                 "a", self.a, "the polar must be convex, a > 0 (Assumption 5.2.1)"
@@ -129,14 +128,19 @@ class SailplanePolar:
     # ----- turning flight ---------------------------------------------------------------
     def sink_turning(self, speed: ArrayLike, bank: ArrayLike) -> NDArray[np.float64]:
         """w_phi(V) = n^{3/2} w(V / sqrt n), n = 1 / cos(phi) (bank phi in rad)."""
-        v = np.asarray(speed, dtype=float)
         n = 1.0 / np.cos(np.asarray(bank, dtype=float))
-        return self.a * np.sqrt(n) * v**2 + self.b * n * v + n**1.5 * self.c
+        return self.sink_at_load_factor(speed, n)
 
     def sink_at_turn_rate(self, speed: ArrayLike, turn_rate: ArrayLike) -> NDArray[np.float64]:
         """Sink rate (m/s) at airspeed V and turn rate u: bank tan(phi) = u V / g."""
         v = np.asarray(speed, dtype=float)
         n = np.sqrt(1.0 + (np.asarray(turn_rate, dtype=float) * v / GRAVITY) ** 2)
+        return self.sink_at_load_factor(v, n)
+
+    def sink_at_load_factor(self, speed: ArrayLike, n: ArrayLike) -> NDArray[np.float64]:
+        """n^{3/2} w(V / sqrt n) = a sqrt(n) V^2 + b n V + n^{3/2} c (m/s) at load factor n."""
+        v = np.asarray(speed, dtype=float)
+        n = np.asarray(n, dtype=float)
         return self.a * np.sqrt(n) * v**2 + self.b * n * v + n**1.5 * self.c
 
     @staticmethod

@@ -8,10 +8,11 @@ their controls. Their `length` is the air-relative distance flown (v times the d
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Self
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -88,6 +89,14 @@ class _Drifting(Segment):
     def controls(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         return self._air_segment.controls(t)
 
+    def transformed(self, frame: Pose, reflect: bool = False) -> Self:
+        """The air-frame segment mapped by the rigid motion, with the drift rotated alike."""
+        air = self._air_segment.transformed(frame, reflect)
+        shared = {name: getattr(air, name) for name in self._air_fields}
+        return dataclasses.replace(  # type: ignore[type-var]
+            self, start=air.start, drift=_map_drift(self.drift, frame, reflect), **shared
+        )
+
     @property
     def end(self) -> Pose:
         """The air-frame segment's end (closed form) moved by the drift w T."""
@@ -141,17 +150,6 @@ class TrochoidArc(_Drifting):
         """Signed turn rate (rad/s)."""
         return self.direction * self.speed / self.radius
 
-    def transformed(self, frame: Pose, reflect: bool = False) -> TrochoidArc:
-        return TrochoidArc(
-            self.start.from_frame(frame, reflect),
-            self.angle,
-            self.radius,
-            -self.direction if reflect else self.direction,
-            self.speed,
-            _map_drift(self.drift, frame, reflect),
-            self.label,
-        )
-
 
 @dataclass(frozen=True)
 class DriftingStraight(_Drifting):
@@ -174,12 +172,3 @@ class DriftingStraight(_Drifting):
 
     def _air(self) -> Straight:
         return Straight(self.start, self.length_m, self.speed, self.label)
-
-    def transformed(self, frame: Pose, reflect: bool = False) -> DriftingStraight:
-        return DriftingStraight(
-            self.start.from_frame(frame, reflect),
-            self.length_m,
-            self.speed,
-            _map_drift(self.drift, frame, reflect),
-            self.label,
-        )
