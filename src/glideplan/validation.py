@@ -15,6 +15,7 @@ __all__ = [
     "check_finite",
     "check_finite_array",
     "check_in_range",
+    "check_integer",
     "check_less",
     "check_nonnegative",
     "check_nonnegative_array",
@@ -92,6 +93,13 @@ def check_fields(obj: Any, check: Callable[[str, Any], Any], names: Iterable[str
     """Replace each named field of a (frozen) dataclass by `check(name, value)`, in order."""
     for name in names:
         object.__setattr__(obj, name, check(name, getattr(obj, name)))
+
+
+def check_integer(name: str, value: Any, low: int) -> Any:
+    """`value` unchanged when it is a whole number >= `low` (4 and 4.0 pass; 4.5 does not)."""
+    if int(value) != value or value < low:
+        raise InvalidParameterError(name, value, f"must be an integer >= {low}")
+    return value
 
 
 def check_finite_array(name: str, value: Any, *, last_dim: int | None = None) -> np.ndarray:

@@ -129,7 +129,28 @@ def _usage_message(exc: click_exc.ClickException, root: Any, argv: list[str]) ->
     detail = exc.format_message()
     if isinstance(exc, click_exc.BadOptionUsage):
         return head
+    taken = _words_after(argv, list(getattr(param, "opts", None) or []), nargs)
+    cut = next((i for i, word in enumerate(taken) if _is_option_name(word)), None)
+    if cut is not None:  # `--goal 4 3 --radius 1`: the option took the next option's name
+        return f"{head}, got {cut} ({' '.join(taken[:cut]) or 'none'}) before {taken[cut]}"
     return f"{head}: {detail.split(': ', 1)[-1]}"
+
+
+def _words_after(argv: list[str], opts: list[str], nargs: int) -> list[str]:
+    """The `nargs` words after the last occurrence of one of `opts` in `argv`."""
+    where = [i for i, arg in enumerate(argv) if arg in opts]
+    return argv[where[-1] + 1 : where[-1] + 1 + nargs] if where else []
+
+
+def _is_option_name(word: str) -> bool:
+    """`--radius` or `-h`, not a negative number such as `-3` or `-1e-3`."""
+    if not word.startswith("-"):
+        return False
+    try:
+        float(word)
+    except ValueError:
+        return True
+    return False
 
 
 def _reflow(text: str | None) -> str | None:
@@ -212,7 +233,9 @@ def main(argv: list[str] | None = None) -> int:
     except typer.Abort:
         return _error("interrupted", 130)
     except click_exc.NoArgsIsHelpError as exc:
-        typer.echo(exc.ctx.get_help() if exc.ctx else "")
+        # With Rich, building the error already printed the help and left the message empty
+        if exc.format_message():
+            typer.echo(exc.format_message())
         return 0
     except click_exc.ClickException as exc:
         return _error(_usage_message(exc, command, args), 2)

@@ -146,6 +146,8 @@ def mod_2pi_snapped(a: np.ndarray) -> np.ndarray:
 
 
 # ----- the six words: (x, y, psi, sin psi, cos psi, ops) -> (t, p, q, margin) ---------------
+# The order of the sums in V is deliberate: y + cos psi - 1 cancels exactly at the end of a
+# pure turn (tests/dubins/test_dubins_words.py::test_pure_turns), (y - 1) + cos psi does not.
 
 Word = tuple[Any, Any, Any, Any]
 
@@ -274,10 +276,9 @@ def word_totals(x: np.ndarray, y: np.ndarray, psi: Any, sp: Any, cp: Any, o: Ops
         if fn is _lsr or fn is _rsl:
             np.copyto(tot, np.inf, where=margin < 0.0)
         out.append(np.broadcast_to(tot, shape))
-    for fn, sign in ((_rlr, 1.0), (_lrl, -1.0)):
-        # |V|^2 of the word's circle pair, V = (x -+ sin psi, y +- cos psi -+ 1)
-        vx = x + sign * sp
-        vy = y - sign * (cp - 1.0)
+    for fn, right in ((_rlr, True), (_lrl, False)):
+        # |V|^2 of the word's circle pair, as in the word functions
+        vx, vy = (x + sp, y - cp + 1.0) if right else (x - sp, y + cp - 1.0)
         near = np.broadcast_to(vx * vx + vy * vy <= 16.0 + 8.0 * o.feas, shape).ravel()
         idx = np.flatnonzero(near)
         tot = np.full(shape, np.inf, dtype=np.result_type(x, y, psi))

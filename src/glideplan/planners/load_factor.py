@@ -36,6 +36,7 @@ from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import TWO_PI, Pose
 from glideplan.segments import Sampled
 from glideplan.solution import Candidate, Status
+from glideplan.validation import check_integer
 from glideplan.vehicles.load_factor_glider import LoadFactorGlider
 
 __all__ = [
@@ -247,10 +248,8 @@ def plan_load_factor(
     """
     glider = problem.vehicle
     assert isinstance(glider, LoadFactorGlider)
-    if int(max_starts) != max_starts or max_starts < 1:
-        raise InvalidParameterError("max_starts", max_starts, "must be an integer >= 1")
-    if int(max_iterations) != max_iterations or max_iterations < 1:
-        raise InvalidParameterError("max_iterations", max_iterations, "must be an integer >= 1")
+    check_integer("max_starts", max_starts, 1)
+    check_integer("max_iterations", max_iterations, 1)
     goal = problem.goal
     if math.hypot(goal.x, goal.y) < 1e-12 and abs(goal.heading) < 1e-12:
         return PlannerOutput(candidates=(), message="the goal is the start: nothing to fly")

@@ -57,6 +57,16 @@ class Straight(Segment):
         tt = np.asarray(t, dtype=float)
         return np.full_like(tt, self.speed), np.zeros_like(tt)
 
+    @property
+    def end(self) -> Pose:
+        """Closed form: start + length (cos psi0, sin psi0)."""
+        s = self.start
+        return Pose(
+            s.x + self.length_m * math.cos(s.heading),
+            s.y + self.length_m * math.sin(s.heading),
+            s.heading,
+        )
+
     def time_at_length(self, s: ArrayLike) -> np.ndarray:
         return np.asarray(s, dtype=float) / self.speed
 
@@ -116,6 +126,17 @@ class Arc(Segment):
     def controls(self, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         tt = np.asarray(t, dtype=float)
         return np.full_like(tt, self.speed), np.full_like(tt, self.turn_rate)
+
+    @property
+    def end(self) -> Pose:
+        """Closed form: heading psi1 = psi0 + d angle, position on the turning circle."""
+        s, r, d = self.start, self.radius, self.direction
+        h = s.heading + d * self.angle
+        return Pose(
+            s.x + d * r * (math.sin(h) - math.sin(s.heading)),
+            s.y - d * r * (math.cos(h) - math.cos(s.heading)),
+            h,
+        )
 
     def time_at_length(self, s: ArrayLike) -> np.ndarray:
         return np.asarray(s, dtype=float) / self.speed

@@ -62,6 +62,7 @@ class _Drifting(Segment):
         air = self._air()  # validates the air-frame fields
         for name in self._air_fields:
             object.__setattr__(self, name, getattr(air, name))
+        self.__dict__["_air_segment"] = air  # the cached property's value, built once
         object.__setattr__(self, "drift", _check_drift(self.drift))
 
     @functools.cached_property

@@ -29,6 +29,7 @@ import numpy as np
 
 from glideplan.errors import InvalidParameterError
 from glideplan.planners.direct.system import ControlSystem
+from glideplan.validation import check_integer
 
 if TYPE_CHECKING:
     import casadi as ca
@@ -333,8 +334,7 @@ def build_transcription(
     """The NLP for `system` on `n_intervals` mesh intervals (cached per system and size)."""
     if scheme not in SCHEMES:
         raise InvalidParameterError("scheme", scheme, f"must be one of {', '.join(SCHEMES)}")
-    if int(n_intervals) != n_intervals or n_intervals < 2:
-        raise InvalidParameterError("n_intervals", n_intervals, "must be an integer >= 2")
+    check_integer("n_intervals", n_intervals, 2)
     if scheme == "radau" and not (1 <= int(degree) <= 9):
         raise InvalidParameterError("degree", degree, "must be an integer in [1, 9]")
     deg = int(degree) if scheme == "radau" else 0

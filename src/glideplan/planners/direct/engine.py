@@ -19,7 +19,7 @@ from glideplan.planners.direct.timing import fly_controls, retime
 from glideplan.pose import TWO_PI, Pose, wrap_to_pi
 from glideplan.segments import Sampled
 from glideplan.solution import Status
-from glideplan.validation import check_nonnegative, check_positive
+from glideplan.validation import check_integer, check_nonnegative, check_positive
 
 __all__ = ["DirectResult", "StartResult", "fly_controls", "retime", "solve_direct"]
 
@@ -323,13 +323,10 @@ def _check_options(
             raise InvalidParameterError(f"guesses[{i}]", g, "must be a Path of positive duration")
     if scheme not in SCHEMES:
         raise InvalidParameterError("scheme", scheme, f"must be one of {', '.join(SCHEMES)}")
-    if int(n_intervals) != n_intervals or n_intervals < 2:
-        raise InvalidParameterError("n_intervals", n_intervals, "must be an integer >= 2")
+    check_integer("n_intervals", n_intervals, 2)
     check_positive("mesh_tol", mesh_tol)
-    if int(max_refinements) != max_refinements or max_refinements < 0:
-        raise InvalidParameterError("max_refinements", max_refinements, "must be an integer >= 0")
-    if int(output_density) != output_density or output_density < 1:
-        raise InvalidParameterError("output_density", output_density, "must be an integer >= 1")
+    check_integer("max_refinements", max_refinements, 0)
+    check_integer("output_density", output_density, 1)
 
 
 def solve_direct(

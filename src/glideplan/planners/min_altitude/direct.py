@@ -17,6 +17,7 @@ from glideplan.planners.direct import ControlSystem, DirectResult, solve_direct
 from glideplan.planners.dubins import WORDS, dubins_path
 from glideplan.planners.min_altitude.synthesis import synthesize
 from glideplan.pose import Pose
+from glideplan.validation import check_integer
 from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider
 
 __all__ = ["SEEDS", "control_system", "direct_guesses", "solve_min_altitude_direct"]
@@ -44,8 +45,7 @@ def direct_guesses(
     paths at v_stf (shortest first), interleaved, at most `max_starts`."""
     if seeds not in SEEDS:
         raise InvalidParameterError("seeds", seeds, f"must be one of {', '.join(SEEDS)}")
-    if int(max_starts) != max_starts or max_starts < 1:
-        raise InvalidParameterError("max_starts", max_starts, "must be an integer >= 1")
+    check_integer("max_starts", max_starts, 1)
     synth: list[Path] = []
     if seeds in ("all", "synthesis"):
         words: set[str] = set()

@@ -13,7 +13,6 @@ from typing import Any
 
 import numpy as np
 
-from glideplan.errors import InvalidParameterError
 from glideplan.path import Path
 from glideplan.planners.direct import ControlSystem, DirectResult, solve_direct
 from glideplan.planners.direct.guesses import dubins_guesses
@@ -22,6 +21,7 @@ from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import Pose
 from glideplan.segments import Sampled
 from glideplan.solution import Candidate, Status
+from glideplan.validation import check_integer
 from glideplan.vehicles.variable_speed_car import VariableSpeedCar
 from glideplan.words import run_word
 
@@ -168,8 +168,7 @@ def plan_time_optimal_direct(
         ("max_refinements", max_refinements, 0),
         ("max_iterations", max_iterations, 1),
     ):
-        if int(value) != value or value < low:
-            raise InvalidParameterError(name, value, f"must be an integer >= {low}")
+        check_integer(name, value, low)
     goal = problem.goal
     if (
         math.hypot(goal.x, goal.y) < 1e-12
