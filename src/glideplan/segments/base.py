@@ -7,6 +7,7 @@ y' = v sin psi + wy, psi' = u (dissertation eqs. 2.1, 4.1, 5.1-5.3, A.4) for the
 
 from __future__ import annotations
 
+import math
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from typing import Any, ClassVar
@@ -15,7 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from glideplan.errors import InvalidParameterError
-from glideplan.pose import Pose, to_world
+from glideplan.pose import Pose
 
 __all__ = ["RateFunction", "Segment", "direction_letter"]
 
@@ -36,7 +37,10 @@ def _check_direction(direction: Any) -> int:
 
 
 def _map_pose(start: Pose, frame: Pose, reflect: bool) -> Pose:
-    return Pose.from_array(to_world(start.as_array(), frame.as_array(), reflect=reflect))
+    """`start` given in `frame` mapped to the world: `pose.to_world` for one pose, in floats."""
+    y, h = (-start.y, -start.heading) if reflect else (start.y, start.heading)
+    c, s = math.cos(frame.heading), math.sin(frame.heading)
+    return Pose(frame.x + c * start.x - s * y, frame.y + s * start.x + c * y, h + frame.heading)
 
 
 class Segment(ABC):

@@ -8,7 +8,6 @@ their controls. Their `length` is the air-relative distance flown (v times the d
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import math
 from dataclasses import dataclass
@@ -91,12 +90,19 @@ class _Drifting(Segment):
         return self._air_segment.controls(t)
 
     def transformed(self, frame: Pose, reflect: bool = False) -> Self:
-        """The air-frame segment mapped by the rigid motion, with the drift rotated alike."""
+        """The air-frame segment mapped by the rigid motion, with the drift rotated alike.
+
+        Built from the (validated) mapped air segment without validating again.
+        """
         air = self._air_segment.transformed(frame, reflect)
-        shared = {name: getattr(air, name) for name in self._air_fields}
-        return dataclasses.replace(  # type: ignore[type-var]
-            self, start=air.start, drift=_map_drift(self.drift, frame, reflect), **shared
+        new = object.__new__(type(self))
+        new.__dict__.update(self.__dict__)
+        for name in self._air_fields:
+            new.__dict__[name] = getattr(air, name)
+        new.__dict__.update(
+            start=air.start, drift=_map_drift(self.drift, frame, reflect), _air_segment=air
         )
+        return new
 
     @property
     def end(self) -> Pose:
