@@ -147,11 +147,55 @@ def test_mission_figure_title_units_and_legend_outside():
     title = ax.get_title(loc="left")
     assert "buzzards_bay.gpx: 8 waypoints" in title and "R = 300 m" in title
     assert f"total {mission.total_length_m:.0f} m" in title
-    assert (ax.get_xlabel(), ax.get_ylabel()) == ("longitude (deg)", "latitude (deg)")
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("longitude (deg E)", "latitude (deg N)")
     texts = _assert_legends_outside(fig)
     assert "chosen heading (compass deg)" in texts
     assert not any(t.startswith("given heading") for t in texts)
     plt.close(fig)
+
+
+def test_mission_figure_draws_a_km_east_as_long_as_a_km_north():
+    """Equal ground scale on lon/lat axes: pixels per metre along the east-west leg L1W ->
+    L1E and along the north-south leg L1E -> L2E agree within 0.1 %. Reference: the WGS84
+    geodesic lengths of the two legs (`geodesic_distance_bearing`, an independent pyproj
+    computation), and the drawn waypoints' pixel positions. The tolerance: the aspect is taken
+    at the track's mid-latitude, 0.0045 deg from the legs, where the length of a degree of
+    longitude changes by ~tan(lat) * 7.9e-5 rad = 7e-5; the spherical 1 / cos(lat) misses
+    the WGS84 ratio by 0.4 % (so a figure with that aspect fails), and an unset aspect by
+    ~25 %. The km scales on the top and right axes read the same metres."""
+    import pathlib
+
+    import matplotlib.pyplot as plt
+
+    import glideplan.missions as missions_pkg
+    from glideplan.formats import read_route
+    from glideplan.geodesy import geodesic_distance_bearing
+    from glideplan.missions import plan_mission
+    from glideplan.missions.plot import plot_mission
+
+    gpx = pathlib.Path(missions_pkg.__file__).parent / "data" / "buzzards_bay.gpx"
+    route = read_route(gpx)
+    fig = plot_mission(plan_mission(route, speed=0.3, radius=150.0))
+    ax = fig.axes[0]
+    fig.canvas.draw()
+    names = list(route.names)
+    i, j, k = names.index("L1W"), names.index("L1E"), names.index("L2E")
+    assert route.lat is not None and route.lon is not None
+    lat, lon = np.asarray(route.lat), np.asarray(route.lon)
+    assert abs(lat[i] - lat[j]) < 1e-9 and abs(lon[j] - lon[k]) < 1e-9  # E-W, then N-S
+    metres, _ = geodesic_distance_bearing(lat[[i, j]], lon[[i, j]], lat[[j, k]], lon[[j, k]])
+    px = ax.transData.transform(np.column_stack([lon[[i, j, k]], lat[[i, j, k]]]))
+    east_px_per_m = abs(px[1, 0] - px[0, 0]) / metres[0]
+    north_px_per_m = abs(px[2, 1] - px[1, 1]) / metres[1]
+    assert east_px_per_m == pytest.approx(north_px_per_m, rel=1e-3)
+    top = [c for c in ax.child_axes if "km east" in c.get_xlabel()]
+    right = [c for c in ax.child_axes if "km north" in c.get_ylabel()]
+    assert len(top) == 1 and len(right) == 1
+    east_km = top[0].transData.inverted().transform(px[[0, 1]])[:, 0]
+    north_km = right[0].transData.inverted().transform(px[[1, 2]])[:, 1]
+    plt.close(fig)
+    assert float(east_km[1] - east_km[0]) * 1000.0 == pytest.approx(metres[0], rel=1e-3)
+    assert float(north_km[1] - north_km[0]) * 1000.0 == pytest.approx(metres[1], rel=1e-3)
 
 
 def test_final_glide_summary_is_computed_from_the_profile():

@@ -125,7 +125,21 @@ def test_a_failing_figure_exits_1_and_is_named(broken_figures, run_cli, tmp_path
     assert doc["figures"]["fig99.1"]["status"].startswith("failed: RuntimeError")
     assert doc["figures"]["fig99.1"]["rows"] == []
     assert doc["figures"]["fig2.2"]["status"] == "computed"
-    assert "wrote 1 of 3" in out
+    assert "wrote 1 figure of 3 figures to" in out
+
+
+def test_summary_counts_figures_and_tables_apart():
+    """The summary line names figures and tables by their ids (fig... / table...), with the
+    singular for one: `--only fig2.2,table4.3` wrote "1 figure and 1 table"."""
+    from glideplan.cli.reproduce import _count_kinds
+    from glideplan.figures import get_figure, load_all
+
+    load_all()
+    specs = [get_figure(i) for i in ("fig2.2", "table4.3", "fig3.1", "table5.2")]
+    assert _count_kinds(specs[:2]) == "1 figure and 1 table"
+    assert _count_kinds(specs) == "2 figures and 2 tables"
+    assert _count_kinds(specs[1:2]) == "1 table"
+    assert _count_kinds([]) == "0 figures"
 
 
 @pytest.mark.parametrize(

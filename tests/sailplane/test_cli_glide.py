@@ -227,7 +227,7 @@ def test_malformed_polar_file_is_one_line_naming_file_and_line(cli_error, tmp_pa
     line = cli_error("glide", "polar", str(bad))
     assert "broken.plr" in line and "line 2" in line and "w2 must be a number" in line
     line = cli_error("glide", "ardusoar", str(tmp_path / "missing.plr"), "--out", "x.parm")
-    assert "missing.plr" in line and "does not exist" in line
+    assert "FILE=" in line and "missing.plr" in line and "no such file" in line
 
 
 def test_ardusoar_needs_a_wing_area(cli_error, fixtures_dir, tmp_path):
@@ -237,15 +237,18 @@ def test_ardusoar_needs_a_wing_area(cli_error, fixtures_dir, tmp_path):
     assert "--wing-area" in line
 
 
-def test_wind_stronger_than_the_glider_is_below_glide(run_cli, dg_file):
+def test_wind_stronger_than_the_glider_is_unreachable(run_cli, dg_file):
     """A 45 m/s headwind beats the polar's top speed (150 km/h): no airspeed makes progress,
-    so the goal is "below glide" at any altitude (straight or with an arrival heading)."""
+    so the goal is "unreachable" at any altitude (straight or with an arrival heading): exit 1
+    (no path), the JSON still printed, one error line saying why."""
     base = ["glide", "final", "--polar", str(dg_file), "--from", "47.0", "8.0", "1500"]
     for extra in ([], ["--arrival-heading", "0"]):
         code, out, err = run_cli(
             *base, "--to", "47.3", "8.0", "420", "--wind", "45", "0", "--json", *extra
         )
-        assert code == 0, err
+        assert code == 1, err
         d = json.loads(out)
-        assert d["status"] == "below glide"
+        assert d["status"] == "unreachable"
         assert d["altitude_loss_m"] is None and "wind" in d["message"]
+        assert "headwind 45.0 m/s" in d["message"] and "150 km/h" in d["message"]
+        assert err.strip() == f"glideplan: error: final glide: unreachable: {d['message']}"

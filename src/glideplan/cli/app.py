@@ -6,7 +6,7 @@ Exit codes: 0 success; 1 planning failure (no verified path: `PlanningError`); 2
 the traceback); 130 interrupted. Command modules in this package register on the sub-apps;
 `load_commands()` imports them all, `load_commands(argv)` only those that the command line
 needs (`glideplan plan dubins ...` imports `plan_dubins` alone; help, no command or an unknown
-one import all): start-up time is part of the interface (issue 11).
+one import all): start-up time is part of the interface.
 """
 
 from __future__ import annotations

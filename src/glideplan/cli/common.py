@@ -8,7 +8,7 @@ import math
 import pathlib
 import sys
 from collections.abc import Callable, Iterator
-from typing import Any, TypeVar
+from typing import Any, NoReturn, TypeVar
 
 import numpy as np
 import typer
@@ -23,7 +23,11 @@ __all__ = [
     "PoseValues",
     "announce",
     "check_figure_file",
+    "check_input_file",
+    "check_output_dir",
+    "check_output_file",
     "emit_solution",
+    "file_flag",
     "flag_names",
     "goal_option",
     "json_default",
@@ -37,6 +41,7 @@ __all__ = [
     "start_option",
     "time_limit_flag",
     "time_limit_option",
+    "usage_error",
     "write_figure",
     "write_json",
 ]
@@ -81,16 +86,91 @@ def time_limit_flag() -> Any:
 
 @contextlib.contextmanager
 def flag_names(**names: str) -> Iterator[None]:
-    """Report a bad value under its command-line flag (`turn_radius` -> `--radius`)."""
+    """Report a bad value under its command-line flag (`turn_radius` -> `--radius`).
+
+    A name matches a key whole (`turn_radius`) or by its leading words (`goal x` -> `--goal x`,
+    `from latitude` -> `--from latitude`; keys may hold spaces, the longest match wins).
+    """
     try:
         yield
     except InvalidParameterError as exc:
-        head, _, rest = str(exc.name).partition(" ")
-        if exc.name in names:
-            raise InvalidParameterError(names[exc.name], exc.value, exc.rule) from None
-        if rest and head in names:  # "goal x" -> "--goal x"
+        name = str(exc.name)
+        if name in names:
+            raise InvalidParameterError(names[name], exc.value, exc.rule) from None
+        heads = [k for k in names if name.startswith(k + " ")]
+        if heads:  # "goal x" -> "--goal x"
+            head = max(heads, key=len)
+            rest = name[len(head) + 1 :]
             raise InvalidParameterError(f"{names[head]} {rest}", exc.value, exc.rule) from None
         raise
+
+
+@contextlib.contextmanager
+def file_flag(flag: str, path: pathlib.Path | str, *aliases: str) -> Iterator[None]:
+    """Report a bad file under the flag or argument that named it (`--polar`, `ROUTE`).
+
+    Library readers name the file itself (`one.csv`, `one.csv line 3 latitude`) or an alias
+    (`polar file one.plr`); a message about the whole file becomes `FLAG='one.csv': RULE`
+    (the reader's value, when it adds something, joins the rule: `(got 1 waypoint(s))`); one
+    about a place in it keeps the place: `FLAG one.csv line 3 latitude=95.0: ...`. An
+    `OSError` on the file (cannot be read or written) becomes `FLAG='FILE': <reason>`.
+    """
+    text = str(path)
+    keys = sorted({text, *aliases}, key=len, reverse=True)
+    try:
+        yield
+    except InvalidParameterError as exc:
+        name = str(exc.name)
+        if name in keys:
+            value = "" if exc.value is None else str(exc.value)
+            quiet = value in ("", text) or value.lower() in str(exc.rule).lower()
+            rule = exc.rule if quiet else f"{exc.rule} (got {value})"
+            raise InvalidParameterError(flag, text, rule) from None
+        head = next((k for k in keys if name.startswith((k + " ", k + ","))), None)
+        if head is not None:  # "one.csv line 3" -> "FLAG one.csv line 3"
+            place = text + name[len(head) :]
+            raise InvalidParameterError(f"{flag} {place}", exc.value, exc.rule) from None
+        raise
+    except OSError as exc:
+        reason = exc.strerror.lower() if exc.strerror else str(exc)
+        raise InvalidParameterError(flag, text, reason) from None
+
+
+def check_input_file(path: pathlib.Path, flag: str) -> pathlib.Path:
+    """A file to read: it exists and is not a directory (else an error naming `flag`)."""
+    if path.is_dir():
+        raise InvalidParameterError(flag, str(path), "is a directory, not a file")
+    if not path.is_file():
+        raise InvalidParameterError(flag, str(path), "no such file")
+    return path
+
+
+def check_output_file(path: pathlib.Path | None, flag: str) -> pathlib.Path | None:
+    """A file to write (None passes): not a directory, in a directory that exists."""
+    if path is None:
+        return None
+    if path.is_dir():
+        raise InvalidParameterError(flag, str(path), "is a directory; give a file name")
+    parent = path.parent if str(path.parent) else pathlib.Path(".")
+    if not parent.is_dir():
+        raise InvalidParameterError(flag, str(path), f"directory {str(parent)!r} does not exist")
+    return path
+
+
+def check_output_dir(path: pathlib.Path, flag: str) -> pathlib.Path:
+    """A directory to write into (made if missing): not an existing file."""
+    if path.exists() and not path.is_dir():
+        raise InvalidParameterError(flag, str(path), "is a file, not a directory")
+    if not str(path).strip():
+        raise InvalidParameterError(flag, str(path), "must name a directory")
+    return path
+
+
+def usage_error(message: str) -> NoReturn:
+    """Stop with a usage error (exit 2, one line: `glideplan: error: MESSAGE`)."""
+    from glideplan.cli.app import click_exc
+
+    raise click_exc.UsageError(message)
 
 
 def check_figure_file(path: pathlib.Path | None, flag: str = "--plot") -> pathlib.Path | None:
@@ -241,6 +321,44 @@ def write_json(data: Any, filename: pathlib.Path | str) -> None:
     pathlib.Path(filename).write_text(to_json(data) + "\n")
 
 
+def _solution_table(solution: Solution, data: dict[str, Any]) -> Any:
+    """The Rich table of a solution: quantity, value and unit of each row.
+
+    Units follow the vehicle model (`glideplan.plotting.cost_unit` / `length_unit`): m and s,
+    or `l_ref` = V_ref^2 / g and `t_ref` = V_ref / g for the nondimensional load-factor
+    glider (chapter 6). The cost's unit depends on the objective (length, altitude: a
+    length; time: a time). The endpoint error is the integrated end's distance to the goal
+    (a length) and its heading difference (degrees).
+    """
+    from rich.table import Table
+
+    from glideplan.plotting import cost_unit, length_unit
+
+    length = length_unit(solution.vehicle)
+    duration = cost_unit("time", solution.vehicle)
+    table = Table(title=f"{solution.planner} ({solution.objective})")
+    table.add_column("quantity")
+    table.add_column("value", justify="right")
+    table.add_column("unit")
+    table.add_row("status", solution.status.value, "")
+    if solution.ok:
+        err = solution.endpoint_error
+        table.add_row(
+            "cost", f"{solution.cost:.6g}", cost_unit(solution.objective, solution.vehicle)
+        )
+        table.add_row("word", solution.word, "")
+        table.add_row("family", solution.family, "")
+        table.add_row("length", f"{data['length']:.6g}", length)
+        table.add_row("duration", f"{data['duration']:.6g}", duration)
+        if err is None:
+            table.add_row("endpoint error", "n/a", "")
+        else:
+            table.add_row("endpoint error (position)", f"{err.position:.2e}", length)
+            table.add_row("endpoint error (heading)", f"{math.degrees(err.heading):.2e}", "deg")
+        table.add_row("candidates", str(len(solution.candidates)), "")
+    return table
+
+
 def emit_solution(
     solution: Solution,
     json_out: bool,
@@ -255,22 +373,8 @@ def emit_solution(
         print_json(data)
     else:
         from rich.console import Console
-        from rich.table import Table
 
-        table = Table(title=f"{solution.planner} ({solution.objective})")
-        table.add_column("quantity")
-        table.add_column("value", justify="right")
-        table.add_row("status", solution.status.value)
-        if solution.ok:
-            err = solution.endpoint_error
-            table.add_row("cost", f"{solution.cost:.6g}")
-            table.add_row("word", solution.word)
-            table.add_row("family", solution.family)
-            table.add_row("length", f"{data['length']:.6g}")
-            table.add_row("duration", f"{data['duration']:.6g}")
-            table.add_row("endpoint error", f"{err.max:.2e}" if err else "n/a")
-            table.add_row("candidates", str(len(solution.candidates)))
-        Console().print(table)
+        Console().print(_solution_table(solution, data))
     print_warnings(solution.warnings)
 
     def draw() -> None:

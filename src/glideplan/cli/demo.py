@@ -9,7 +9,7 @@ from typing import Annotated, Any
 import typer
 
 from glideplan.cli.app import app
-from glideplan.cli.common import write_json
+from glideplan.cli.common import check_output_dir, file_flag, write_json
 
 
 def _slug(name: str) -> str:
@@ -18,7 +18,9 @@ def _slug(name: str) -> str:
 
 @app.command("demo")
 def demo(
-    out: Annotated[pathlib.Path, typer.Option("--out", help="Output directory.")] = pathlib.Path(
+    out: Annotated[
+        pathlib.Path, typer.Option("--out", metavar="DIR", help="Output directory.")
+    ] = pathlib.Path(
         "out"
     ),
     plots: Annotated[bool, typer.Option("--plots/--no-plots", help="Draw each path.")] = True,
@@ -30,7 +32,9 @@ def demo(
     from glideplan.demos import demo_cases, run_demo_case
     from glideplan.plotting import plot_solution, save_figure
 
-    out.mkdir(parents=True, exist_ok=True)
+    check_output_dir(out, "--out")
+    with file_flag("--out", out):
+        out.mkdir(parents=True, exist_ok=True)
     table = Table(title="glideplan demo: the dissertation's examples")
     for col in ("example", "planner", "word", "cost", "reference", "endpoint err", "time [s]"):
         table.add_column(col, justify="right" if col not in ("example", "planner") else "left")
@@ -118,7 +122,7 @@ def _mission_example(out: pathlib.Path, plots: bool) -> dict[str, Any]:
     paths = [p for v in files.values() for p in ([v] if isinstance(v, str) else v)]
     return {
         "name": "mission: GPX lawn-mower survey, 8 waypoints",
-        "source": "issue 13",
+        "source": "missions/data/buzzards_bay.gpx; heading heuristics",
         "planner": "mission (dubins DP)",
         "word": " ".join(leg.solution.word for leg in mission.legs),
         "cost": f"{mission.total_length_m:.1f}",

@@ -14,7 +14,15 @@ import numpy as np
 import typer
 
 from glideplan.cli.app import design_app
-from glideplan.cli.common import flag_names, json_flag, print_json, print_warnings
+from glideplan.cli.common import (
+    check_input_file,
+    check_output_file,
+    file_flag,
+    flag_names,
+    json_flag,
+    print_json,
+    print_warnings,
+)
 from glideplan.errors import InvalidParameterError
 from glideplan.validation import check_finite, check_in_range, check_positive
 
@@ -41,9 +49,13 @@ def _params(path: pathlib.Path | None) -> Any:
 
     if path is None:
         return DesignParameters()
-    with flag_names(params="--params"):
-        text = read_parameter_text(path)
-        params = loads_parameters(text, source=str(path))
+    check_input_file(path, "--params")
+    try:
+        with file_flag("--params", path), flag_names(params="--params"):
+            text = read_parameter_text(path)
+            params = loads_parameters(text, source=str(path))
+    except InvalidParameterError as exc:
+        raise _toml_error(exc) from None
     missing = defaulted_fields(tomllib.loads(text))
     total = len(defaulted_fields({}))
     if len(missing) == total:
@@ -63,6 +75,21 @@ def _params(path: pathlib.Path | None) -> Any:
         ]
         print_warnings([f"{path}: defaults used for {len(missing)} of {total}: {'; '.join(parts)}"])
     return params
+
+
+def _toml_error(exc: InvalidParameterError) -> InvalidParameterError:
+    """`is not valid TOML: Expected ']' ... (at line 1, column 6)` ->
+    `is not valid TOML (line 1, column 6: Expected ']' ...)`; other errors unchanged."""
+    import re
+
+    head = "is not valid TOML: "
+    found = re.fullmatch(r"(.*) \(at line (\d+), column (\d+)\)", exc.rule[len(head) :])
+    if not exc.rule.startswith(head) or found is None:
+        return exc
+    what, line, column = found.groups()
+    return InvalidParameterError(
+        exc.name, exc.value, f"is not valid TOML (line {line}, column {column}: {what})"
+    )
 
 
 def _bladder_volume_l(flag: str, litres: float, bladder: Any) -> float:
@@ -103,7 +130,9 @@ def init(
         raise InvalidParameterError("FILE", str(file), "is a directory; give a file name")
     if file.exists() and not force:
         raise InvalidParameterError("FILE", str(file), "exists; pass --force to overwrite")
-    save_parameters(DesignParameters(), file)
+    check_output_file(file, "FILE")
+    with file_flag("FILE", file):
+        save_parameters(DesignParameters(), file)
     typer.echo(f"wrote {file}")
 
 
@@ -149,10 +178,12 @@ def tank(
 @design_app.command("dives")
 def dives(
     volume_l: Annotated[
-        list[float] | None, typer.Option("--volume-l", help="Bladder displacement, L (repeat).")
+        list[float] | None,
+        typer.Option("--volume-l", metavar="L", help="Bladder displacement, L (repeat)."),
     ] = None,
     depth_m: Annotated[
-        list[float] | None, typer.Option("--depth-m", help="Dive depth, m (repeat).")
+        list[float] | None,
+        typer.Option("--depth-m", metavar="M", help="Dive depth, m (repeat)."),
     ] = None,
     usable: Annotated[
         bool, typer.Option("--usable", help="Leave the air that cannot leave the tank at depth.")
@@ -301,7 +332,9 @@ def trim(
 def glide(
     volume_l: Annotated[
         list[float] | None,
-        typer.Option("--volume-l", help="Net buoyancy |V - V_neutral|, L (repeat)."),
+        typer.Option(
+            "--volume-l", metavar="L", help="Net buoyancy |V - V_neutral|, L (repeat)."
+        ),
     ] = None,
     params: ParamsOpt = None,
     json_out: JsonOpt = False,

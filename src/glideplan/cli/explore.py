@@ -25,10 +25,8 @@ def explore_command(
     every candidate and its cost, the endpoint error and the planner time; the state lives
     in the URL (e.g. /?planner=dubins&goal=4,3,90&radius=1). Works offline. Ctrl-C stops.
     """
-    from glideplan.errors import InvalidParameterError
-    from glideplan.explore.server import serve
+    from glideplan.explore.server import check_address, serve
 
-    if not 0 < port < 65536:
-        raise InvalidParameterError("--port", port, "must be in 1..65535")
+    check_address(host, port)  # a busy port or a foreign host: one line, before announcing
     typer.echo(f"glideplan explore: serving http://{host}:{port}/ (Ctrl-C to stop)", err=True)
     serve(port, host, show=not no_show)

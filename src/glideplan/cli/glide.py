@@ -24,14 +24,30 @@ BugsOpt = Annotated[
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON object.")]
 
 
-def _polar(file: pathlib.Path, mass: float | None, ballast: float, bugs: float) -> Any:
-    from glideplan.sailplane import polar_from_file, read_plr
+def _read(file: pathlib.Path, flag: str) -> Any:
+    """The polar file named by `flag` (`--polar` or the FILE argument), errors naming it."""
+    from glideplan.cli.common import check_input_file, file_flag
+    from glideplan.sailplane import read_plr
+
+    check_input_file(file, flag)
+    with file_flag(flag, file, f"polar file {file}"):
+        return read_plr(file)
+
+
+def _polar(
+    file: pathlib.Path, mass: float | None, ballast: float, bugs: float, flag: str = "FILE"
+) -> Any:
+    from glideplan.cli.common import flag_names
+    from glideplan.sailplane import polar_from_file
     from glideplan.validation import check_finite
 
+    pf = _read(file, flag)
     for name, value in (("--mass", mass), ("--ballast", ballast), ("--bugs", bugs)):
         if value is not None:
             check_finite(name, value)
-    return polar_from_file(read_plr(file), mass_kg=mass, ballast_l=ballast, bugs_pct=bugs)
+    with flag_names(mass="--mass", mass_kg="--mass", ballast="--ballast", ballast_l="--ballast",
+                    bugs="--bugs", bugs_pct="--bugs"):
+        return polar_from_file(pf, mass_kg=mass, ballast_l=ballast, bugs_pct=bugs)
 
 
 def _print(data: dict[str, Any]) -> None:
@@ -42,16 +58,18 @@ def _print(data: dict[str, Any]) -> None:
 
 @glide_app.command("polar")
 def glide_polar(
-    file: Annotated[pathlib.Path, typer.Argument(help="Polar file (.plr).", show_default=False)],
+    file: Annotated[
+        pathlib.Path, typer.Argument(metavar="FILE", help="Polar file (.plr).", show_default=False)
+    ],
     mass: MassOpt = None,
     ballast: BallastOpt = 0.0,
     bugs: BugsOpt = 0.0,
     json_out: JsonOpt = False,
 ) -> None:
     """Quadratic polar of a .plr file: best glide, minimum sink, MacCready table (MC 0-5 m/s)."""
-    from glideplan.sailplane import maccready_table, read_plr
+    from glideplan.sailplane import maccready_table
 
-    pf = read_plr(file)
+    pf = _read(file, "FILE")
     p = _polar(file, mass, ballast, bugs)
     data = {
         "name": p.name,
@@ -92,11 +110,13 @@ def glide_polar(
 
 @glide_app.command("ardusoar")
 def glide_ardusoar(
-    file: Annotated[pathlib.Path, typer.Argument(help="Polar file (.plr).", show_default=False)],
+    file: Annotated[
+        pathlib.Path, typer.Argument(metavar="FILE", help="Polar file (.plr).", show_default=False)
+    ],
     out: Annotated[
         pathlib.Path,
         typer.Option(
-            "--out", help="Parameter file to write (NAME value lines).", show_default=False
+            "--out", metavar="FILE", help="Parameter file to write (NAME value lines).", show_default=False
         ),
     ],
     wing_area: Annotated[
@@ -105,17 +125,20 @@ def glide_ardusoar(
     json_out: JsonOpt = False,
 ) -> None:
     """Fit ArduPilot's SOAR_POLAR_CD0/B/K to the polar (least squares) and write a .parm file."""
+    from glideplan.cli.common import announce, check_output_file, file_flag
     from glideplan.sailplane import fit_ardusoar, write_parm
 
+    check_output_file(out, "--out")
     p = _polar(file, None, 0.0, 0.0)
     fit = fit_ardusoar(p, wing_area)
-    write_parm(
-        fit,
-        out,
-        comment=f"ArduSoar polar for {p.name} at {p.mass_kg:g} kg, fitted by glideplan "
-        f"(worst sink error {fit.max_sink_error:.3f} m/s over "
-        f"{fit.speed_range[0] * 3.6:.0f}-{fit.speed_range[1] * 3.6:.0f} km/h)",
-    )
+    with file_flag("--out", out):
+        write_parm(
+            fit,
+            out,
+            comment=f"ArduSoar polar for {p.name} at {p.mass_kg:g} kg, fitted by glideplan "
+            f"(worst sink error {fit.max_sink_error:.3f} m/s over "
+            f"{fit.speed_range[0] * 3.6:.0f}-{fit.speed_range[1] * 3.6:.0f} km/h)",
+        )
     data = {
         **fit.params(),
         "max_sink_error_ms": fit.max_sink_error,
@@ -127,27 +150,33 @@ def glide_ardusoar(
     }
     if json_out:
         _print(data)
-        return
-    for name, value in fit.params().items():
-        typer.echo(f"{name} {value:.6g}")
-    typer.echo(f"worst sink error {fit.max_sink_error:.3f} m/s; wrote {out}")
+    else:
+        for name, value in fit.params().items():
+            typer.echo(f"{name} {value:.6g}")
+        typer.echo(f"worst sink error {fit.max_sink_error:.3f} m/s")
+    announce(f"wrote {out}", json_out)
 
 
 @glide_app.command("final")
 def glide_final(
     polar_file: Annotated[
-        pathlib.Path, typer.Option("--polar", help="Polar file (.plr).", show_default=False)
+        pathlib.Path,
+        typer.Option("--polar", metavar="FILE", help="Polar file (.plr).", show_default=False),
     ],
     start: Annotated[
         tuple[float, float, float],
         typer.Option(
-            "--from", help="Start LAT LON ALT_M (WGS84 degrees, metres).", show_default=False
+            "--from",
+            metavar="LAT LON ALT_M",
+            help="Start LAT LON ALT_M (WGS84 degrees, metres).", show_default=False
         ),
     ],
     goal: Annotated[
         tuple[float, float, float],
         typer.Option(
-            "--to", help="Goal LAT LON ELEV_M (WGS84 degrees, metres).", show_default=False
+            "--to",
+            metavar="LAT LON ELEV_M",
+            help="Goal LAT LON ELEV_M (WGS84 degrees, metres).", show_default=False
         ),
     ],
     mass: MassOpt = None,
@@ -156,7 +185,12 @@ def glide_final(
     mc: Annotated[float, typer.Option("--mc", help="MacCready setting (m/s).")] = 0.0,
     wind: Annotated[
         tuple[float, float] | None,
-        typer.Option("--wind", help="Wind SPEED_MS FROM_DEG (compass, where it blows from)."),
+        typer.Option(
+            "--wind",
+            metavar="SPEED_MS FROM_DEG",
+            help="Wind SPEED_MS FROM_DEG (compass, where it blows from).",
+            show_default=False,
+        ),
     ] = None,
     safety_height: Annotated[
         float, typer.Option("--safety-height", help="Arrival height above the goal (m).")
@@ -175,19 +209,25 @@ def glide_final(
     json_out: JsonOpt = False,
     plot: Annotated[
         pathlib.Path | None,
-        typer.Option("--plot", help="Draw the ground track and altitude profile to FILE."),
+        typer.Option("--plot", metavar="FILE", help="Draw the ground track and altitude profile to FILE."),
     ] = None,
     cup: Annotated[
-        pathlib.Path | None, typer.Option("--cup", help="Also write a SeeYou .cup task.")
+        pathlib.Path | None,
+        typer.Option("--cup", metavar="FILE", help="Also write a SeeYou .cup task."),
     ] = None,
     tsk: Annotated[
-        pathlib.Path | None, typer.Option("--tsk", help="Also write an XCSoar .tsk task.")
+        pathlib.Path | None,
+        typer.Option("--tsk", metavar="FILE", help="Also write an XCSoar .tsk task."),
     ] = None,
 ) -> None:
     """Altitude needed to reach a goal: straight final glide, or to an arrival heading."""
+    from glideplan.cli.common import announce, check_figure_file, check_output_file, file_flag
     from glideplan.sailplane.request import run_final
 
-    p = _polar(polar_file, mass, ballast, bugs)
+    plot = check_figure_file(plot)
+    check_output_file(cup, "--cup")
+    check_output_file(tsk, "--tsk")
+    p = _polar(polar_file, mass, ballast, bugs, "--polar")
     if start_heading is not None and arrival_heading is None:
         raise InvalidParameterError(
             "--start-heading", start_heading, "is only used with --arrival-heading"
@@ -203,21 +243,14 @@ def glide_final(
         start_heading=start_heading,
         bank_max=bank_max,
     )
-    if plot is not None:
-        from glideplan.sailplane.plot import draw_final_glide
-
-        draw_final_glide(drawing, plot)
-    if cup is not None or tsk is not None:
-        from glideplan.sailplane import TaskPoint, write_cup_task, write_tsk_task
-
-        a = TaskPoint("START", start[0], start[1], start[2])
-        b = TaskPoint("GOAL", goal[0], goal[1], goal[2])
-        if cup is not None:
-            write_cup_task(cup, a, b, description=f"final glide {p.name}")
-        if tsk is not None:
-            write_tsk_task(tsk, a, b)
     if json_out:
         _print(data)
+    elif data["status"] == "unreachable":
+        typer.echo(
+            f"unreachable: distance {data['distance_m'] / 1000:.2f} km on bearing "
+            f"{data['bearing_deg']:.0f}°, wind {data['wind']['speed_ms']:g} m/s from "
+            f"{data['wind']['from_deg']:g}°: no altitude is enough"
+        )
     else:
         typer.echo(
             f"{data['status']}: distance {data['distance_m'] / 1000:.2f} km, loss "
@@ -227,8 +260,29 @@ def glide_final(
             f"{_fmt(data['speed_to_fly_kmh'])} km/h"
             + (f", path {data['word']}" if "word" in data else "")
         )
+    if plot is not None:
+        from glideplan.sailplane.plot import draw_final_glide
+
+        draw_final_glide(drawing, plot)
+        announce(f"wrote {plot}", json_out)
+    if cup is not None or tsk is not None:
+        from glideplan.sailplane import TaskPoint, write_cup_task, write_tsk_task
+
+        a = TaskPoint("START", start[0], start[1], start[2])
+        b = TaskPoint("GOAL", goal[0], goal[1], goal[2])
+        for path, flag in ((cup, "--cup"), (tsk, "--tsk")):
+            if path is None:
+                continue
+            with file_flag(flag, path):
+                if flag == "--cup":
+                    write_cup_task(path, a, b, description=f"final glide {p.name}")
+                else:
+                    write_tsk_task(path, a, b)
+            announce(f"wrote {path}", json_out)
     if data.get("error"):
         raise PlanningError(data["error"])
+    if data["status"] == "unreachable":
+        raise PlanningError(f"final glide: unreachable: {data['message']}")
 
 
 def _fmt(value: Any, digits: int = 0) -> str:

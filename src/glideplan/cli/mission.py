@@ -12,6 +12,8 @@ from glideplan.cli.app import mission_app
 from glideplan.cli.common import (
     announce,
     check_figure_file,
+    check_output_dir,
+    file_flag,
     flag_names,
     print_json,
     print_warnings,
@@ -35,7 +37,7 @@ def _track_json(plan: Any, track: Any) -> dict[str, list[float]]:
 @mission_app.command("plan")
 def mission_plan(
     route: Annotated[pathlib.Path, typer.Argument(
-        help="Route file: .csv (name,lat,lon[,heading_deg] or name,x,y[,heading_deg]), .gpx, "
+        metavar="ROUTE", help="Route file: .csv (name,lat,lon[,heading_deg] or name,x,y[,heading_deg]), .gpx, "
              ".kml or .geojson.", show_default=False)],
     speed: Annotated[float, typer.Option("--speed", help="Speed through the air/water (m/s).",
                                          show_default=False)],
@@ -53,11 +55,11 @@ def mission_plan(
         help="Steady wind/current: speed (m/s) and the compass direction it blows FROM (deg).",
         show_default=False)] = None,
     field: Annotated[pathlib.Path | None, typer.Option(
-        "--field", help="Current/wind field file (NetCDF or GRIB, as `glideplan route`): each "
+        "--field", metavar="FILE", help="Current/wind field file (NetCDF or GRIB, as `glideplan route`): each "
                         "leg is routed through it (time-optimal, headings free), departing "
                         "when the previous leg arrives.", show_default=False)] = None,
     depart: Annotated[str | None, typer.Option(
-        "--depart", help="With --field: departure from the first waypoint, ISO 8601 (UTC if no "
+        "--depart", metavar="TIME", help="With --field: departure from the first waypoint, ISO 8601 (UTC if no "
                          "offset; default the field's first time; must lie in its time span).",
         show_default=False)] = None,
     depth_range: Annotated[tuple[float, float] | None, typer.Option(
@@ -69,9 +71,9 @@ def mission_plan(
         "--headings", help="Candidate headings per free waypoint K (default 360; 36 in wind).",
         show_default=False)] = None,
     export: Annotated[pathlib.Path | None, typer.Option(
-        "--export", help="Directory to write the mission files into.", show_default=False)] = None,
+        "--export", metavar="DIR", help="Directory to write the mission files into.", show_default=False)] = None,
     formats: Annotated[str | None, typer.Option(
-        "--formats", help="Comma-separated: geojson,kml,gpx,csv,qgc-wpl,qgc-plan,slocum,"
+        "--formats", metavar="LIST", help="Comma-separated: geojson,kml,gpx,csv,qgc-wpl,qgc-plan,slocum,"
                           "seaglider (default: all).", show_default=False)] = None,
     acceptance_radius: Annotated[float, typer.Option(
         "--acceptance-radius", help="Waypoint acceptance radius in the vehicle files (m).")
@@ -88,7 +90,7 @@ def mission_plan(
         "--max-goto-waypoints", help="Most waypoints per Slocum goto file (split beyond).")] = 8,
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
     plot: Annotated[pathlib.Path | None, typer.Option(
-        "--plot", help="Draw the mission into FILE (.png, .pdf, .svg).", show_default=False)
+        "--plot", metavar="FILE", help="Draw the mission into FILE (.png, .pdf, .svg).", show_default=False)
     ] = None,
 ) -> None:
     """Plan a multi-leg mission through ROUTE's waypoints, choosing the free headings optimally.
@@ -101,6 +103,8 @@ def mission_plan(
     from glideplan.missions import plan_mission, straight_leg_list
 
     plot = check_figure_file(plot)
+    if export is not None:
+        check_output_dir(export, "--export")
     if field is None and (depart is not None or depth_range is not None):
         raise InvalidParameterError("--depart" if depart is not None else "--depth-range",
                                     depart if depart is not None else depth_range,
@@ -126,12 +130,13 @@ def mission_plan(
                                 max_deviation=max_deviation, altitude=altitude,
                                 goto_number=goto_number, max_goto_waypoints=max_goto_waypoints,
                                 name=route.stem or "mission")
-    r = read_route(route)
+    with file_flag("ROUTE", route):
+        r = read_route(route)
     if formats is not None and export is None:
         raise InvalidParameterError("--formats", formats, "needs --export DIR")
     mission: MissionPlan | FieldMission
     with flag_names(formats="--formats", headings="--headings", objective="--objective",
-                    field="--field"):
+                    field="--field", wind="--wind", speed="--speed", radius="--radius"):
         fmts = parse_formats(formats, r.geographic) if export is not None else ()
         if field is not None:
             mission = _plan_in_field(r, field, speed, radius, when, depth_range)
@@ -167,22 +172,24 @@ def mission_plan(
     data["files"] = files
     if json_out:
         print_json(data)
-        return
-    _print_summary(mission, legs, files)
+    else:
+        _print_summary(mission, legs)
+    for fmt, path in files.items():
+        announce(f"wrote {fmt}: {path if isinstance(path, str) else ', '.join(path)}", json_out)
 
 
 def _plan_in_field(r: Any, path: pathlib.Path, speed: float, radius: float, when: Any,
                    depth_range: tuple[float, float] | None) -> FieldMission:
-    from glideplan.cli.common import solving
+    from glideplan.cli.common import check_input_file, solving
     from glideplan.cli.route import check_depart
     from glideplan.fields import open_field
     from glideplan.missions.field_mission import plan_mission_in_field
 
     if not r.geographic:
         raise InvalidParameterError("--field", str(path), "needs a geographic route (lat/lon)")
-    if not path.is_file():
-        raise InvalidParameterError("--field", str(path), "no such file")
-    flow = open_field(path, depth_range=depth_range)
+    check_input_file(path, "--field")
+    with flag_names(field="--field", depth_range="--depth-range"):
+        flow = open_field(path, depth_range=depth_range)
     check_depart(flow, when)
     mission = solving("routing the legs", lambda: plan_mission_in_field(
         r, flow, speed=speed, depart=when, radius=radius))
@@ -205,7 +212,7 @@ def _failure(mission: Any) -> str:
     return "planning failed"
 
 
-def _print_summary(mission: Any, legs: Any, files: dict[str, Any]) -> None:
+def _print_summary(mission: Any, legs: Any) -> None:
     r = mission.route
     through = " (through the field)" if hasattr(mission, "field_info") else ""
     typer.echo(f"mission {r.source}: {r.n} waypoints, {len(mission.legs)} legs, objective "
@@ -228,5 +235,3 @@ def _print_summary(mission: Any, legs: Any, files: dict[str, Any]) -> None:
                    f"{r.distortion:.1e}")
     typer.echo(f"straight legs: {len(legs.names)} waypoints within {legs.max_deviation_m:.1f} m "
                f"of the track (limit {legs.tolerance_m:g} m)")
-    for fmt, path in files.items():
-        announce(f"wrote {fmt}: {path if isinstance(path, str) else ', '.join(path)}", False)

@@ -93,5 +93,7 @@ def plan_load_factor_command(
 
             save_figure(plot_solution(solution), str(plot))
 
-    common.write_figure(plot, json_out, draw if solution.ok else None)
-    common.emit_solution(solution, json_out, None)
+    try:  # the table first, then `wrote FILE` (or why nothing was drawn), as every command
+        common.emit_solution(solution, json_out, None)
+    finally:
+        common.write_figure(plot, json_out, draw if solution.ok else None)

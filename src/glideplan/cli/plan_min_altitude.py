@@ -37,6 +37,7 @@ def plan_min_altitude_command(
         tuple[float, float, float] | None,
         typer.Option(
             "--polar",
+            metavar="A B C",
             help="Sink-rate polar w = A v^2 + B v + C in SI: A (s/m), B (-), C (m/s); "
             "needs --v-stall, --v-max and --u-max.",
             show_default=False,
@@ -123,8 +124,10 @@ def plan_min_altitude_command(
         draw_solution(solution, plot)
 
     drawable = solution.ok and solution.path is not None
-    common.write_figure(plot, json_out, draw if drawable else None)
-    common.emit_solution(solution, json_out, None, extra=extra)
+    try:  # the table first, then `wrote FILE` (or why nothing was drawn), as every command
+        common.emit_solution(solution, json_out, None, extra=extra)
+    finally:
+        common.write_figure(plot, json_out, draw if drawable else None)
 
 
 def _glider(

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 import typer
 
 from glideplan.cli.app import app
+from glideplan.cli.common import flag_names
 from glideplan.errors import InvalidParameterError
 
 if TYPE_CHECKING:
@@ -120,6 +121,15 @@ def index_markdown(document: dict[str, Any], results: list[FigureResult]) -> str
     return "\n".join(lines)
 
 
+def _count_kinds(specs: list[FigureSpec]) -> str:
+    """'1 figure and 2 tables', '3 figures', '0 figures' for these ids (fig... / table...)."""
+    tables = sum(s.id.startswith("table") for s in specs)
+    figures = len(specs) - tables
+    parts = [f"{n} {kind}{'' if n == 1 else 's'}"
+             for n, kind in ((figures, "figure"), (tables, "table")) if n]
+    return " and ".join(parts) or "0 figures"
+
+
 def _selected(only: str | None) -> list[FigureSpec]:
     from glideplan.figures import figure_specs, get_figure
 
@@ -129,10 +139,11 @@ def _selected(only: str | None) -> list[FigureSpec]:
     ids = [i.strip() for i in only.split(",") if i.strip()]
     if not ids:
         known = ", ".join(s.id for s in specs)
-        raise InvalidParameterError("only", only, f"is an empty list of ids (known: {known})")
+        raise InvalidParameterError("--only", only, f"is an empty list of ids (known: {known})")
     chosen = []
     for i in ids:
-        spec = get_figure(i)  # unknown ids: InvalidParameterError listing the known ones
+        with flag_names(only="--only", id="--only", figure="--only"):
+            spec = get_figure(i)  # unknown ids: InvalidParameterError listing the known ones
         if spec not in chosen:
             chosen.append(spec)
     return chosen
@@ -167,21 +178,25 @@ def run_figures(
 
 @app.command("reproduce")
 def reproduce(
-    out: Annotated[pathlib.Path, typer.Option("--out", help="Output directory.")] = pathlib.Path(
+    out: Annotated[
+        pathlib.Path, typer.Option("--out", metavar="DIR", help="Output directory.")
+    ] = pathlib.Path(
         "out/reproduce"
     ),
     only: Annotated[
         str | None,
-        typer.Option("--only", help="Comma-separated ids, e.g. fig3.1,table4.3 (see --list)."),
+        typer.Option("--only", metavar="IDS", help="Comma-separated ids, e.g. fig3.1,table4.3 (see --list)."),
     ] = None,
     full: Annotated[
         bool, typer.Option("--full", help="Full-size studies instead of the reduced defaults.")
     ] = False,
     list_ids: Annotated[bool, typer.Option("--list", help="List the figure ids and exit.")] = False,
 ) -> None:
-    """Regenerate figures and tables into OUT, with index.json and index.md comparing our
-    numbers with the dissertation's (computed verdicts). Exit 1 if a figure failed."""
-    from glideplan.cli.common import write_json
+    """Regenerate the dissertation's figures and tables into OUT, with index.json and index.md.
+
+    The indexes put our numbers beside the dissertation's (computed verdicts). Exit 1 if a
+    figure or table failed."""
+    from glideplan.cli.common import check_output_dir, write_json
     from glideplan.figures import figure_specs, load_all
 
     load_all()
@@ -190,8 +205,7 @@ def reproduce(
             typer.echo(f"{spec.id}\t{spec.title}")
         return
     specs = _selected(only)
-    if out.exists() and not out.is_dir():
-        raise InvalidParameterError("out", str(out), "must be a directory")
+    check_output_dir(out, "--out")
     out.mkdir(parents=True, exist_ok=True)
     results = run_figures(specs, out, full=full)
     document = index_json(results, out.resolve())
@@ -200,9 +214,10 @@ def reproduce(
     counts = Counter(row["verdict"] for fig in document["figures"].values() for row in fig["rows"])
     failed = [r for r in results if r.report is None]
     typer.echo(
-        f"wrote {len(results) - len(failed)} of {len(results)} figure(s) to {out}: "
-        f"{sum(counts.values())} rows, {counts['agrees']} agree, {counts['differs']} differ, "
-        f"{counts['not printed']} not printed"
+        f"wrote {_count_kinds([r.spec for r in results if r.report is not None])}"
+        + (f" of {_count_kinds([r.spec for r in results])}" if failed else "")
+        + f" to {out}: {sum(counts.values())} rows, {counts['agrees']} agree, "
+        f"{counts['differs']} differ, {counts['not printed']} not printed"
     )
     if failed:
         names = "; ".join(f"{r.spec.id} ({r.status.removeprefix('failed: ')})" for r in failed)

@@ -1,4 +1,4 @@
-"""`glideplan route`: the time-optimal route through a current/wind forecast (issue 12)."""
+"""`glideplan route`: the time-optimal route through a current/wind forecast."""
 
 from __future__ import annotations
 
@@ -64,33 +64,39 @@ def check_depart(flow: Any, when: Any) -> Any:
 def route_command(
     from_: Annotated[
         tuple[float, float],
-        typer.Option("--from", help="Start LAT LON (degrees, WGS84).", show_default=False),
+        typer.Option("--from", metavar="LAT LON", help="Start LAT LON (degrees, WGS84).",
+                     show_default=False),
     ],
     to: Annotated[
         tuple[float, float],
-        typer.Option("--to", help="Goal LAT LON (degrees, WGS84).", show_default=False),
+        typer.Option("--to", metavar="LAT LON", help="Goal LAT LON (degrees, WGS84).",
+                     show_default=False),
     ],
     speed: Annotated[
         float, typer.Option("--speed", help="Speed through the water (air), V (m/s).")
     ],
     field: Annotated[
         list[pathlib.Path] | None,
-        typer.Option("--field", help="NetCDF or GRIB file (repeat to merge files).",
+        typer.Option("--field", metavar="FILE",
+                     help="NetCDF or GRIB file (repeat to merge files).",
                      show_default=False),
     ] = None,
     example: Annotated[
         str | None,
-        typer.Option("--example", help="A built-in field instead of files: double-gyre.",
+        typer.Option("--example", metavar="NAME",
+                     help="A built-in field instead of files: double-gyre.",
                      show_default=False),
     ] = None,
     depart: Annotated[
         str | None,
-        typer.Option("--depart", help="Departure time, ISO 8601 (default: the field's first).",
+        typer.Option("--depart", metavar="TIME",
+                     help="Departure time, ISO 8601 (default: the field's first).",
                      show_default=False),
     ] = None,
     depth_range: Annotated[
         tuple[float, float] | None,
-        typer.Option("--depth-range", help="Average currents over depths Z0 Z1 (m, down).",
+        typer.Option("--depth-range", metavar="Z0 Z1",
+                     help="Average currents over depths Z0 Z1 (m, down).",
                      show_default=False),
     ] = None,
     resolution: Annotated[
@@ -108,14 +114,23 @@ def route_command(
     ] = None,
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
     plot: Annotated[
-        pathlib.Path | None, typer.Option("--plot", help="Draw the route to FILE (.png/.pdf/.svg).")
+        pathlib.Path | None,
+        typer.Option("--plot", metavar="FILE", help="Draw the route to FILE (.png/.pdf/.svg)."),
     ] = None,
 ) -> None:
     """Time-optimal route through a current or wind field (front propagation, refined, verified).
 
-    Exit 0 solved, 1 unreachable, 2 bad input.
+    Exit 0 solved, 1 unreachable or unverified (the flown controls miss the goal by more
+    than endpoint_tolerance_m, one grid spacing), 2 bad input, 3 internal error.
     """
-    from glideplan.cli.common import check_figure_file, print_json
+    from glideplan.cli.common import (
+        announce,
+        check_figure_file,
+        check_input_file,
+        flag_names,
+        print_json,
+        usage_error,
+    )
     from glideplan.errors import InvalidParameterError
 
     if not (math.isfinite(speed) and speed > 0):
@@ -133,8 +148,10 @@ def route_command(
         raise InvalidParameterError("--radius", radius, "must be finite and > 0 (m)")
     check_depth_range(depth_range)
     plot = check_figure_file(plot)
-    if (field is None) == (example is None):
-        raise InvalidParameterError("--field", None, "give --field FILE or --example double-gyre")
+    if field is None and example is None:
+        usage_error("give --field FILE or --example NAME (double-gyre)")
+    if field is not None and example is not None:
+        usage_error("give --field FILE or --example NAME, not both")
     when = parse_depart(depart)
 
     from glideplan.fields import FlowField, double_gyre, open_field
@@ -148,7 +165,10 @@ def route_command(
         source: dict[str, Any] = {"file": None, "example": example}
     else:
         assert field is not None
-        flow = open_field(field, depth_range=depth_range)
+        for path in field:
+            check_input_file(path, "--field")
+        with flag_names(field="--field", depth_range="--depth-range"):
+            flow = open_field(field, depth_range=depth_range)
         source = {"file": [str(p) for p in field]}
 
     check_depart(flow, when)
@@ -156,30 +176,36 @@ def route_command(
     from glideplan.cli.common import solving
     from glideplan.routing import route
 
-    result = solving("routing", lambda: route(flow, from_, to, speed, depart=when,
-                                              resolution=resolution))
+    names = {"from": "--from", "to": "--to", "speed": "--speed", "resolution": "--resolution",
+             "field": "--field", "depth_range": "--depth-range", "radius": "--radius"}
+    with flag_names(**names):
+        result = solving("routing", lambda: route(flow, from_, to, speed, depart=when,
+                                                  resolution=resolution))
     out = result.to_dict()
     out["field"] = {**source, **out["field"]}
     glider = None
     if radius is not None and result.ok:
         from glideplan.routing.glider import follow_route, trochoid_chain
 
-        glider = solving("following", lambda: follow_route(result, flow, speed, radius))
-        out["glider"] = glider.to_dict()
-        if glider.status != "infeasible":
-            chain = solving("trochoid pieces", lambda: trochoid_chain(result, flow, speed, radius))
-            out["glider"]["trochoid"] = chain.to_dict()
-    if plot is not None:
-        from glideplan.routing.plot import plot_route
-
-        plot_route(result, flow, plot, speed=speed, start=from_, goal=to, glider=glider)
+        with flag_names(**names):
+            glider = solving("following", lambda: follow_route(result, flow, speed, radius))
+            out["glider"] = glider.to_dict()
+            if glider.status != "infeasible":
+                chain = solving("trochoid pieces",
+                                lambda: trochoid_chain(result, flow, speed, radius))
+                out["glider"]["trochoid"] = chain.to_dict()
     if json_out:
         print_json(out)
     else:
         _print_summary(out)
+    if plot is not None:
+        from glideplan.routing.plot import plot_route
+
+        plot_route(result, flow, plot, speed=speed, start=from_, goal=to, glider=glider)
+        announce(f"wrote {plot}", json_out)
     if not result.ok:
         if not json_out:
-            typer.echo(f"glideplan: unreachable: {result.message}", err=True)
+            typer.echo(f"glideplan: {result.status}: {result.message}", err=True)
         raise typer.Exit(1)
 
 
@@ -194,7 +220,8 @@ def _print_summary(out: dict[str, Any]) -> None:
                    f"{out['distance_m'] / 1000:.2f} km  method: {out['method']}")
         typer.echo(f"straight line with crab angle: {hours(out['straight_line_duration_s'])}")
         typer.echo(f"endpoint error (controls flown through the field): "
-                   f"{out['endpoint_error_m']:.2f} m")
+                   f"{out['endpoint_error_m']:.2f} m (tolerance "
+                   f"{out['endpoint_tolerance_m']:.0f} m)")
         if "glider" in out:
             g = out["glider"]
             if g["status"] == "followed":
@@ -209,5 +236,9 @@ def _print_summary(out: dict[str, Any]) -> None:
                            f"{tc['feasible_radius_m']:.1f} m for the residual eps' = "
                            f"{tc['residual_ratio']:.3f}, {hours(tc['duration_s'])}, open-loop "
                            f"miss through the field {tc['field_endpoint_error_m']:.1f} m")
+    elif out["status"] == "unverified":
+        typer.echo(f"endpoint error (controls flown through the field): "
+                   f"{out['endpoint_error_m']:.2f} m > tolerance "
+                   f"{out['endpoint_tolerance_m']:.2f} m")
     else:
         typer.echo(f"best reachable distance to the goal: {out['best_distance_m']:.0f} m")

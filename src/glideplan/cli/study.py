@@ -64,13 +64,14 @@ def cross_track_command(
     out: Annotated[
         pathlib.Path,
         typer.Option(
-            "--out", help="Directory for samples.sqlite and summary.json.", show_default=False
+            "--out", metavar="DIR", help="Directory for samples.sqlite and summary.json.", show_default=False
         ),
     ],
     eps: Annotated[
         list[str] | None,
         typer.Option(
             "--eps",
+            metavar="LIST",
             help="Disturbance bounds eps = delta_max / v (repeat or a,b,c).",
             show_default="0.25,0.5,0.75,0.95",
         ),
@@ -79,6 +80,7 @@ def cross_track_command(
         list[str] | None,
         typer.Option(
             "--r-plan",
+            metavar="LIST",
             help="Planning radii / R0 (repeat, a,b,c or START:STOP:STEP).",
             show_default="1:4:0.1",
         ),
@@ -123,7 +125,7 @@ def cross_track_command(
     Results are written as work units finish; rerunning the command resumes a stopped study.
     A results file written with another configuration is refused, never mixed.
     """
-    from glideplan.cli.common import print_json
+    from glideplan.cli.common import check_output_dir, flag_names, print_json
     from glideplan.studies.cross_track import (
         DEFAULT_EPS,
         DEFAULT_R_PLAN,
@@ -133,25 +135,31 @@ def cross_track_command(
 
     cases = {"both": ("steady", "unsteady"), "steady": ("steady",), "unsteady": ("unsteady",)}
     if case not in cases:
-        raise InvalidParameterError("case", case, "must be steady, unsteady or both")
+        raise InvalidParameterError("--case", case, "must be steady, unsteady or both")
     if scheduler is not None and not scheduler.strip():
-        raise InvalidParameterError("scheduler", scheduler, "must be a scheduler address")
+        raise InvalidParameterError("--scheduler", scheduler, "must be a scheduler address")
+    check_output_dir(out, "--out")
     follower = {} if dt == 0.05 else {"dt": dt}
-    config = CrossTrackConfig(
-        eps=_values("eps", eps) or DEFAULT_EPS,
-        r_plan=_values("r_plan", r_plan) or DEFAULT_R_PLAN,
-        samples=samples,
-        cases=cases[case],
-        seed=seed,
-        speed=speed,
-        max_turn_rate=u_max,
-        chunk=chunk,
-        gust_scale=gust_scale,
-        follower=follower,
-    )
-    result = run_cross_track_study(
-        out, config, scheduler=scheduler, processes=processes, progress=progress
-    )
+    names = {"samples": "--samples", "chunk": "--chunk", "seed": "--seed", "case": "--case",
+             "eps": "--eps", "r_plan": "--r-plan", "speed": "--speed", "u_max": "--u-max",
+             "max_turn_rate": "--u-max", "gust_scale": "--gust-scale", "dt": "--dt",
+             "out": "--out", "scheduler": "--scheduler", "processes": "--processes"}
+    with flag_names(**names):
+        config = CrossTrackConfig(
+            eps=_values("--eps", eps) or DEFAULT_EPS,
+            r_plan=_values("--r-plan", r_plan) or DEFAULT_R_PLAN,
+            samples=samples,
+            cases=cases[case],
+            seed=seed,
+            speed=speed,
+            max_turn_rate=u_max,
+            chunk=chunk,
+            gust_scale=gust_scale,
+            follower=follower,
+        )
+        result = run_cross_track_study(
+            out, config, scheduler=scheduler, processes=processes, progress=progress
+        )
     if json_out:
         print_json({"summary": result.summary, "knees": result.knees, "directory": str(out)})
         return

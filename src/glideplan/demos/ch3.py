@@ -1,8 +1,8 @@
 """Chapter 3 examples: time-optimal paths in a known steady wind (section 3.2, appendix A).
 
 Reference costs:
-- Airspeed 1, R = 1, wind 0.3 along +x, goal (3, 3, pi/2): T* = 3.75342 (the issue's value;
-  also an independent virtual-target solve, REFERENCE_NOTES §3.4), word LSL.
+- Airspeed 1, R = 1, wind 0.3 along +x, goal (3, 3, pi/2): T* = 3.75342 (the project's
+  reference value; also an independent virtual-target solve, REFERENCE_NOTES §3.4), word LSL.
 - Straight downwind, goal (10, 0, 0), wind 0.3 along +x: T = 10 / 1.3 = 7.6923 (LSL with
   empty arcs, tied with RSR).
 - Straight upwind, same goal, wind 0.3 towards -x: T = 10 / 0.7 = 14.2857.
@@ -22,7 +22,7 @@ from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
 # the straight cases: LSL with zero-length turns, whose word drops them ("S")
 for name, source, goal, wind_direction, cost, word in (
     ("Wind: convected Dubins (3, 3, pi/2)",
-     "section 3.2 / appendix A (Techy & Woolsey 2009); issue 7 reference",
+     "section 3.2 / appendix A (Techy & Woolsey 2009); virtual-target solve",
      Pose(3.0, 3.0, math.pi / 2), 0.0, 3.75342, "LSL"),
     ("Wind: straight downwind", "section 3.2, hand derivation 10 / (v + w)",
      Pose(10.0, 0.0, 0.0), 0.0, 10.0 / 1.3, "S"),

@@ -1,4 +1,4 @@
-"""`glideplan explore`: a local web page to plan interactively (issue 15).
+"""`glideplan explore`: a local web page to plan interactively.
 
 `catalog` builds the planners and their inputs from the registry, `state` holds the page's
 state and its URL query, `solve` plans it with `glideplan.plan()` and makes the figure data,

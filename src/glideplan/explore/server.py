@@ -3,10 +3,51 @@ comes from this server (Panel and Bokeh's bundled resources), nothing from a CDN
 
 from __future__ import annotations
 
+import errno
+import socket
 import threading
 from typing import Any
 
-__all__ = ["serve", "warm_up"]
+from glideplan.errors import InvalidParameterError
+
+__all__ = ["check_address", "serve", "warm_up"]
+
+
+def check_address(host: str, port: int) -> None:
+    """Refuse, naming `--host` or `--port`, an address the server could not listen on.
+
+    The host must resolve to an address of this machine and the port be free: a socket is
+    bound (with SO_REUSEADDR, as the server's own) and closed again, before anything is
+    announced. The port must lie in 1..65535.
+    """
+    if not 0 < port < 65536:
+        raise InvalidParameterError("--port", port, "must be in 1..65535")
+    try:
+        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE)
+    except (socket.gaierror, UnicodeError) as exc:
+        reason = getattr(exc, "strerror", None) or str(exc)
+        raise InvalidParameterError("--host", host, f"is not a known address ({reason})") from None
+    family, kind, proto, _, address = infos[0]
+    with socket.socket(family, kind, proto) as sock:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            sock.bind(address)
+        except OSError as exc:
+            if exc.errno == errno.EADDRINUSE:
+                raise InvalidParameterError(
+                    "--port", port, f"is in use on {host} (another server?): choose another"
+                ) from None
+            if exc.errno == errno.EACCES:
+                raise InvalidParameterError(
+                    "--port", port, "needs privileges (ports below 1024): choose one above"
+                ) from None
+            if exc.errno == errno.EADDRNOTAVAIL:
+                raise InvalidParameterError(
+                    "--host", host, "is not an address of this machine"
+                ) from None
+            reason = exc.strerror or str(exc)
+            raise InvalidParameterError("--host", host, f"cannot listen on port {port}: {reason}"
+                                        ) from None
 
 
 def warm_up() -> None:

@@ -1,7 +1,7 @@
 """Missions through a current (or wind) field: each leg routed with `glideplan.routing`.
 
 With a spatially and temporally varying field there is no Dubins closed form: each leg is the
-time-optimal route of the routing issue (`glideplan.routing.route`: the reachable front of
+time-optimal route of the routing package (`glideplan.routing.route`: the reachable front of
 Lolla et al. 2012, backtracked and refined by Zermelo shooting, verified by integrating its
 heading controls through the field). Legs are chained in time: leg i + 1 departs when leg i
 arrives. The router models a point mass steering its heading freely, so waypoint headings are

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 import pathlib
 from typing import Any
 
@@ -13,6 +12,46 @@ from glideplan.missions.plan import MissionPlan
 from glideplan.missions.straight_legs import StraightLegList
 
 __all__ = ["plot_mission"]
+
+
+def _ground_scale_axes(ax: Any, lon: np.ndarray, lat: np.ndarray, origin: str) -> None:
+    """Longitude / latitude axes (deg) at equal ground scale, with a km scale on top and right.
+
+    The aspect (axis units of latitude per unit of longitude drawn the same length) is
+    m_lat / m_lon, the WGS84 lengths of a degree of latitude and of longitude at the track's
+    mid-point (`glideplan.routing.plot.frame_scales`; ~1 / cos(lat)), so that a km east is
+    drawn as long as a km north. The top and right axes read km east / north of the first
+    waypoint `origin` (lon, lat of the track's first point) on that local plane.
+    """
+    from glideplan.routing.plot import frame_scales
+
+    lat_mid = 0.5 * (float(np.min(lat)) + float(np.max(lat)))
+    lon_mid = 0.5 * (float(np.min(lon)) + float(np.max(lon)))
+    m_lat, m_lon = frame_scales(lat_mid, lon_mid)
+    lon0, lat0 = float(lon[0]), float(lat[0])
+    ax.set_aspect(m_lat / m_lon, adjustable="datalim")
+    ax.set_xlabel("longitude (deg E)")
+    ax.set_ylabel("latitude (deg N)")
+    ax.ticklabel_format(useOffset=False)
+
+    def east_km(x: Any) -> Any:
+        return (np.asarray(x, dtype=float) - lon0) * m_lon / 1000.0
+
+    def km_east(km: Any) -> Any:
+        return lon0 + np.asarray(km, dtype=float) * 1000.0 / m_lon
+
+    def north_km(y: Any) -> Any:
+        return (np.asarray(y, dtype=float) - lat0) * m_lat / 1000.0
+
+    def km_north(km: Any) -> Any:
+        return lat0 + np.asarray(km, dtype=float) * 1000.0 / m_lat
+
+    top = ax.secondary_xaxis("top", functions=(east_km, km_east))
+    top.set_xlabel(f"km east of {origin} (equal ground scale)", fontsize=8)
+    right = ax.secondary_yaxis("right", functions=(north_km, km_north))
+    right.set_ylabel(f"km north of {origin}", fontsize=8)
+    for sec in (top, right):
+        sec.tick_params(labelsize=8)
 
 
 def plot_mission(
@@ -68,11 +107,8 @@ def plot_mission(
     if np.any(given):
         ax.plot([], [], color="tab:green", label="given heading (compass deg)")
     if geo:
-        assert r.lat is not None
-        ax.set_aspect(1.0 / math.cos(math.radians(float(np.mean(r.lat)))))
-        ax.set_xlabel("longitude (deg)")
-        ax.set_ylabel("latitude (deg)")
-        ax.ticklabel_format(useOffset=False)
+        assert r.lat is not None and r.lon is not None
+        _ground_scale_axes(ax, tx, ty, r.names[0])
     else:
         ax.set_aspect("equal")
         ax.set_xlabel("x (m)")
@@ -96,6 +132,8 @@ def plot_mission(
         fontsize=9, loc="left",
     )
     ax.grid(True, alpha=0.3)
-    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=8)
+    # Right of the axes, clear of the km scale on the right of geographic figures.
+    ax.legend(loc="upper left", bbox_to_anchor=(1.11 if geo else 1.02, 1.0), borderaxespad=0.0,
+              fontsize=8)
     fig.tight_layout()
     return fig

@@ -1,4 +1,4 @@
-"""Time-optimal routing through currents and winds (issue 12).
+"""Time-optimal routing through currents and winds.
 
 Public API (for missions and scripts)::
 

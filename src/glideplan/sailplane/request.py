@@ -193,16 +193,40 @@ def run_final(
         altitude_required_m=_finite(required),
         arrival_margin_m=_finite(alt0 - required),
         glide_ratio_required=dist / height if height > 0.0 else None,
-        status="reachable" if math.isfinite(loss) and alt0 - required >= 0.0 else "below glide",
+        status=_status(loss, alt0 - required),
     )
     if not math.isfinite(loss):
-        data["message"] = "the wind is too strong to make progress towards the goal"
+        data["message"] = _unreachable_why(polar, wind, row)
     drawing = replace(
         drawing,
         wind_speed=wind_speed,
         wind_from_deg=None if wind is None else float(wind[1]) % 360.0,
     )
     return data, drawing
+
+
+def _status(loss: float, margin: float) -> str:
+    """`unreachable` (no airspeed makes progress: the loss is infinite), else `reachable` when
+    the arrival margin is >= 0 m, `below glide` when it is negative."""
+    if not math.isfinite(loss):
+        return "unreachable"
+    return "reachable" if margin >= 0.0 else "below glide"
+
+
+def _unreachable_why(
+    polar: SailplanePolar, wind: tuple[float, float] | None, row: dict[str, float]
+) -> str:
+    """Why no airspeed makes progress: the wind (m/s, compass FROM) against the polar's top
+    speed, with its headwind and crosswind components on the track (m/s)."""
+    speed, from_deg = (0.0, 0.0) if wind is None else (float(wind[0]), float(wind[1]) % 360.0)
+    along = row["tailwind"]
+    part = f"headwind {-along:.1f}" if along <= 0.0 else f"tailwind {along:.1f}"
+    return (
+        f"the wind ({speed:g} m/s from {from_deg:.0f}°: {part} m/s, crosswind "
+        f"{abs(row['crosswind']):.1f} m/s on the track) is too strong to make "
+        f"progress towards the goal at any airspeed up to the polar's "
+        f"{polar.v_max * 3.6:.0f} km/h"
+    )
 
 
 def _arrival(

@@ -18,7 +18,7 @@ vector is saturated at |delta| <= saturation (the dissertation's eps v) after th
 `gust_scale` f (default 1) is a sensitivity option, not part of the dissertation's model: the
 RMS becomes f sigma while the saturation stays as given. The literal reading of §3.4
 (sigma = eps v) is f = 1; f = 1/sqrt(pi) is the slip of unit-intensity white noise, and
-f = 0.3-0.4 brings the Fig 3.4(b) curves under the dissertation's axis (issue 10).
+f = 0.3-0.4 brings the Fig 3.4(b) curves under the dissertation's axis.
 
 A disturbance that depends on where the vehicle is and when (a current or wind field) is a
 `FieldDisturbance(velocity)`: its stream is a `PositionalStream`, whose `at(t, x, y, rows)`

@@ -1,4 +1,4 @@
-"""Final glide to an arrival heading in steady wind with the turning polar (issue 14).
+"""Final glide to an arrival heading in steady wind with the turning polar.
 
 The minimum-altitude-loss path of a `Sailplane` from the start (heading given, or chosen by
 `best_start_heading` when free) to a goal pose, with airspeed and bank as controls, in a
@@ -69,7 +69,7 @@ def _rotate(v: tuple[float, float], angle: float) -> tuple[float, float]:
     objective="altitude",
     method="direct",
     description="Final glide to a pose in steady wind, turning polar, airspeed and bank "
-    "controls: direct collocation + IPOPT warm-started from convected Dubins paths (issue 14)",
+    "controls: direct collocation + IPOPT warm-started from convected Dubins paths",
 )
 def plan_final_glide(
     problem: Problem,
