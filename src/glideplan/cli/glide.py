@@ -268,7 +268,8 @@ def glide_final(
     if cup is not None or tsk is not None:
         from glideplan.sailplane import TaskPoint, write_cup_task, write_tsk_task
 
-        a = TaskPoint("START", start[0], start[1], start[2])
+        # The start is airborne: ground elevation unknown, the altitude in the description.
+        a = TaskPoint("START", start[0], start[1], None, f"glider at {start[2]:g} m")
         b = TaskPoint("GOAL", goal[0], goal[1], goal[2])
         for path, flag in ((cup, "--cup"), (tsk, "--tsk")):
             if path is None:

@@ -29,7 +29,7 @@ from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
 from glideplan.geodesy import LocalProjection, compass_to_heading
-from glideplan.missions.plan import Track
+from glideplan.missions.plan import LegTotals, Track
 from glideplan.missions.route import Route
 from glideplan.validation import check_positive
 
@@ -58,7 +58,7 @@ class FieldLeg:
 
 
 @dataclass(frozen=True, eq=False)
-class FieldMission:
+class FieldMission(LegTotals):
     """A mission routed through a field; the interface of `MissionPlan` the exporters use."""
 
     route: Route
@@ -74,19 +74,6 @@ class FieldMission:
     @property
     def ok(self) -> bool:
         return all(leg.ok for leg in self.legs)
-
-    @property
-    def total_length_m(self) -> float:
-        return float(sum(leg.length_m for leg in self.legs))
-
-    @property
-    def total_duration_s(self) -> float:
-        return float(sum(leg.duration_s for leg in self.legs))
-
-    @property
-    def headings_deg(self) -> list[float]:
-        """Compass heading through the water at each waypoint (leaving it; the last: arriving)."""
-        return [float((90.0 - math.degrees(h)) % 360.0) for h in self.headings]
 
     @property
     def smallest_radius(self) -> float | None:

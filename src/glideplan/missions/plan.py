@@ -67,8 +67,28 @@ class Track:
     t: NDArray[np.float64]
 
 
+class LegTotals:
+    """Totals over a mission's `legs` (each with `length_m`, `duration_s`) and its `headings`."""
+
+    legs: tuple[Any, ...]
+    headings: NDArray[np.float64]
+
+    @property
+    def total_length_m(self) -> float:
+        return float(sum(leg.length_m for leg in self.legs))
+
+    @property
+    def total_duration_s(self) -> float:
+        return float(sum(leg.duration_s for leg in self.legs))
+
+    @property
+    def headings_deg(self) -> list[float]:
+        """Compass bearing (deg) at each waypoint, chosen or given."""
+        return [float(b) for b in np.atleast_1d(heading_to_compass(self.headings))]
+
+
 @dataclass(frozen=True, eq=False)
-class MissionPlan:
+class MissionPlan(LegTotals):
     """A planned mission: the route, chosen headings (rad), verified legs and statistics."""
 
     route: Route
@@ -84,19 +104,6 @@ class MissionPlan:
     @property
     def ok(self) -> bool:
         return all(leg.solution.ok for leg in self.legs)
-
-    @property
-    def total_length_m(self) -> float:
-        return float(sum(leg.length_m for leg in self.legs))
-
-    @property
-    def total_duration_s(self) -> float:
-        return float(sum(leg.duration_s for leg in self.legs))
-
-    @property
-    def headings_deg(self) -> list[float]:
-        """Compass bearing (deg) at each waypoint, chosen or given."""
-        return [float(b) for b in np.atleast_1d(heading_to_compass(self.headings))]
 
     def track_spacing(self, tolerance: float) -> float:
         """Sample spacing (m) whose arcs leave their chords by <= 1 % of `tolerance`.

@@ -31,6 +31,12 @@ from glideplan.errors import InvalidParameterError
 from glideplan.sailplane.plr import PolarFile, PolarFileError
 from glideplan.units import G0
 from glideplan.validation import check_fields, check_finite, check_nonnegative, check_positive
+from glideplan.vehicles.quadratic_polar import (
+    best_glide_speed,
+    min_sink_rate,
+    min_sink_speed,
+    quadratic_sink,
+)
 
 __all__ = [
     "GRAVITY",
@@ -101,23 +107,22 @@ class SailplanePolar:
     # ----- level flight -----------------------------------------------------------------
     def sink(self, speed: ArrayLike) -> NDArray[np.float64]:
         """w(v) = a v^2 + b v + c (m/s, positive down) at airspeed v (m/s)."""
-        v = np.asarray(speed, dtype=float)
-        return (self.a * v + self.b) * v + self.c
+        return quadratic_sink(self.a, self.b, self.c, speed)
 
     @property
     def v_ms(self) -> float:
         """Minimum-sink speed -b / 2a (m/s)."""
-        return -self.b / (2.0 * self.a)
+        return min_sink_speed(self.a, self.b)
 
     @property
     def w_ms(self) -> float:
         """Minimum sink rate c - b^2 / 4a (m/s)."""
-        return self.c - self.b**2 / (4.0 * self.a)
+        return min_sink_rate(self.a, self.b, self.c)
 
     @property
     def v_best_glide(self) -> float:
         """Best-glide speed sqrt(c / a) (m/s), clipped to [v_min, v_max]."""
-        return min(max(math.sqrt(self.c / self.a), self.v_min), self.v_max)
+        return min(max(best_glide_speed(self.a, self.c), self.v_min), self.v_max)
 
     @property
     def best_glide_ratio(self) -> float:

@@ -3,13 +3,23 @@
 Both are written with `aerofiles` (its SeeYou and XCSoar writers); the `.cup` file holds the
 two waypoints and a task line "start, start, goal, goal" (SeeYou repeats the takeoff and
 landing points), the `.tsk` file a two-point task (start, finish) with cylinder zones.
+
+Elevations are those of the ground at the point, as both formats define them (SeeYou CUP
+format, field 6 `elev`: the waypoint's elevation with a unit, here "m"; XCSoar reads the
+`altitude` attribute of a task `Waypoint` into the waypoint's elevation). A final glide's
+goal is a field on the ground: its elevation is ELEV_M. Its start is where the glider is,
+airborne: the ground elevation there is not known, so the start is written with an empty
+`elev` (SeeYou) and no `altitude` attribute (XCSoar), never with the glider's altitude; the
+altitude goes into the waypoint's description (`desc` / `comment`) instead.
 """
 
 from __future__ import annotations
 
+import math
 import pathlib
 from dataclasses import dataclass
 
+from glideplan.errors import InvalidParameterError
 from glideplan.geodesy import check_latlon
 
 __all__ = ["TaskPoint", "write_cup_task", "write_tsk_task"]
@@ -17,15 +27,21 @@ __all__ = ["TaskPoint", "write_cup_task", "write_tsk_task"]
 
 @dataclass(frozen=True)
 class TaskPoint:
-    """A named WGS84 point (degrees) with an elevation (m)."""
+    """A named WGS84 point (degrees) with the ground elevation there (m; None: unknown, e.g.
+    an airborne start) and a free-text description (written as the waypoint's description)."""
 
     name: str
     lat: float
     lon: float
-    elevation: float = 0.0
+    elevation: float | None = None
+    description: str = ""
 
     def __post_init__(self) -> None:
         check_latlon(self.lat, self.lon, self.name)
+        if self.elevation is not None and not math.isfinite(self.elevation):
+            raise InvalidParameterError(
+                f"{self.name} elevation", self.elevation, "must be finite (m) or None (unknown)"
+            )
 
 
 def _code(name: str) -> str:
@@ -41,7 +57,10 @@ def write_cup_task(
     with open(path, "wb") as fp:
         writer = Writer(fp)
         for p in (start, goal):
-            writer.write_waypoint(p.name, _code(p.name), "", p.lat, p.lon, p.elevation)
+            elevation = "" if p.elevation is None else float(p.elevation)  # "" = unknown
+            writer.write_waypoint(
+                p.name, _code(p.name), "", p.lat, p.lon, elevation, description=p.description
+            )
         writer.write_task(
             description or "final glide", [start.name, start.name, goal.name, goal.name]
         )
@@ -58,9 +77,12 @@ def write_tsk_task(
         with writer.write_task(type=TaskType.RACING):
             for kind, p in ((PointType.START, start), (PointType.FINISH, goal)):
                 with writer.write_point(type=kind):
-                    writer.write_waypoint(
-                        name=p.name, latitude=p.lat, longitude=p.lon, altitude=p.elevation
-                    )
+                    extra: dict[str, object] = {}
+                    if p.elevation is not None:
+                        extra["altitude"] = float(p.elevation)
+                    if p.description:
+                        extra["comment"] = p.description
+                    writer.write_waypoint(name=p.name, latitude=p.lat, longitude=p.lon, **extra)
                     writer.write_observation_zone(
                         type=ObservationZoneType.CYLINDER, radius=radius_m
                     )

@@ -24,6 +24,11 @@ from glideplan.vehicles.base import (
     check_speed_ratio,
     check_turn_rate,
 )
+from glideplan.vehicles.quadratic_polar import (
+    best_glide_speed,
+    min_sink_speed,
+    quadratic_sink,
+)
 
 __all__ = ["QuadraticPolarGlider", "dg1001m"]
 
@@ -132,19 +137,18 @@ class QuadraticPolarGlider(Vehicle):
 
     def sink_rate(self, speed: ArrayLike, turn_rate: ArrayLike) -> np.ndarray:
         """w(v) = a v^2 + b v + c (m/s), independent of the turn rate (eq. 5.4)."""
-        v = np.asarray(speed, dtype=float)
-        return (self.a * v + self.b) * v + self.c
+        return quadratic_sink(self.a, self.b, self.c, speed)
 
     # ----- derived flight conditions (Section 5.2, Table 5.2) ---------------------------
     @property
     def v_ms(self) -> float:
         """Minimum-sink speed -b / 2a (m/s)."""
-        return -self.b / (2.0 * self.a)
+        return min_sink_speed(self.a, self.b)
 
     @property
     def v_stf(self) -> float:
         """Speed to fly sqrt(c / a) (m/s): the polar's tangent through the origin."""
-        return math.sqrt(self.c / self.a)
+        return best_glide_speed(self.a, self.c)
 
     @property
     def w_ms(self) -> float:
