@@ -259,7 +259,7 @@ def test_glide_unreachable_keeps_the_start_altitude():
     from glideplan.sailplane.plot import final_glide_figure
 
     data, d = _glide(None, (60.0, 19.0))
-    assert data["status"] == "below glide" and data["altitude_loss_m"] is None
+    assert data["status"] == "unreachable" and data["altitude_loss_m"] is None
     assert d.altitude[0] == 1500.0 and np.isnan(d.altitude[-1])
     fig = final_glide_figure(d)
     title = fig.get_suptitle()

@@ -67,8 +67,8 @@ def test_time_step_rule():
     ("args", "needle"),
     [
         (["--dt", "100"], "turn one radian"),
-        (["--dt", "0.5", "--u-max", "0.3"], "dt=0.5"),
-        (["--gust-scale", "0"], "gust_scale"),
+        (["--dt", "0.5", "--u-max", "0.3"], "--dt=0.5"),
+        (["--gust-scale", "0"], "--gust-scale=0.0"),
         (["--umax", "1"], "--u-max"),
     ],
 )

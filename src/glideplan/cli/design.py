@@ -332,9 +332,7 @@ def trim(
 def glide(
     volume_l: Annotated[
         list[float] | None,
-        typer.Option(
-            "--volume-l", metavar="L", help="Net buoyancy |V - V_neutral|, L (repeat)."
-        ),
+        typer.Option("--volume-l", metavar="L", help="Net buoyancy |V - V_neutral|, L (repeat)."),
     ] = None,
     params: ParamsOpt = None,
     json_out: JsonOpt = False,

@@ -45,8 +45,14 @@ def _polar(
     for name, value in (("--mass", mass), ("--ballast", ballast), ("--bugs", bugs)):
         if value is not None:
             check_finite(name, value)
-    with flag_names(mass="--mass", mass_kg="--mass", ballast="--ballast", ballast_l="--ballast",
-                    bugs="--bugs", bugs_pct="--bugs"):
+    with flag_names(
+        mass="--mass",
+        mass_kg="--mass",
+        ballast="--ballast",
+        ballast_l="--ballast",
+        bugs="--bugs",
+        bugs_pct="--bugs",
+    ):
         return polar_from_file(pf, mass_kg=mass, ballast_l=ballast, bugs_pct=bugs)
 
 
@@ -116,7 +122,10 @@ def glide_ardusoar(
     out: Annotated[
         pathlib.Path,
         typer.Option(
-            "--out", metavar="FILE", help="Parameter file to write (NAME value lines).", show_default=False
+            "--out",
+            metavar="FILE",
+            help="Parameter file to write (NAME value lines).",
+            show_default=False,
         ),
     ],
     wing_area: Annotated[
@@ -168,7 +177,8 @@ def glide_final(
         typer.Option(
             "--from",
             metavar="LAT LON ALT_M",
-            help="Start LAT LON ALT_M (WGS84 degrees, metres).", show_default=False
+            help="Start LAT LON ALT_M (WGS84 degrees, metres).",
+            show_default=False,
         ),
     ],
     goal: Annotated[
@@ -176,7 +186,8 @@ def glide_final(
         typer.Option(
             "--to",
             metavar="LAT LON ELEV_M",
-            help="Goal LAT LON ELEV_M (WGS84 degrees, metres).", show_default=False
+            help="Goal LAT LON ELEV_M (WGS84 degrees, metres).",
+            show_default=False,
         ),
     ],
     mass: MassOpt = None,
@@ -209,7 +220,9 @@ def glide_final(
     json_out: JsonOpt = False,
     plot: Annotated[
         pathlib.Path | None,
-        typer.Option("--plot", metavar="FILE", help="Draw the ground track and altitude profile to FILE."),
+        typer.Option(
+            "--plot", metavar="FILE", help="Draw the ground track and altitude profile to FILE."
+        ),
     ] = None,
     cup: Annotated[
         pathlib.Path | None,

@@ -37,7 +37,8 @@ def _track_json(plan: Any, track: Any) -> dict[str, list[float]]:
 @mission_app.command("plan")
 def mission_plan(
     route: Annotated[pathlib.Path, typer.Argument(
-        metavar="ROUTE", help="Route file: .csv (name,lat,lon[,heading_deg] or name,x,y[,heading_deg]), .gpx, "
+        metavar="ROUTE",
+        help="Route file: .csv (name,lat,lon[,heading_deg] or name,x,y[,heading_deg]), .gpx, "
              ".kml or .geojson.", show_default=False)],
     speed: Annotated[float, typer.Option("--speed", help="Speed through the air/water (m/s).",
                                          show_default=False)],
@@ -55,11 +56,13 @@ def mission_plan(
         help="Steady wind/current: speed (m/s) and the compass direction it blows FROM (deg).",
         show_default=False)] = None,
     field: Annotated[pathlib.Path | None, typer.Option(
-        "--field", metavar="FILE", help="Current/wind field file (NetCDF or GRIB, as `glideplan route`): each "
+        "--field", metavar="FILE",
+        help="Current/wind field file (NetCDF or GRIB, as `glideplan route`): each "
                         "leg is routed through it (time-optimal, headings free), departing "
                         "when the previous leg arrives.", show_default=False)] = None,
     depart: Annotated[str | None, typer.Option(
-        "--depart", metavar="TIME", help="With --field: departure from the first waypoint, ISO 8601 (UTC if no "
+        "--depart", metavar="TIME",
+        help="With --field: departure from the first waypoint, ISO 8601 (UTC if no "
                          "offset; default the field's first time; must lie in its time span).",
         show_default=False)] = None,
     depth_range: Annotated[tuple[float, float] | None, typer.Option(
@@ -71,9 +74,11 @@ def mission_plan(
         "--headings", help="Candidate headings per free waypoint K (default 360; 36 in wind).",
         show_default=False)] = None,
     export: Annotated[pathlib.Path | None, typer.Option(
-        "--export", metavar="DIR", help="Directory to write the mission files into.", show_default=False)] = None,
+        "--export", metavar="DIR", help="Directory to write the mission files into.",
+        show_default=False)] = None,
     formats: Annotated[str | None, typer.Option(
-        "--formats", metavar="LIST", help="Comma-separated: geojson,kml,gpx,csv,qgc-wpl,qgc-plan,slocum,"
+        "--formats", metavar="LIST",
+        help="Comma-separated: geojson,kml,gpx,csv,qgc-wpl,qgc-plan,slocum,"
                           "seaglider (default: all).", show_default=False)] = None,
     acceptance_radius: Annotated[float, typer.Option(
         "--acceptance-radius", help="Waypoint acceptance radius in the vehicle files (m).")
@@ -90,7 +95,8 @@ def mission_plan(
         "--max-goto-waypoints", help="Most waypoints per Slocum goto file (split beyond).")] = 8,
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
     plot: Annotated[pathlib.Path | None, typer.Option(
-        "--plot", metavar="FILE", help="Draw the mission into FILE (.png, .pdf, .svg).", show_default=False)
+        "--plot", metavar="FILE", help="Draw the mission into FILE (.png, .pdf, .svg).",
+        show_default=False)
     ] = None,
 ) -> None:
     """Plan a multi-leg mission through ROUTE's waypoints, choosing the free headings optimally.

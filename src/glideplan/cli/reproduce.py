@@ -125,8 +125,11 @@ def _count_kinds(specs: list[FigureSpec]) -> str:
     """'1 figure and 2 tables', '3 figures', '0 figures' for these ids (fig... / table...)."""
     tables = sum(s.id.startswith("table") for s in specs)
     figures = len(specs) - tables
-    parts = [f"{n} {kind}{'' if n == 1 else 's'}"
-             for n, kind in ((figures, "figure"), (tables, "table")) if n]
+    parts = [
+        f"{n} {kind}{'' if n == 1 else 's'}"
+        for n, kind in ((figures, "figure"), (tables, "table"))
+        if n
+    ]
     return " and ".join(parts) or "0 figures"
 
 
@@ -180,12 +183,12 @@ def run_figures(
 def reproduce(
     out: Annotated[
         pathlib.Path, typer.Option("--out", metavar="DIR", help="Output directory.")
-    ] = pathlib.Path(
-        "out/reproduce"
-    ),
+    ] = pathlib.Path("out/reproduce"),
     only: Annotated[
         str | None,
-        typer.Option("--only", metavar="IDS", help="Comma-separated ids, e.g. fig3.1,table4.3 (see --list)."),
+        typer.Option(
+            "--only", metavar="IDS", help="Comma-separated ids, e.g. fig3.1,table4.3 (see --list)."
+        ),
     ] = None,
     full: Annotated[
         bool, typer.Option("--full", help="Full-size studies instead of the reduced defaults.")

@@ -64,7 +64,10 @@ def cross_track_command(
     out: Annotated[
         pathlib.Path,
         typer.Option(
-            "--out", metavar="DIR", help="Directory for samples.sqlite and summary.json.", show_default=False
+            "--out",
+            metavar="DIR",
+            help="Directory for samples.sqlite and summary.json.",
+            show_default=False,
         ),
     ],
     eps: Annotated[
@@ -140,10 +143,22 @@ def cross_track_command(
         raise InvalidParameterError("--scheduler", scheduler, "must be a scheduler address")
     check_output_dir(out, "--out")
     follower = {} if dt == 0.05 else {"dt": dt}
-    names = {"samples": "--samples", "chunk": "--chunk", "seed": "--seed", "case": "--case",
-             "eps": "--eps", "r_plan": "--r-plan", "speed": "--speed", "u_max": "--u-max",
-             "max_turn_rate": "--u-max", "gust_scale": "--gust-scale", "dt": "--dt",
-             "out": "--out", "scheduler": "--scheduler", "processes": "--processes"}
+    names = {
+        "samples": "--samples",
+        "chunk": "--chunk",
+        "seed": "--seed",
+        "case": "--case",
+        "eps": "--eps",
+        "r_plan": "--r-plan",
+        "speed": "--speed",
+        "u_max": "--u-max",
+        "max_turn_rate": "--u-max",
+        "gust_scale": "--gust-scale",
+        "dt": "--dt",
+        "out": "--out",
+        "scheduler": "--scheduler",
+        "processes": "--processes",
+    }
     with flag_names(**names):
         config = CrossTrackConfig(
             eps=_values("--eps", eps) or DEFAULT_EPS,

@@ -46,8 +46,9 @@ def check_address(host: str, port: int) -> None:
                     "--host", host, "is not an address of this machine"
                 ) from None
             reason = exc.strerror or str(exc)
-            raise InvalidParameterError("--host", host, f"cannot listen on port {port}: {reason}"
-                                        ) from None
+            raise InvalidParameterError(
+                "--host", host, f"cannot listen on port {port}: {reason}"
+            ) from None
 
 
 def warm_up() -> None:

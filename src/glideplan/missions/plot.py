@@ -57,7 +57,8 @@ def _ground_scale_axes(ax: Any, lon: np.ndarray, lat: np.ndarray, origin: str) -
 def plot_mission(
     plan: MissionPlan | FieldMission, legs: StraightLegList | None = None
 ) -> Any:
-    """A figure of `plan`: axes in degrees (lon, lat) for geographic routes, else metres."""
+    """A figure of `plan`: axes in degrees (lon, lat) at equal ground scale with km east /
+    north of the first waypoint on the top and right axes for geographic routes, else metres."""
     import matplotlib
 
     matplotlib.use("Agg")
