@@ -599,6 +599,11 @@ CASES: dict[str, Case] = {
         2,
         "--out='{tmp}/nonexistent/dir/soar.parm': directory '{tmp}/nonexistent/dir' does not exist",
     ),
+    "glide ardusoar --wing-area -1": Case(
+        ("glide", "ardusoar", "{polar}", "--out", "{tmp}/s.parm", "--wing-area", "-1"),
+        2,
+        "--wing-area=-1.0: must be > 0",
+    ),
     "glide final: wind too strong is unreachable, saying why": Case(
         (*GLIDE, "--wind", "80", "270"),
         1,

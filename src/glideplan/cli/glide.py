@@ -134,12 +134,13 @@ def glide_ardusoar(
     json_out: JsonOpt = False,
 ) -> None:
     """Fit ArduPilot's SOAR_POLAR_CD0/B/K to the polar (least squares) and write a .parm file."""
-    from glideplan.cli.common import announce, check_output_file, file_flag
+    from glideplan.cli.common import announce, check_output_file, file_flag, flag_names
     from glideplan.sailplane import fit_ardusoar, write_parm
 
     check_output_file(out, "--out")
     p = _polar(file, None, 0.0, 0.0)
-    fit = fit_ardusoar(p, wing_area)
+    with flag_names(**{"wing area": "--wing-area"}):
+        fit = fit_ardusoar(p, wing_area)
     with file_flag("--out", out):
         write_parm(
             fit,
