@@ -24,7 +24,8 @@ from glideplan.pose import mod_2pi
 
 __all__ = ["dubins_length_matrix"]
 
-_BLOCK = 65536  # matrix entries per block (bounds the temporaries to a few MB)
+_BLOCK = 32768  # matrix entries per block: its ~10 temporaries stay in the L2 cache (measured:
+# 200 waypoints x K = 360 take ~1.0 s at 32768 against ~1.8 s at 65536 on the CI machine)
 
 
 def dubins_length_matrix(
