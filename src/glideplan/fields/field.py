@@ -6,8 +6,9 @@ Three kinds share one interface (`FlowField`):
 - `AnalyticField(fn, ...)`: a callable fn(t, lat, lon) -> (u, v), with an optional extent and
   time span.
 - `GriddedField(...)`: values on a (time, latitude, longitude) grid, linearly interpolated in
-  space and time (trilinear). NaN means land or missing data: any query whose interpolation
-  stencil touches a NaN returns NaN, which the router treats as an obstacle, never as zero.
+  space and time (SciPy's RegularGridInterpolator). NaN means land or missing data: any query
+  whose interpolation stencil touches a NaN returns NaN, which the router treats as an
+  obstacle, never as zero.
 
 Time `t` is seconds since the field's `epoch` (a `numpy.datetime64`, or None for a field with
 no calendar); `datetime64` values are accepted too. A query outside the field's extent or
@@ -18,6 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -202,18 +204,9 @@ class AnalyticField(FlowField):
         return np.asarray(u, dtype=float), np.asarray(v, dtype=float)
 
 
-def _axis_weights(coords: FloatArray, q: FloatArray) -> tuple[NDArray[np.intp], FloatArray]:
-    """Lower index i and weight w of q in ascending coords: q = (1-w) c[i] + w c[i+1]."""
-    if coords.size == 1:
-        return np.zeros(q.shape, dtype=np.intp), np.zeros(q.shape)
-    i = np.clip(np.searchsorted(coords, q, side="right") - 1, 0, coords.size - 2)
-    w = (q - coords[i]) / (coords[i + 1] - coords[i])
-    return i, np.clip(w, 0.0, 1.0)
-
-
 @dataclass(frozen=True, eq=False)
 class GriddedField(FlowField):
-    """Velocity on a (time, lat, lon) grid; trilinear interpolation; NaN = land.
+    """Velocity on a (time, lat, lon) grid; linear interpolation (SciPy); NaN = land.
 
     times: (nt,) seconds since `epoch` (ascending; nt = 1 is a steady field); lat: (ny,)
     ascending degrees; lon: (nx,) ascending degrees (may exceed 180); u, v: (nt, ny, nx) m/s.
@@ -258,24 +251,31 @@ class GriddedField(FlowField):
     def time_levels(self) -> FloatArray | None:
         return self.times if self.times.size > 1 else None
 
+    @cached_property
+    def _interpolator(self) -> Any:
+        """SciPy's linear `RegularGridInterpolator` over (time,) lat, lon of (u, v).
+
+        Linear interpolation multiplies every corner of the cell by its weight, so a cell
+        that touches a NaN node (land) gives NaN, even at a weight of zero: land is land.
+        """
+        from scipy.interpolate import RegularGridInterpolator
+
+        values = np.stack([self.u, self.v], axis=-1)
+        if self.times.size == 1:
+            return RegularGridInterpolator(
+                (self.lat, self.lon), values[0], method="linear", bounds_error=False,
+                fill_value=np.nan,
+            )
+        return RegularGridInterpolator(
+            (self.times, self.lat, self.lon), values, method="linear", bounds_error=False,
+            fill_value=np.nan,
+        )
+
     def velocity(self, t: Any, lat: ArrayLike, lon: ArrayLike) -> tuple[FloatArray, FloatArray]:
         ts = self.check_time(t)
         la, lo = self.check_position(lat, lon)
         ts, la, lo = np.broadcast_arrays(ts, la, lo)
-        it, wt = _axis_weights(self.times, ts)
-        iy, wy = _axis_weights(self.lat, la)
-        ix, wx = _axis_weights(self.lon, lo)
-        nt = self.times.size
-        out = []
-        for arr in (self.u, self.v):
-            acc = np.zeros(la.shape)
-            for dt_, ft in ((0, 1.0 - wt), (1, wt)):
-                if nt == 1 and dt_ == 1:
-                    continue
-                tt = it + dt_
-                for dy, fy in ((0, 1.0 - wy), (1, wy)):
-                    for dx, fx in ((0, 1.0 - wx), (1, wx)):
-                        # NaN * 0 stays NaN: a stencil that touches land is land.
-                        acc = acc + ft * fy * fx * arr[tt, iy + dy, ix + dx]
-            out.append(acc)
-        return out[0], out[1]
+        axes = (la, lo) if self.times.size == 1 else (ts, la, lo)
+        points = np.stack([np.asarray(a, dtype=float).ravel() for a in axes], axis=-1)
+        uv = self._interpolator(points).reshape(*la.shape, 2)
+        return uv[..., 0], uv[..., 1]
