@@ -345,3 +345,38 @@ def save_figure(ax_or_fig: Any, filename: str) -> None:
     fig.tight_layout()
     fig.savefig(filename, dpi=130, bbox_inches="tight")
     plt.close(fig)
+
+
+def add_km_axes(
+    ax: Any,
+    ref_lat: float,
+    ref_lon: float,
+    m_per_deg_lat: float,
+    m_per_deg_lon: float,
+    east_label: str,
+    north_label: str,
+) -> None:
+    """Secondary axes in km east / north of (ref_lat, ref_lon) on a lon/lat plot.
+
+    x_km = (lon - ref_lon) m_lon / 1000, y_km = (lat - ref_lat) m_lat / 1000, with the metres
+    per degree at the frame's mean latitude (linear: fine for frames of a few hundred km).
+    """
+
+    def east_km(lon_deg: Any) -> Any:
+        return (np.asarray(lon_deg, dtype=float) - ref_lon) * m_per_deg_lon / 1000.0
+
+    def km_east(km: Any) -> Any:
+        return ref_lon + np.asarray(km, dtype=float) * 1000.0 / m_per_deg_lon
+
+    def north_km(lat_deg: Any) -> Any:
+        return (np.asarray(lat_deg, dtype=float) - ref_lat) * m_per_deg_lat / 1000.0
+
+    def km_north(km: Any) -> Any:
+        return ref_lat + np.asarray(km, dtype=float) * 1000.0 / m_per_deg_lat
+
+    top = ax.secondary_xaxis("top", functions=(east_km, km_east))
+    top.set_xlabel(east_label, fontsize=8)
+    right = ax.secondary_yaxis("right", functions=(north_km, km_north))
+    right.set_ylabel(north_label, fontsize=8)
+    for sec in (top, right):
+        sec.tick_params(labelsize=8)

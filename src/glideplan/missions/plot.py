@@ -23,6 +23,7 @@ def _ground_scale_axes(ax: Any, lon: np.ndarray, lat: np.ndarray, origin: str) -
     drawn as long as a km north. The top and right axes read km east / north of the first
     waypoint `origin` (lon, lat of the track's first point) on that local plane.
     """
+    from glideplan.plotting import add_km_axes
     from glideplan.routing.plot import frame_scales
 
     lat_mid = 0.5 * (float(np.min(lat)) + float(np.max(lat)))
@@ -34,24 +35,8 @@ def _ground_scale_axes(ax: Any, lon: np.ndarray, lat: np.ndarray, origin: str) -
     ax.set_ylabel("latitude (deg N)")
     ax.ticklabel_format(useOffset=False)
 
-    def east_km(x: Any) -> Any:
-        return (np.asarray(x, dtype=float) - lon0) * m_lon / 1000.0
-
-    def km_east(km: Any) -> Any:
-        return lon0 + np.asarray(km, dtype=float) * 1000.0 / m_lon
-
-    def north_km(y: Any) -> Any:
-        return (np.asarray(y, dtype=float) - lat0) * m_lat / 1000.0
-
-    def km_north(km: Any) -> Any:
-        return lat0 + np.asarray(km, dtype=float) * 1000.0 / m_lat
-
-    top = ax.secondary_xaxis("top", functions=(east_km, km_east))
-    top.set_xlabel(f"km east of {origin} (equal ground scale)", fontsize=8)
-    right = ax.secondary_yaxis("right", functions=(north_km, km_north))
-    right.set_ylabel(f"km north of {origin}", fontsize=8)
-    for sec in (top, right):
-        sec.tick_params(labelsize=8)
+    add_km_axes(ax, lat0, lon0, m_lat, m_lon, f"km east of {origin} (equal ground scale)",
+                f"km north of {origin}")
 
 
 def plot_mission(

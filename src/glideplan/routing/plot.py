@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from glideplan.fields.field import FlowField
+from glideplan.plotting import add_km_axes
 from glideplan.routing.route import RouteResult
 
 if TYPE_CHECKING:
@@ -326,24 +327,7 @@ def route_figure(
     ref_lon = lo0 if start is None else float(frame(start[1]))
     ref = "the frame's corner" if start is None else "start"
 
-    def east_km(lon_deg: Any) -> Any:
-        return (np.asarray(lon_deg, dtype=float) - ref_lon) * m_lon / 1000.0
-
-    def km_east(km: Any) -> Any:
-        return ref_lon + np.asarray(km, dtype=float) * 1000.0 / m_lon
-
-    def north_km(lat_deg: Any) -> Any:
-        return (np.asarray(lat_deg, dtype=float) - ref_lat) * m_lat / 1000.0
-
-    def km_north(km: Any) -> Any:
-        return ref_lat + np.asarray(km, dtype=float) * 1000.0 / m_lat
-
-    top = ax.secondary_xaxis("top", functions=(east_km, km_east))
-    top.set_xlabel(f"km east of {ref}", fontsize=8)
-    right = ax.secondary_yaxis("right", functions=(north_km, km_north))
-    right.set_ylabel(f"km north of {ref}", fontsize=8)
-    for sec in (top, right):
-        sec.tick_params(labelsize=8)
+    add_km_axes(ax, ref_lat, ref_lon, m_lat, m_lon, f"km east of {ref}", f"km north of {ref}")
     ax.grid(True, lw=0.4, alpha=0.5)
     ax.set_title(route_title(result, field_, start, goal, speed, inferred, glider),
                  fontsize=9, loc="left", pad=30)
