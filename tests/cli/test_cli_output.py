@@ -21,21 +21,9 @@ from glideplan.vehicles import (
 
 
 def _sailplane() -> Any:
-    from glideplan.sailplane.polar import SailplanePolar
-    from glideplan.vehicles.sailplane import Sailplane
+    from glideplan.vehicles.sailplane import dg1001m_sailplane
 
-    kmh = 1 / 3.6
-    polar = SailplanePolar(
-        a=0.0002093 / kmh**2,
-        b=-0.0381 / kmh,
-        c=2.3146,
-        v_min=75.6 * kmh,
-        v_max=160.0 * kmh,
-        mass_kg=750.0,
-        reference_mass_kg=750.0,
-        name="DG-1001M (section 5.9)",
-    )
-    return Sailplane(polar, wind_speed=3.0, wind_direction=math.radians(30.0))
+    return dg1001m_sailplane(wind_speed=3.0, wind_direction=math.radians(30.0))
 
 
 EXAMPLES: dict[str, Any] = {

@@ -27,7 +27,7 @@ from glideplan.validation import check_positive
 from glideplan.vehicles.base import Vehicle
 from glideplan.vehicles.dubins_car_in_wind import SteadyWind
 
-__all__ = ["Sailplane"]
+__all__ = ["Sailplane", "dg1001m_sailplane"]
 
 
 @dataclass(frozen=True)
@@ -106,3 +106,23 @@ class Sailplane(SteadyWind, Vehicle):
             "turn_rate_max": self.turn_rate_max,
             "turning_polar": self.turning_polar,
         }
+
+
+def dg1001m_sailplane(wind_speed: float = 0.0, wind_direction: float = 0.0) -> Sailplane:
+    """The DG-1001M of section 5.9 (eq. 5.26 in SI, 750 kg, 75.6–160 km/h) as a `Sailplane`.
+
+    w = a V^2 + b V + c with a = 2.093e-4 / (km/h)^2, b = -0.0381 / (km/h), c = 2.3146 m/s;
+    the wind of `wind_speed` (m/s) blows towards `wind_direction` (rad, CCW from +x).
+    """
+    kmh = 1.0 / 3.6
+    polar = SailplanePolar(
+        a=0.0002093 / kmh**2,
+        b=-0.0381 / kmh,
+        c=2.3146,
+        v_min=75.6 * kmh,
+        v_max=160.0 * kmh,
+        mass_kg=750.0,
+        reference_mass_kg=750.0,
+        name="DG-1001M (section 5.9)",
+    )
+    return Sailplane(polar, wind_speed=wind_speed, wind_direction=wind_direction)
