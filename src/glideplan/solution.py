@@ -23,7 +23,11 @@ class Status(StrEnum):
     The one status vocabulary of the library (a `StrEnum`: members compare equal to their
     strings, which is what `--json` prints). A `Solution` is SOLVED, NO_PATH, NOT_VERIFIED or
     SOLVER_FAILED; a `Candidate` is FEASIBLE, INFEASIBLE, LOCAL or FAILED; a direct solve
-    (`glideplan.planners.direct.DirectResult`) is SOLVED or FAILED.
+    (`glideplan.planners.direct.DirectResult`) is SOLVED or FAILED. The products above
+    `plan()` (`glideplan.results`) use the same members: a route is SOLVED, UNREACHABLE or
+    NOT_VERIFIED; following a flyable path SOLVED, LOST or INFEASIBLE (no feasible radius); a
+    trochoid chain SOLVED or INFEASIBLE; a mission SOLVED, FAILED or UNREACHABLE; a final
+    glide SOLVED (arrives at or above the safety height), BELOW_GLIDE or UNREACHABLE.
     """
 
     SOLVED = "solved"  # a path was found and verified by integration (or a solve converged)
@@ -34,6 +38,12 @@ class Status(StrEnum):
     INFEASIBLE = "infeasible"  # a candidate type with no path for this goal
     LOCAL = "local"  # a converged start of a multi-start solve that is not the best
     FAILED = "failed"  # one numerical solve (a start, a candidate) did not converge
+    # Products above plan() (routes, missions, glides, reach; see glideplan.results):
+    UNREACHABLE = "unreachable"  # proven out of reach (the front stopped, or hit the field's
+    #                              extent or time span; the result's `reason` says which)
+    LOST = "lost"  # a closed-loop follower did not reach the goal (left the field, hit land,
+    #                or timed out; the message says which)
+    BELOW_GLIDE = "below_glide"  # a glide reaches the goal but arrives below the safety height
 
 
 @dataclass(frozen=True, eq=False)
@@ -103,6 +113,12 @@ class Solution:
     @property
     def ok(self) -> bool:
         return self.status is Status.SOLVED
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """The solution figure (`glideplan.plotting.plot_solution`); returns the axes."""
+        from glideplan.plotting import plot_solution
+
+        return plot_solution(self, ax=ax, **kwargs)
 
     def raise_for_status(self) -> Solution:
         """Return self when solved, else raise `PlanningError` with the message."""
