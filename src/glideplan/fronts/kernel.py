@@ -54,7 +54,7 @@ def _row(i: int, di: int, ny: int) -> int:
 @njit(cache=True, inline="always")
 def _blocked(idx: int, t: float, arrival: np.ndarray, tb: np.ndarray, lo: np.ndarray,
              has_drift: bool) -> bool:
-    if arrival[idx] == INF and t > tb[idx]:
+    if t > tb[idx] and arrival[idx] == INF:  # tb first: +inf (open water) ends it at once
         return True
     if has_drift and (lo[0, idx] != lo[0, idx]):
         return True
@@ -269,4 +269,6 @@ def next_active(phi: np.ndarray, act: np.ndarray, band: float, mark: np.ndarray,
                     mark[q] = stamp
                     out[cnt] = q
                     cnt += 1
-    return out[:cnt].copy(), nband, edges
+    res = out[:cnt].copy()
+    res.sort()  # row-major order: neighbours in cache (random order costs ~10x here)
+    return res, nband, edges
