@@ -53,7 +53,9 @@ def _row(i: int, di: int, ny: int) -> int:
 
 @njit(cache=True, inline="always")
 def _blocked(idx: int, t: float, arrival: np.ndarray, tb: np.ndarray, lo: np.ndarray,
-             has_drift: bool) -> bool:
+             has_drift: bool, may: np.ndarray) -> bool:
+    if may[idx] == 0:  # one byte: open water/air, never blocked (most nodes)
+        return False
     if t > tb[idx] and arrival[idx] == INF:  # tb first: +inf (open water) ends it at once
         return True
     if has_drift and (lo[0, idx] != lo[0, idx]):
@@ -87,7 +89,7 @@ def _one_sided(c: float, vm1: float, vm2: float, vp1: float, vp2: float, bm1: bo
 def _rate(idx: int, p: np.ndarray, t: float, w: float, ny: int, nx: int, periodic: bool,
           hx: np.ndarray, hy: float, a: np.ndarray, b: np.ndarray, s: np.ndarray,
           arrival: np.ndarray, tb: np.ndarray, lo: np.ndarray, hi: np.ndarray,
-          has_drift: bool) -> tuple[float, float]:
+          has_drift: bool, may: np.ndarray) -> tuple[float, float]:
     """(d phi/dt, largest characteristic speed / spacing) at node idx (module docstring)."""
     i = idx // nx
     j = idx - i * nx
@@ -97,20 +99,20 @@ def _rate(idx: int, p: np.ndarray, t: float, w: float, ny: int, nx: int, periodi
     jm2 = i * nx + _col(j, -2, nx, periodic)
     jp1 = i * nx + _col(j, 1, nx, periodic)
     jp2 = i * nx + _col(j, 2, nx, periodic)
-    bxm1 = _blocked(jm1, t, arrival, tb, lo, has_drift)
-    bxm2 = _blocked(jm2, t, arrival, tb, lo, has_drift)
-    bxp1 = _blocked(jp1, t, arrival, tb, lo, has_drift)
-    bxp2 = _blocked(jp2, t, arrival, tb, lo, has_drift)
+    bxm1 = _blocked(jm1, t, arrival, tb, lo, has_drift, may)
+    bxm2 = _blocked(jm2, t, arrival, tb, lo, has_drift, may)
+    bxp1 = _blocked(jp1, t, arrival, tb, lo, has_drift, may)
+    bxp2 = _blocked(jp2, t, arrival, tb, lo, has_drift, may)
     dxm, dxp = _one_sided(c, p[jm1], p[jm2], p[jp1], p[jp2], bxm1, bxm2, bxp1, bxp2, hx[i])
     # y neighbours
     im1 = _row(i, -1, ny) * nx + j
     im2 = _row(i, -2, ny) * nx + j
     ip1 = _row(i, 1, ny) * nx + j
     ip2 = _row(i, 2, ny) * nx + j
-    bym1 = _blocked(im1, t, arrival, tb, lo, has_drift)
-    bym2 = _blocked(im2, t, arrival, tb, lo, has_drift)
-    byp1 = _blocked(ip1, t, arrival, tb, lo, has_drift)
-    byp2 = _blocked(ip2, t, arrival, tb, lo, has_drift)
+    bym1 = _blocked(im1, t, arrival, tb, lo, has_drift, may)
+    bym2 = _blocked(im2, t, arrival, tb, lo, has_drift, may)
+    byp1 = _blocked(ip1, t, arrival, tb, lo, has_drift, may)
+    byp2 = _blocked(ip2, t, arrival, tb, lo, has_drift, may)
     dym, dyp = _one_sided(c, p[im1], p[im2], p[ip1], p[ip2], bym1, bym2, byp1, byp2, hy)
     g2 = (max(dxm, 0.0) ** 2 + min(dxp, 0.0) ** 2 + max(dym, 0.0) ** 2 + min(dyp, 0.0) ** 2)
     grad = np.sqrt(g2)
@@ -153,7 +155,8 @@ def _rate(idx: int, p: np.ndarray, t: float, w: float, ny: int, nx: int, periodi
 def rk_stage(phi: np.ndarray, out: np.ndarray, act: np.ndarray, t: float, w: float, dt_cap: float,
              band: float, ny: int, nx: int, periodic: bool, hx: np.ndarray, hy: float,
              a: np.ndarray, b: np.ndarray, s: np.ndarray, arrival: np.ndarray, tb: np.ndarray,
-             lo: np.ndarray, hi: np.ndarray, has_drift: bool, cfl: float) -> float:
+             lo: np.ndarray, hi: np.ndarray, has_drift: bool, cfl: float,
+             may: np.ndarray) -> float:
     """Stage 1: out = phi - dt L(phi) on the active nodes, dt = min(cfl / max(speed / spacing)
     over the active nodes, dt_cap) (the CFL condition); returns the dt used."""
     n = act.size
@@ -162,14 +165,14 @@ def rk_stage(phi: np.ndarray, out: np.ndarray, act: np.ndarray, t: float, w: flo
     for m in range(n):
         idx = act[m]
         r, sp = _rate(idx, phi, t, w, ny, nx, periodic, hx, hy, a, b, s, arrival, tb, lo, hi,
-                      has_drift)
+                      has_drift, may)
         rates[m] = r
         if sp > smax:
             smax = sp
     dt = min(cfl / smax, dt_cap)
     for m in range(n):
         idx = act[m]
-        if _blocked(idx, t, arrival, tb, lo, has_drift):
+        if _blocked(idx, t, arrival, tb, lo, has_drift, may):
             out[idx] = band
             continue
         v = phi[idx] - dt * rates[m]
@@ -181,8 +184,8 @@ def rk_stage(phi: np.ndarray, out: np.ndarray, act: np.ndarray, t: float, w: flo
 def stage_two(phi: np.ndarray, p1: np.ndarray, act: np.ndarray, t: float, t1: float, w1: float,
               dt: float, band: float, ny: int, nx: int, periodic: bool, hx: np.ndarray,
               hy: float, a: np.ndarray, b: np.ndarray, s: np.ndarray, arrival: np.ndarray,
-              tb: np.ndarray, lo: np.ndarray, hi: np.ndarray, has_drift: bool) -> tuple[
-                  int, float]:
+              tb: np.ndarray, lo: np.ndarray, hi: np.ndarray, has_drift: bool,
+              may: np.ndarray) -> tuple[int, float]:
     """Stage 2 of TVD-RK2 (Heun): phi <- (phi + p1 - dt L(p1; t1)) / 2, arrival times recorded.
 
     A node whose phi crosses from > 0 to <= 0 gets arrival t + dt phi_old / (phi_old - phi_new)
@@ -192,11 +195,11 @@ def stage_two(phi: np.ndarray, p1: np.ndarray, act: np.ndarray, t: float, t1: fl
     new = np.empty(n)
     for m in range(n):
         idx = act[m]
-        if _blocked(idx, t1, arrival, tb, lo, has_drift):
+        if _blocked(idx, t1, arrival, tb, lo, has_drift, may):
             new[m] = band
             continue
         r, _ = _rate(idx, p1, t1, w1, ny, nx, periodic, hx, hy, a, b, s, arrival, tb, lo, hi,
-                     has_drift)
+                     has_drift, may)
         v = 0.5 * (phi[idx] + p1[idx] - dt * r)
         # Snap the band's tails to +-B: the clipped profile rounds off under ENO2 and would
         # otherwise keep a wide fringe of nodes a hair inside the band (they are >= 5.8 cells

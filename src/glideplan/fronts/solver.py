@@ -371,8 +371,12 @@ def propagate(
     drift = problem.drift
     has_drift = drift is not None
     dummy = np.zeros((2, 1))
+    # nodes that may ever be blocked: a finite block time, or NaN in a drift level seen so far
+    may_b = tb < np.inf
+    seen_levels: set[int] = set()
     mark = np.zeros(ny * nx, dtype=np.int64)
     stamp = 0
+    may = may_b.astype(np.uint8)
     steady = (drift is None or drift.steady) and not np.any(np.isfinite(tb) & (tb > t))
     stall_limit = math.ceil(40.0 / cfl)
     stall = 0
@@ -395,12 +399,18 @@ def propagate(
         if has_drift:
             assert drift is not None
             lo, hi, w = drift.pair(t)
+            k_lo = drift.bracket(t)[0]
+            for k in (k_lo, min(k_lo + 1, drift.times.size - 1)):
+                if k not in seen_levels:
+                    seen_levels.add(k)
+                    may_b |= ~np.isfinite(drift.level(k)[0])
+                    may = may_b.astype(np.uint8)
         else:
             lo = hi = dummy
             w = 0.0
         dt_cap = max(t_max - t, 1e-12 * max(abs(t), 1.0))
         dt = rk_stage(phi, p1, act, t, w, dt_cap, band, ny, nx, g.periodic, hx, hy, a, b, s,
-                      arrival, tb, lo, hi, has_drift, cfl)
+                      arrival, tb, lo, hi, has_drift, cfl, may)
         if dt < 1e-300:
             reason = "stalled"
             break
@@ -411,7 +421,7 @@ def propagate(
         else:
             w1 = 0.0
         reached, dmax = stage_two(phi, p1, act, t, t1, w1, dt, band, ny, nx, g.periodic, hx, hy,
-                                  a, b, s, arrival, tb, lo, hi, has_drift)
+                                  a, b, s, arrival, tb, lo, hi, has_drift, may)
         t = t1
         steps += 1
         reached_total += reached
