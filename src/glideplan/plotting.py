@@ -28,9 +28,13 @@ __all__ = [
     "mark_pose",
     "plot_path",
     "plot_solution",
+    "plot_track",
     "pose_text",
     "save_figure",
 ]
+
+# One look for every figure glideplan writes: this resolution (dots per inch) and saver.
+FIGURE_DPI = 130
 
 # Candidates drawn one by one in the legend; the rest share one grey entry.
 _MAX_LABELLED_CANDIDATES = 8
@@ -337,14 +341,42 @@ def plot_solution(
     return ax
 
 
-def save_figure(ax_or_fig: Any, filename: str) -> None:
-    """Save the figure owning `ax_or_fig` (legend outside the axes included) and close it."""
+def save_figure(ax_or_fig: Any, filename: Any, *, crop: bool = True, tight: bool = True) -> Any:
+    """Save the figure owning `ax_or_fig` at `FIGURE_DPI` and close it; return `filename`.
+
+    The one saver of the library (solution, route, mission, glide and chapter figures). With
+    `tight` the subplots are spaced by `tight_layout` (unless the figure has a layout engine);
+    with `crop` the image is cropped to what is drawn, so a legend outside the axes is kept.
+    It never switches Matplotlib's backend (only `glideplan reproduce` does).
+    """
     import matplotlib.pyplot as plt
 
     fig = ax_or_fig.get_figure() if hasattr(ax_or_fig, "get_figure") else ax_or_fig
-    fig.tight_layout()
-    fig.savefig(filename, dpi=130, bbox_inches="tight")
+    if tight and fig.get_layout_engine() is None:  # a constrained layout spaces itself
+        fig.tight_layout()
+    fig.savefig(filename, dpi=FIGURE_DPI, **({"bbox_inches": "tight"} if crop else {}))
     plt.close(fig)
+    return filename
+
+
+def plot_track(track: Any, ax: Any = None, *, label: str = "track", title: str = "",
+               **kwargs: Any) -> Any:
+    """Draw a `glideplan.track.Track`: lon/lat (deg) when geographic, else x/y (m); the axes."""
+    ax = _axes(ax)
+    if track.geographic:
+        ax.plot(track.lon, track.lat, label=label, **kwargs)
+        ax.set_xlabel("longitude (deg E)")
+        ax.set_ylabel("latitude (deg N)")
+        mid = math.radians(float(np.mean(track.lat)))
+        ax.set_aspect(1.0 / max(math.cos(mid), 1e-6), adjustable="datalim")
+    else:
+        ax.plot(track.x, track.y, label=label, **kwargs)
+        _label_axes(ax, "m")
+    if track.size:
+        ax.legend(loc="best", fontsize=8)
+    if title:
+        ax.set_title(title, fontsize=9, loc="left")
+    return ax
 
 
 def add_km_axes(

@@ -19,7 +19,7 @@ from typing import Any, Protocol, runtime_checkable
 
 from glideplan.solution import Status
 
-__all__ = ["Outcome", "Status"]
+__all__ = ["Outcome", "OutcomeBase", "Status"]
 
 
 @runtime_checkable
@@ -35,3 +35,17 @@ class Outcome(Protocol):
     def to_dict(self) -> dict[str, Any]: ...
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any: ...
+
+
+class OutcomeBase:
+    """Mixin of the result dataclasses: `status` given as a `Status` or its value is stored as
+    the `Status` (an unknown word raises ValueError), and `ok` is `status is Status.SOLVED`."""
+
+    status: Status
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "status", Status(self.status))
+
+    @property
+    def ok(self) -> bool:
+        return self.status is Status.SOLVED

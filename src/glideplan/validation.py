@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -11,6 +12,8 @@ import numpy as np
 from glideplan.errors import InvalidParameterError
 
 __all__ = [
+    "PHYSICAL_RANGES",
+    "PhysicalRange",
     "check_fields",
     "check_finite",
     "check_finite_array",
@@ -19,6 +22,8 @@ __all__ = [
     "check_less",
     "check_nonnegative",
     "check_nonnegative_array",
+    "check_physical",
+    "check_physical_array",
     "check_positive",
     "check_positive_array",
     "check_probability",
@@ -154,3 +159,114 @@ def check_probability(name: str, value: Any) -> float:
 def scalar_or_array(x: np.ndarray) -> np.ndarray | float:
     """Return a Python float for 0-d results, the array otherwise."""
     return float(x) if np.ndim(x) == 0 else x
+
+
+@dataclass(frozen=True)
+class PhysicalRange:
+    """The values a physical input may take: [low, high] in `unit` (an end is open when asked),
+    and why (`reason`, shown with every refusal)."""
+
+    low: float
+    high: float
+    unit: str
+    reason: str
+    low_open: bool = False
+
+    def rule(self) -> str:
+        """`must lie in (0, 343] m/s (reason)`: the refusal's text."""
+        lb = "(" if self.low_open else "["
+        unit = f" {self.unit}" if self.unit else ""
+        return f"must lie in {lb}{self.low:g}, {self.high:g}]{unit} ({self.reason})"
+
+    def contains(self, value: float) -> bool:
+        lo_ok = value > self.low if self.low_open else value >= self.low
+        return lo_ok and value <= self.high
+
+
+# The ONE table of physical ranges that every command checks its numeric inputs against
+# (`check_physical`): wide enough for every vehicle the package models (underwater gliders at
+# 0.3 m/s to sailplanes and soaring UAVs), narrow enough that a typo or an overflow (1e300)
+# is refused up front instead of planned. Documented in the README ("Input ranges").
+PHYSICAL_RANGES: Mapping[str, PhysicalRange] = {
+    # ---- positions, headings, heights (the edges: degrees and metres) -------------------
+    "altitude": PhysicalRange(
+        -500.0, 20_000.0, "m", "Dead Sea shore to above any glider's or sailplane's ceiling"
+    ),
+    "elevation": PhysicalRange(-500.0, 9_000.0, "m", "ground elevation: Dead Sea to Everest"),
+    "height": PhysicalRange(0.0, 5_000.0, "m", "a safety or arrival height above the ground"),
+    "heading": PhysicalRange(
+        -360.0, 360.0, "deg", "a heading or compass bearing, within one turn either way"
+    ),
+    "depth": PhysicalRange(0.0, 11_000.0, "m", "sea surface to the deepest ocean trench"),
+    # ---- speeds and rates ----------------------------------------------------------------
+    "speed": PhysicalRange(
+        0.0, 343.0, "m/s", "speed through the water or air: below the speed of sound",
+        low_open=True,
+    ),
+    "wind_speed": PhysicalRange(0.0, 150.0, "m/s", "no wind or current on Earth is faster"),
+    "mc": PhysicalRange(
+        0.0, 10.0, "m/s", "MacCready setting: the expected climb rate, no thermal climbs faster"
+    ),
+    "turn_radius": PhysicalRange(
+        0.0, 100_000.0, "m", "a turn wider than 100 km is not a turn", low_open=True
+    ),
+    "distance": PhysicalRange(
+        0.0, 100_000.0, "m", "a distance or tolerance up to 100 km",
+        low_open=True,
+    ),
+    "bank": PhysicalRange(0.0, 80.0, "deg", "a bank angle a sailplane can hold", low_open=True),
+    # ---- the environment and the vehicle (chapter 7 design parameters, SI) ---------------
+    "gravity": PhysicalRange(
+        0.1, 100.0, "m/s^2", "surface gravity, from small moons to ten times the Earth's"
+    ),
+    "water_density": PhysicalRange(
+        500.0, 2_000.0, "kg/m^3", "a liquid a glider can swim in (fresh water 1000)"
+    ),
+    "pressure": PhysicalRange(
+        0.0, 1e9, "Pa", "an absolute pressure up to 1 GPa; gas cylinders hold less than 0.1 GPa",
+        low_open=True,
+    ),
+    "pressure_coefficient": PhysicalRange(
+        -1e8, 1e8, "Pa", "a bladder elastic coefficient of at most 100 MPa in size"
+    ),
+    "temperature": PhysicalRange(
+        150.0, 500.0, "K", "the temperature of the gas in a working tank or the water"
+    ),
+    "volume": PhysicalRange(0.0, 100.0, "m^3", "a tank, bladder or hull volume", low_open=True),
+    "mass": PhysicalRange(0.0, 100_000.0, "kg", "a vehicle or part up to 100 t", low_open=True),
+    "length": PhysicalRange(0.0, 1_000.0, "m", "a vehicle dimension", low_open=True),
+    "station": PhysicalRange(-1_000.0, 1_000.0, "m", "a position along the vehicle"),
+    "area": PhysicalRange(0.0, 10_000.0, "m^2", "a wing or reference area", low_open=True),
+    "coefficient": PhysicalRange(
+        0.0, 1_000.0, "", "a dimensionless aerodynamic or hydrodynamic coefficient",
+        low_open=True,
+    ),
+    "position": PhysicalRange(-1e7, 1e7, "m", "a position within 10,000 km of the origin"),
+    "sound_speed": PhysicalRange(
+        1_000.0, 2_000.0, "m/s", "the speed of sound in water (about 1480)"
+    ),
+}
+
+
+def check_physical(name: str, value: Any, kind: str) -> float:
+    """Return `value` as a float inside `PHYSICAL_RANGES[kind]`, else refuse it naming `name`.
+
+    `name` is what the caller's user typed or reads (`mc` in the library, `--mc` on the
+    command line); the rule gives the range, its unit and its reason.
+    """
+    out = check_finite(name, value)
+    limits = PHYSICAL_RANGES[kind]
+    if not limits.contains(out):
+        raise InvalidParameterError(name, value, limits.rule())
+    return out
+
+
+def check_physical_array(name: str, value: Any, kind: str) -> np.ndarray:
+    """Return `value` as a finite float array with every entry inside `PHYSICAL_RANGES[kind]`."""
+    arr = check_finite_array(name, value)
+    limits = PHYSICAL_RANGES[kind]
+    lo_bad = arr <= limits.low if limits.low_open else arr < limits.low
+    bad = lo_bad | (arr > limits.high)
+    if np.any(bad):
+        raise InvalidParameterError(name, _first_bad(arr, bad), limits.rule())
+    return arr

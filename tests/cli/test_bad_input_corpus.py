@@ -495,6 +495,7 @@ CASES: dict[str, Case] = {
         2,
         "--from latitude=10.0: outside the field",
     ),
+    # issue 19: start = goal is solved with zero cost in every command (as `plan` answers)
     "route --to = --from": Case(
         (
             "route",
@@ -509,8 +510,9 @@ CASES: dict[str, Case] = {
             "--speed",
             "0.5",
         ),
-        2,
-        "--to=(30.45, -39.8): coincides with the start",
+        0,
+        "duration: 0.00 h  distance: 0.00 km",
+        "out",
     ),
     "route --field missing": Case(
         ("route", "--field", "{tmp}/notnc.nc", *ROUTE[3:]), 2, "--field='{tmp}/notnc.nc': no such"
@@ -557,7 +559,9 @@ CASES: dict[str, Case] = {
     "glide final --polar a directory": Case(
         ("glide", "final", "--polar", "{tmp}", *GLIDE[4:]), 2, "--polar='{tmp}': is a directory"
     ),
-    "glide final --mass -5": Case((*GLIDE, "--mass", "-5"), 2, "--mass=-5.0: must be > 0"),
+    "glide final --mass -5": Case(
+        (*GLIDE, "--mass", "-5"), 2, "--mass=-5.0: must lie in (0, 100000] kg"
+    ),
     "glide final --bugs 150": Case((*GLIDE, "--bugs", "150"), 2, "--bugs=150.0"),
     "glide final --ballast 100": Case((*GLIDE, "--ballast", "100"), 2, "--ballast=100.0"),
     "glide final --cup in a missing directory": Case(
@@ -574,7 +578,7 @@ CASES: dict[str, Case] = {
     "glide ardusoar --wing-area -1": Case(
         ("glide", "ardusoar", "{polar}", "--out", "{tmp}/s.parm", "--wing-area", "-1"),
         2,
-        "--wing-area=-1.0: must be > 0",
+        "--wing-area=-1.0: must lie in (0, 10000] m^2",
     ),
     "glide final: wind too strong is unreachable, saying why": Case(
         (*GLIDE, "--wind", "80", "270"),
@@ -635,6 +639,182 @@ CASES: dict[str, Case] = {
     "explore --port out of range": Case(
         ("explore", "--port", "70000", "--no-show"), 2, "--port=70000: must be in 1..65535"
     ),
+    # ---- issue 19: every number against validation.PHYSICAL_RANGES, up front --------------
+    # (the rule quoted is the table's: its ends, its unit; the reason follows in brackets)
+    "glide final altitude 1e300": Case(
+        (
+            "glide",
+            "final",
+            "--polar",
+            "{polar}",
+            "--from",
+            "47.0",
+            "8.0",
+            "1e300",
+            "--to",
+            "47.2",
+            "8.1",
+            "450",
+        ),
+        2,
+        "--from altitude=1e+300: must lie in [-500, 20000] m (",
+    ),
+    "glide final goal elevation 1e300": Case(
+        (
+            "glide",
+            "final",
+            "--polar",
+            "{polar}",
+            "--from",
+            "47.0",
+            "8.0",
+            "1500",
+            "--to",
+            "47.2",
+            "8.1",
+            "1e300",
+        ),
+        2,
+        "--to elevation=1e+300: must lie in [-500, 9000] m",
+    ),
+    "glide final --mc 1e6": Case(
+        (*GLIDE, "--mc", "1e6"), 2, "--mc=1000000.0: must lie in [0, 10] m/s"
+    ),
+    "glide final --mc -1": Case((*GLIDE, "--mc", "-1"), 2, "--mc=-1.0: must lie in [0, 10] m/s"),
+    "glide final --arrival-heading 1e300 is bad input, not a planning failure": Case(
+        (*GLIDE, "--arrival-heading", "1e300"),
+        2,
+        "--arrival-heading=1e+300: must lie in [-360, 360] deg",
+    ),
+    "glide final --start-heading 1e300": Case(
+        (*GLIDE, "--arrival-heading", "90", "--start-heading", "1e300"),
+        2,
+        "--start-heading=1e+300: must lie in [-360, 360] deg",
+    ),
+    "glide final --wind speed 1e300": Case(
+        (*GLIDE, "--wind", "1e300", "270"), 2, "--wind speed=1e+300: must lie in [0, 150] m/s"
+    ),
+    "glide final --wind direction 1e300": Case(
+        (*GLIDE, "--wind", "10", "1e300"), 2, "--wind direction=1e+300: must lie in [-360, 360]"
+    ),
+    "glide final --safety-height 1e9": Case(
+        (*GLIDE, "--safety-height", "1e9"),
+        2,
+        "--safety-height=1000000000.0: must lie in [0, 5000] m",
+    ),
+    "glide final --bank-max 1e300": Case(
+        (*GLIDE, "--arrival-heading", "90", "--bank-max", "1e300"),
+        2,
+        "--bank-max=1e+300: must lie in (0, 80] deg",
+    ),
+    "glide final --mass 1e300": Case(
+        (*GLIDE, "--mass", "1e300"), 2, "--mass=1e+300: must lie in (0, 100000] kg"
+    ),
+    "glide polar --mass 1e300": Case(
+        ("glide", "polar", "{polar}", "--mass", "1e300"),
+        2,
+        "--mass=1e+300: must lie in (0, 100000] kg",
+    ),
+    "mission plan --speed 1e9": Case(
+        (*MISSION[:3], "--speed", "1e9", "--radius", "150"),
+        2,
+        "--speed=1000000000.0: must lie in (0, 343] m/s",
+    ),
+    "mission plan --radius 1e300": Case(
+        (*MISSION[:3], "--speed", "0.3", "--radius", "1e300"),
+        2,
+        "--radius=1e+300: must lie in (0, 100000] m",
+    ),
+    "mission plan --wind speed 1e300": Case(
+        (*MISSION, "--wind", "1e300", "10"), 2, "--wind speed=1e+300: must lie in [0, 150] m/s"
+    ),
+    "mission plan --acceptance-radius 1e9": Case(
+        (*MISSION, "--acceptance-radius", "1e9"),
+        2,
+        "--acceptance-radius=1000000000.0: must lie in (0, 100000] m",
+    ),
+    "mission plan --max-deviation 1e9": Case(
+        (*MISSION, "--max-deviation", "1e9"),
+        2,
+        "--max-deviation=1000000000.0: must lie in (0, 100000] m",
+    ),
+    "mission plan --altitude 1e9": Case(
+        (*MISSION, "--altitude", "1e9"), 2, "--altitude=1000000000.0: must lie in [-500, 20000] m"
+    ),
+    "mission plan --headings 100000": Case(
+        (*MISSION, "--headings", "100000"), 2, "--headings=100000: must be an integer in [4, 3600]"
+    ),
+    "mission plan Slocum numbering refused before planning": Case(
+        (
+            *MISSION,
+            "--export",
+            "{tmp}/m",
+            "--formats",
+            "slocum",
+            "--goto-number",
+            "95",
+            "--max-goto-waypoints",
+            "2",
+        ),
+        2,
+        "--goto-number=95: 8 waypoints need at least 7 Slocum goto files of 2 waypoints, "
+        "numbered 95..101 (beyond 99): give --max-goto-waypoints 3 or more",
+    ),
+    "design TOML gravity_m_s2 = 1e300": Case(
+        ("design", "tank", "--params", "{huge_gravity_toml}"),
+        2,
+        "environment.gravity_m_s2=1e+300: must lie in [0.1, 100] m/s^2",
+    ),
+    "design TOML in an edge unit names the key as written": Case(
+        ("design", "tank", "--params", "{huge_psi_toml}"),
+        2,
+        "tank.max_pressure_psi=1e+300: as max_pressure_pa = 6.89476e+303: must lie in (0, 1e+09]",
+    ),
+    "design valve --tank-psi 1e300": Case(
+        ("design", "valve", "--tank-psi", "1e300"), 2, "--tank-psi=1e+300: as 6.89476e+303 Pa"
+    ),
+    "design valve --depth-m 1e300": Case(
+        ("design", "valve", "--depth-m", "1e300"), 2, "--depth-m=1e+300: must lie in [0, 11000] m"
+    ),
+    "design valve --cd 1e300": Case(
+        ("design", "valve", "--cd", "1e300"), 2, "--cd=1e+300: must lie in (0, 1000]"
+    ),
+    "design dives --depth-m 1e6": Case(
+        ("design", "dives", "--depth-m", "1e6"), 2, "--depth-m=1000000.0: must lie in [0, 11000] m"
+    ),
+    "design lbl --step-m 1e300": Case(
+        ("design", "lbl", "--step-m", "1e300"), 2, "--step-m=1e+300: must lie in (0, 100000] m"
+    ),
+    "plan dubins goal heading 1e300 is bad input, not a planning failure": Case(
+        ("plan", "dubins", "--goal", "4", "3", "1e300", "--radius", "1"),
+        2,
+        "--goal h=1e+300: must lie in [-360, 360] deg",
+    ),
+    "plan wind start heading -1e300": Case(
+        (*WIND, "--goal", "4", "3", "0", "--start", "0", "0", "-1e300"),
+        2,
+        "--start h=-1e+300: must lie in [-360, 360] deg",
+    ),
+    # ---- issue 19: start = goal is solved with zero cost (as `plan` answers it) ------------
+    "glide final start = goal": Case(
+        (
+            "glide",
+            "final",
+            "--polar",
+            "{polar}",
+            "--from",
+            "47.0",
+            "8.0",
+            "1500",
+            "--to",
+            "47.0",
+            "8.0",
+            "450",
+        ),
+        0,
+        "solved: distance 0.00 km, loss 0 m",
+        "out",
+    ),
 }
 
 
@@ -648,6 +828,8 @@ def _files(tmp: pathlib.Path) -> dict[str, str]:
         "a_file": ("README.md", b"# not a route, a field or a directory\n"),
         "one_csv": ("one.csv", b"name,lat,lon\na,41.5,-70.7\n"),
         "bad_lat_csv": ("bad.csv", b"name,lat,lon\na,41.5,-70.7\nb,95,-70.6\n"),
+        "huge_gravity_toml": ("gravity.toml", b"[environment]\ngravity_m_s2 = 1e300\n"),
+        "huge_psi_toml": ("psi.toml", b"[tank]\nmax_pressure_psi = 1e300\n"),
     }
     import glideplan
 

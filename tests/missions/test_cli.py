@@ -92,11 +92,13 @@ def test_bad_export_options_fail_before_planning(cli_error, tmp_path, flag, valu
 
 
 def test_demo_mission_example(tmp_path):
-    """`make demo`'s mission row: planned, not longer than the heuristics, files written."""
-    from glideplan.cli.demo import _mission_example
+    """`make demo`'s mission product: planned, not longer than the heuristics, files written."""
+    from glideplan.demos.products import PRODUCTS, run_product
 
-    row = _mission_example(tmp_path, plots=False)
-    assert row["ok"]
-    assert float(row["cost"]) <= float(row["reference"].split()[0]) + 0.05
+    case = next(p for p in PRODUCTS if p.key == "mission")
+    run = run_product(case, tmp_path, plots=False)
+    assert run.ok and run.check.met
+    best = float(run.check.reference.split()[1])  # "<= 10126.6 m heading heuristics"
+    assert run.result.total_length_m <= best + 0.05
     for name in ("goto_l10.ma", "targets", "buzzards_bay.plan", "buzzards_bay.kml"):
         assert (tmp_path / name).is_file()

@@ -19,7 +19,7 @@ def test_follow_route_in_uniform_current():
     r = route(UniformField(*c), (30.0, -40.0), (30.05, -39.95), 0.3, cells=60)
     g = follow_route(r, UniformField(*c), 0.3, 30.0)
     eps = math.hypot(*c) / 0.3
-    assert g.status == "followed"
+    assert g.status == "solved"
     assert g.disturbance_ratio == pytest.approx(eps, rel=1e-9)
     assert g.feasible_radius_m == pytest.approx(30.0 * (1 + eps) ** 2, rel=1e-12)
     assert g.max_cross_track_m < 30.0
@@ -53,7 +53,7 @@ def test_follower_feels_the_field_where_the_vehicle_is():
     half_time = 0.5 * g.path_length_m / (0.3 + c[0])
     assert g.duration_s == pytest.approx(half_time, rel=0.05)
     ok = follow_route(r, AnalyticField(lambda t, lat, lon: (c[0] + 0 * lat, 0 * lat)), 0.3, 30.0)
-    assert ok.status == "followed" and ok.final_distance_m is not None
+    assert ok.status == "solved" and ok.final_distance_m is not None
     assert ok.final_distance_m < 1.0
     assert ok.duration_s == pytest.approx(ok.path_length_m / (0.3 + c[0]), rel=0.02)
 
@@ -68,7 +68,7 @@ def test_trochoid_pieces_in_a_uniform_current():
     fld = UniformField(*c)
     r = route(fld, (30.0, -40.0), (30.05, -39.95), 0.3, cells=60)
     tc = trochoid_chain(r, fld, 0.3, 30.0)
-    assert tc.status == "planned"
+    assert tc.status == "solved"
     # local_current rotates (east, north) into the aeqd plane: ~1e-5 of |c| away from the start
     assert tc.residual_ratio < 1e-4
     assert tc.feasible_radius_m == pytest.approx(30.0, rel=1e-3)
@@ -92,7 +92,7 @@ def test_trochoid_residual_in_a_time_varying_current():
     fld = AnalyticField(fn)
     r = route(fld, (30.0, -40.0), (30.05, -39.95), 0.3, cells=50)
     tc = trochoid_chain(r, fld, 0.3, 30.0)
-    assert tc.status == "planned" and tc.residual_ratio > 0.0
+    assert tc.status == "solved" and tc.residual_ratio > 0.0
     assert tc.feasible_radius_m == pytest.approx(30.0 * (1 + tc.residual_ratio) ** 2, rel=1e-12)
     assert tc.feasible_radius_m < 30.0 * (1 + 0.12 / 0.3) ** 2
     assert tc.duration_s is not None and r.duration_s is not None

@@ -96,7 +96,7 @@ def test_final_straight_json_and_hand_check(run_cli, dg_file, tmp_path):
     assert d["altitude_required_m"] == pytest.approx(420 + 300 + loss, rel=1e-9)
     assert d["arrival_margin_m"] == pytest.approx(1500 - 720 - loss, rel=1e-9)
     assert d["glide_ratio_required"] == pytest.approx(dist / (1500 - 720))
-    assert d["status"] == ("reachable" if 1500 - 720 - loss >= 0 else "below glide")
+    assert d["status"] == ("solved" if 1500 - 720 - loss >= 0 else "below_glide")
     for key in ("speed_to_fly_kmh", "duration_s"):
         assert d[key] > 0
     assert (tmp_path / "g.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -132,7 +132,7 @@ def test_final_wind_from_the_goal_is_a_headwind(run_cli, dg_file):
     g = straight_final_glide(p, d["distance_m"], math.pi / 2, wind=(0.0, -10.0), mc=1.0)
     assert d["headwind_ms"] == pytest.approx(10.0)
     assert d["altitude_loss_m"] == pytest.approx(float(g.altitude_loss), rel=1e-6)
-    assert d["status"] == "below glide" and d["arrival_margin_m"] < 0
+    assert d["status"] == "below_glide" and d["arrival_margin_m"] < 0
 
 
 def test_final_arrival_heading(run_cli, dg_file, tmp_path):

@@ -3,20 +3,19 @@
 from __future__ import annotations
 
 import contextlib
-import json
 import math
 import pathlib
 import sys
 from collections.abc import Callable, Iterator
 from typing import Any, NoReturn, TypeVar
 
-import numpy as np
 import typer
 
 from glideplan.errors import InvalidParameterError, PlanningError
+from glideplan.jsonio import json_default, to_json, write_json
 from glideplan.pose import Pose
 from glideplan.solution import Solution
-from glideplan.validation import check_finite
+from glideplan.validation import check_finite, check_physical
 
 __all__ = [
     "FIGURE_SUFFIXES",
@@ -26,6 +25,7 @@ __all__ = [
     "check_input_file",
     "check_output_dir",
     "check_output_file",
+    "check_writable",
     "emit_solution",
     "file_flag",
     "flag_names",
@@ -34,6 +34,7 @@ __all__ = [
     "json_flag",
     "parse_pose",
     "parse_start_goal",
+    "phase_progress",
     "plot_option",
     "print_json",
     "print_warnings",
@@ -166,6 +167,80 @@ def check_output_dir(path: pathlib.Path, flag: str) -> pathlib.Path:
     return path
 
 
+def check_writable(path: pathlib.Path, flag: str) -> pathlib.Path:
+    """A file or directory glideplan will create or write: its nearest existing directory
+    (the path itself when it is one) must be writable, else an error naming `flag`."""
+    import os
+
+    here = path if path.is_dir() else path.parent
+    while not here.exists() and here != here.parent:
+        here = here.parent
+    if here.exists() and not (here.is_dir() and os.access(here, os.W_OK | os.X_OK)):
+        raise InvalidParameterError(flag, str(path), f"directory {str(here)!r} is not writable")
+    return path
+
+
+class _PhaseProgress:
+    """A `progress(phase, done, total)` callback: a Rich bar on stderr for each phase that
+    runs longer than `delay` seconds (terminals), or one note line on stderr (pipes, logs)."""
+
+    def __init__(self, labels: dict[str, str], delay: float) -> None:
+        import time
+
+        self.labels = labels
+        self.delay = delay
+        self.clock = time.perf_counter
+        self.last = self.clock()
+        self.phase: str | None = None
+        self.start = self.last
+        self.bar: Any = None
+        self.task: Any = None
+        self.terminal = sys.stderr.isatty()
+
+    def __call__(self, phase: str, done: int, total: int) -> None:
+        now = self.clock()
+        if phase != self.phase:
+            self.close()
+            self.phase, self.start = phase, self.last
+        self.last = now
+        if now - self.start < self.delay or (done >= total and self.bar is None):
+            return
+        label = self.labels.get(phase, phase)
+        if not self.terminal:
+            if self.bar is None:
+                self.bar = "noted"
+                print(f"glideplan: note: {label}: {done}/{total} after {now - self.start:.0f} s",
+                      file=sys.stderr)
+            return
+        if self.bar is None:
+            from glideplan.progress import start_progress_bar
+
+            self.bar, self.task = start_progress_bar(label, total)
+        self.bar.update(self.task, completed=done)
+
+    def close(self) -> None:
+        if self.bar is not None and self.bar != "noted":
+            self.bar.stop()
+        self.bar = None
+
+
+@contextlib.contextmanager
+def phase_progress(
+    labels: dict[str, str], delay: float = 2.0
+) -> Iterator[Callable[[str, int, int], None]]:
+    """A `progress(phase, done, total)` callback for the long phases of a library call.
+
+    A phase that has run `delay` seconds shows a Rich progress bar on stderr (`labels` names
+    the phases for the reader); off a terminal it writes one note line instead, so a long run
+    is never silent and a short one prints nothing.
+    """
+    progress = _PhaseProgress(labels, delay)
+    try:
+        yield progress
+    finally:
+        progress.close()
+
+
 def usage_error(message: str) -> NoReturn:
     """Stop with a usage error (exit 2, one line: `glideplan: error: MESSAGE`)."""
     from glideplan.cli.app import click_exc
@@ -261,6 +336,7 @@ def parse_pose(values: list[float] | tuple[float, ...] | None, name: str) -> Pos
     if len(values) != 3:
         raise InvalidParameterError(name, values, "needs 3 values (x y heading_deg)")
     x, y, h = (check_finite(f"{name} {c}", v) for c, v in zip("xyh", values, strict=True))
+    check_physical(f"{name} h", h, "heading")  # 1e300 deg is a typo, not a planning failure
     return Pose(x, y, math.radians(h))
 
 
@@ -282,43 +358,8 @@ def write_figure(
     announce(f"wrote {plot_file}", json_out)
 
 
-def json_default(obj: Any) -> Any:
-    """Make NumPy scalars and arrays JSON-serialisable (non-finite floats become null)."""
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    if isinstance(obj, np.generic):
-        return obj.item()
-    if hasattr(obj, "to_dict"):
-        return obj.to_dict()
-    if hasattr(obj, "value"):
-        return obj.value
-    raise TypeError(f"cannot serialise {type(obj).__name__}")
-
-
-def _clean(obj: Any) -> Any:
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    if isinstance(obj, dict):
-        return {k: _clean(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_clean(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return _clean(obj.tolist())
-    if isinstance(obj, np.generic):
-        return _clean(obj.item())
-    return obj
-
-
-def to_json(data: Any) -> str:
-    return json.dumps(_clean(data), default=json_default, indent=2)
-
-
 def print_json(data: Any) -> None:
     typer.echo(to_json(data))
-
-
-def write_json(data: Any, filename: pathlib.Path | str) -> None:
-    pathlib.Path(filename).write_text(to_json(data) + "\n")
 
 
 def _solution_table(solution: Solution, data: dict[str, Any]) -> Any:

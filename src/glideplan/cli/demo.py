@@ -1,4 +1,5 @@
-"""`glideplan demo`: the main job — every planner on the dissertation's examples."""
+"""`glideplan demo`: the main job — every planner on the dissertation's examples, and the
+products (route, mission, final glide, glide reach) through the one outcome contract."""
 
 from __future__ import annotations
 
@@ -25,7 +26,8 @@ def demo(
     ),
     plots: Annotated[bool, typer.Option("--plots/--no-plots", help="Draw each path.")] = True,
 ) -> None:
-    """Plan the dissertation's examples with every planner; write JSON, figures and a report."""
+    """Plan the dissertation's examples with every planner, then run each product (a route,
+    a mission, a final glide, a glide reach); write JSON, figures and a report."""
     from rich.console import Console
     from rich.table import Table
 
@@ -62,74 +64,68 @@ def demo(
             f"| {case.name} | {case.source} | {sol.planner} | {sol.word} | {cost} | {ref} "
             f"| {err} | {res.seconds:.3f} |"
         )
-    row = _mission_example(out / "mission", plots)
-    failures += not row["ok"]
-    table.add_row(row["name"], row["planner"], row["word"], row["cost"], row["reference"],
-                  row["error"], row["seconds"])
-    lines.append(
-        f"| {row['name']} | {row['source']} | {row['planner']} | {row['word']} | {row['cost']} "
-        f"| {row['reference']} | {row['error']} | {row['seconds']} |"
-    )
-    lines += ["", f"Mission files (Slocum, Seaglider, QGC, GIS): {', '.join(row['files'])}"]
+    product_lines, product_table, product_failures = _products(out, plots)
+    lines += ["", *product_lines]
+    failures += product_failures
     (out / "report.md").write_text("\n".join(lines) + "\n")
     console = Console()
     if not console.is_terminal:  # piped or logged: do not squeeze the table into 80 columns
         console = Console(width=140)
     console.print(table)
+    console.print(product_table)
     typer.echo(f"wrote {out / 'report.md'}")
     if failures:
         raise typer.Exit(1)
 
 
-def _mission_example(out: pathlib.Path, plots: bool) -> dict[str, Any]:
-    """Plan the shipped GPX survey route for a glider and export every vehicle/GIS file.
 
-    The reference column is the best of the two heuristics (point at the next waypoint,
-    bisector headings) with the same legs: the optimised headings must not be longer.
+def _products(out: pathlib.Path, plots: bool) -> tuple[list[str], Any, int]:
+    """Run each product (route, mission, final glide, glide reach) through the outcome
+    contract: the report's products section, the console table and the number that failed.
+
+    A product fails when its status is not solved, its reference is not met, or it raises
+    (the report then shows the exception, and the demo exits 1).
     """
-    import time
+    from rich.table import Table
 
-    import numpy as np
+    from glideplan.demos.products import PRODUCTS, available_products, run_product
 
-    from glideplan.formats import ExportOptions, export_mission, parse_formats, read_route
-    from glideplan.missions import (
-        StillAirCost,
-        bisector_headings,
-        headings_cost,
-        plan_mission,
-        point_at_next_headings,
-    )
-
-    t0 = time.perf_counter()
-    route_file = pathlib.Path(__file__).parents[1] / "missions" / "data" / "buzzards_bay.gpx"
-    route = read_route(route_file)
-    mission = plan_mission(route, speed=0.3, radius=300.0)
-    files, legs = export_mission(mission, out, parse_formats(None),
-                                 ExportOptions(acceptance_radius=100.0, name="buzzards_bay"))
-    if plots:
-        from glideplan.missions.plot import plot_mission
-        from glideplan.plotting import save_figure
-
-        save_figure(plot_mission(mission, legs), str(out / "mission.png"))
-        files["plot"] = str(out / "mission.png")
-    cost = StillAirCost(route.points, 300.0)
-    best = min(headings_cost(cost, f(route.points, route.headings))[0]
-               for f in (point_at_next_headings, bisector_headings))
-    data = mission.to_dict() | {"files": files, "heuristic_best_m": best}
-    write_json(data, out / "mission.json")
-    errors = [leg.solution.endpoint_error.max for leg in mission.legs
-              if leg.solution.endpoint_error is not None]
-    paths = [p for v in files.values() for p in ([v] if isinstance(v, str) else v)]
-    return {
-        "name": "mission: GPX lawn-mower survey, 8 waypoints",
-        "source": "missions/data/buzzards_bay.gpx; heading heuristics",
-        "planner": "mission (dubins DP)",
-        "word": " ".join(leg.solution.word for leg in mission.legs),
-        "cost": f"{mission.total_length_m:.1f}",
-        "reference": f"{best:.1f} heuristic",
-        "error": f"{max(errors):.1e}" if errors else "-",
-        "seconds": f"{time.perf_counter() - t0:.3f}",
-        "ok": bool(mission.ok and mission.total_length_m <= best * (1 + 1e-9)
-                   and np.isfinite(mission.total_length_m)),
-        "files": [pathlib.Path(p).name for p in paths],
-    }
+    lines = [
+        "## Products",
+        "",
+        "Each through the one outcome contract: `status`, `message`, `to_dict()` (the JSON "
+        "written beside the figure) and `plot()`; the reference is what the answer must meet.",
+        "",
+        "| product | source | status | numbers | reference | check | figure | seconds |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    table = Table(title="glideplan demo: the products (one outcome contract)")
+    for col in ("product", "status", "numbers", "reference", "check", "time [s]"):
+        table.add_column(col, justify="right" if col == "time [s]" else "left")
+    cases = available_products()
+    failures = 0
+    for case in cases:
+        try:
+            run = run_product(case, out / case.key, plots)
+        except Exception as exc:  # shown in the report, and the demo fails
+            why = " ".join(f"{type(exc).__name__}: {exc}".split())
+            failures += 1
+            table.add_row(case.name, "error", why, "", "FAILED", "")
+            lines.append(f"| {case.name} | {case.source} | error | {why} | | FAILED | - | |")
+            continue
+        numbers = "; ".join(f"{k} {v}" for k, v in run.check.numbers)
+        figure = f"![{case.key}]({case.key}/{case.key}.png)" if run.figure else "-"
+        check = "met" if run.ok else "FAILED"
+        failures += not run.ok
+        table.add_row(case.name, run.status, numbers, run.check.reference, check,
+                      f"{run.seconds:.3f}")
+        lines.append(
+            f"| {case.name} | {case.source} | {run.status} | {numbers} | {run.check.reference} "
+            f"| {check} | {figure} | {run.seconds:.3f} |"
+        )
+        if run.check.files:
+            lines.append(f"| | files: {', '.join(run.check.files)} | | | | | | |")
+    missing = [p.name for p in PRODUCTS if p not in cases]
+    if missing:
+        lines += ["", f"Not run (not available in this build): {', '.join(missing)}."]
+    return lines, table, failures

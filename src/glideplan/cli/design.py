@@ -24,7 +24,7 @@ from glideplan.cli.common import (
     print_warnings,
 )
 from glideplan.errors import InvalidParameterError
-from glideplan.validation import check_finite, check_in_range, check_positive
+from glideplan.validation import check_finite, check_in_range, check_physical, check_positive
 
 ParamsOpt = Annotated[
     pathlib.Path | None,
@@ -90,6 +90,18 @@ def _toml_error(exc: InvalidParameterError) -> InvalidParameterError:
     return InvalidParameterError(
         exc.name, exc.value, f"is not valid TOML (line {line}, column {column}: {what})"
     )
+
+
+def _check_psi(flag: str, psi: float) -> float:
+    """A pressure typed in psi against the SI range of `PHYSICAL_RANGES["pressure"]`."""
+    from glideplan.units import psi_to_pa
+
+    value = check_finite(flag, psi)
+    try:
+        check_physical(flag, float(psi_to_pa(value)), "pressure")
+    except InvalidParameterError as exc:
+        raise InvalidParameterError(flag, psi, f"as {exc.value:.6g} Pa: {exc.rule}") from None
+    return value
 
 
 def _bladder_volume_l(flag: str, litres: float, bladder: Any) -> float:
@@ -202,6 +214,8 @@ def dives(
     for v in vols:
         check_positive("--volume-l", v)
         _bladder_volume_l("--volume-l", v, p.bladder)
+    for z in depths:
+        check_physical("--depth-m", z, "depth")
     with flag_names(depth_m="--depth-m"):
         for v in vols:
             v_m3 = litre_to_m3(v)
@@ -244,6 +258,10 @@ def valve(
     from glideplan.design.valves import ASSUMED_BLADDER_CURVE_NOTE
     from glideplan.units import litre_to_m3, psi_to_pa
 
+    check_physical("--depth-m", depth_m, "depth")
+    _check_psi("--tank-psi", tank_psi)
+    if drag_coefficient is not None:
+        check_physical("--cd", drag_coefficient, "coefficient")
     p = _params(params)
     b, h, env = p.bladder, p.hull, p.environment
     v = litre_to_m3(_bladder_volume_l("--volume-l", volume_l, b))
@@ -394,6 +412,9 @@ def lbl(
 
     from glideplan.design import lawnmower_track, simulate_survey
 
+    if noise_m is not None:
+        check_physical("--noise-m", noise_m, "distance")
+    check_physical("--step-m", step_m, "distance")
     p = _params(params)
     cfg = p.lbl
     changes: dict[str, float] = {}

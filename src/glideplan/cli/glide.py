@@ -39,12 +39,14 @@ def _polar(
 ) -> Any:
     from glideplan.cli.common import flag_names
     from glideplan.sailplane import polar_from_file
-    from glideplan.validation import check_finite
+    from glideplan.validation import check_finite, check_physical
 
     pf = _read(file, flag)
     for name, value in (("--mass", mass), ("--ballast", ballast), ("--bugs", bugs)):
         if value is not None:
             check_finite(name, value)
+    if mass is not None:
+        check_physical("--mass", mass, "mass")
     with flag_names(
         mass="--mass",
         mass_kg="--mass",
@@ -60,6 +62,50 @@ def _print(data: dict[str, Any]) -> None:
     from glideplan.cli.common import print_json
 
     print_json(data)
+
+
+# library parameter -> the flag of `glide final` (library errors name their parameters)
+FINAL_FLAGS = {
+    "start": "--from",
+    "goal": "--to",
+    "mc": "--mc",
+    "wind": "--wind",
+    "safety_height": "--safety-height",
+    "arrival_heading": "--arrival-heading",
+    "start_heading": "--start-heading",
+    "bank_max": "--bank-max",
+}
+
+
+def check_final_inputs(
+    start: tuple[float, float, float],
+    goal: tuple[float, float, float],
+    *,
+    mc: float,
+    wind: tuple[float, float] | None,
+    safety_height: float,
+    arrival_heading: float | None,
+    start_heading: float | None,
+    bank_max: float,
+) -> None:
+    """Every number of `glide final` against `validation.PHYSICAL_RANGES`, before any work."""
+    from glideplan.geodesy import check_latlon
+    from glideplan.validation import check_physical
+
+    check_latlon(start[0], start[1], "--from")
+    check_latlon(goal[0], goal[1], "--to")
+    check_physical("--from altitude", start[2], "altitude")
+    check_physical("--to elevation", goal[2], "elevation")
+    check_physical("--mc", mc, "mc")
+    if wind is not None:
+        check_physical("--wind speed", wind[0], "wind_speed")
+        check_physical("--wind direction", wind[1], "heading")
+    check_physical("--safety-height", safety_height, "height")
+    for flag, heading in (("--arrival-heading", arrival_heading),
+                          ("--start-heading", start_heading)):
+        if heading is not None:
+            check_physical(flag, heading, "heading")
+    check_physical("--bank-max", bank_max, "bank")
 
 
 @glide_app.command("polar")
@@ -136,8 +182,11 @@ def glide_ardusoar(
     """Fit ArduPilot's SOAR_POLAR_CD0/B/K to the polar (least squares) and write a .parm file."""
     from glideplan.cli.common import announce, check_output_file, file_flag, flag_names
     from glideplan.sailplane import fit_ardusoar, write_parm
+    from glideplan.validation import check_physical
 
     check_output_file(out, "--out")
+    if wing_area is not None:
+        check_physical("--wing-area", wing_area, "area")
     p = _polar(file, None, 0.0, 0.0)
     with flag_names(**{"wing area": "--wing-area"}):
         fit = fit_ardusoar(p, wing_area)
@@ -235,19 +284,20 @@ def glide_final(
     ] = None,
 ) -> None:
     """Altitude needed to reach a goal: straight final glide, or to an arrival heading."""
-    from glideplan.cli.common import announce, check_figure_file, check_output_file, file_flag
-    from glideplan.sailplane.request import run_final
+    from glideplan.cli.common import (
+        announce,
+        check_figure_file,
+        check_output_file,
+        file_flag,
+        flag_names,
+    )
+    from glideplan.geodesy import wind_from_to_vector
+    from glideplan.sailplane.request import final_glide
 
     plot = check_figure_file(plot)
     check_output_file(cup, "--cup")
     check_output_file(tsk, "--tsk")
-    p = _polar(polar_file, mass, ballast, bugs, "--polar")
-    if start_heading is not None and arrival_heading is None:
-        raise InvalidParameterError(
-            "--start-heading", start_heading, "is only used with --arrival-heading"
-        )
-    data, drawing = run_final(
-        p,
+    check_final_inputs(
         start,
         goal,
         mc=mc,
@@ -257,6 +307,25 @@ def glide_final(
         start_heading=start_heading,
         bank_max=bank_max,
     )
+    p = _polar(polar_file, mass, ballast, bugs, "--polar")
+    if start_heading is not None and arrival_heading is None:
+        raise InvalidParameterError(
+            "--start-heading", start_heading, "is only used with --arrival-heading"
+        )
+    with flag_names(**FINAL_FLAGS):
+        # the library's wind is the (east, north) vector: the compass stays at this edge
+        result = final_glide(
+            p,
+            start,
+            goal,
+            mc=mc,
+            wind=None if wind is None else wind_from_to_vector(*wind),
+            safety_height=safety_height,
+            arrival_heading=arrival_heading,
+            start_heading=start_heading,
+            bank_max=bank_max,
+        )
+    data, drawing = result.to_dict(), result.drawing
     if json_out:
         _print(data)
     elif data["status"] == "unreachable":

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 import pathlib
 from typing import TYPE_CHECKING, Annotated, Any
 
@@ -13,8 +12,10 @@ from glideplan.cli.common import (
     announce,
     check_figure_file,
     check_output_dir,
+    check_writable,
     file_flag,
     flag_names,
+    phase_progress,
     print_json,
     print_warnings,
 )
@@ -23,6 +24,71 @@ from glideplan.errors import InvalidParameterError, PlanningError
 if TYPE_CHECKING:
     from glideplan.missions.field_mission import FieldMission
     from glideplan.missions.plan import MissionPlan
+
+
+# the long phases of `plan_mission`, as the progress bar names them
+PHASES = {
+    "headings": "choosing the headings (DP over the legs)",
+    "refine": "refining the headings",
+    "legs": "planning and verifying the legs",
+}
+# Slocum goto files are numbered goto_l00.ma .. goto_l99.ma
+SLOCUM_LAST_FILE = 99
+
+
+def check_mission_inputs(
+    *,
+    speed: float,
+    radius: float,
+    wind: tuple[float, float] | None,
+    headings: int | None,
+    acceptance_radius: float,
+    max_deviation: float | None,
+    altitude: float,
+    depth_range: tuple[float, float] | None,
+) -> None:
+    """Every number of `mission plan` against `validation.PHYSICAL_RANGES`, before any work."""
+    from glideplan.validation import check_physical
+
+    check_physical("--speed", speed, "speed")
+    check_physical("--radius", radius, "turn_radius")
+    if wind is not None:
+        check_physical("--wind speed", wind[0], "wind_speed")
+        check_physical("--wind direction", wind[1], "heading")
+    if headings is not None and not 4 <= headings <= 3600:
+        raise InvalidParameterError("--headings", headings, "must be an integer in [4, 3600]")
+    check_physical("--acceptance-radius", acceptance_radius, "distance")
+    if max_deviation is not None:
+        check_physical("--max-deviation", max_deviation, "distance")
+    check_physical("--altitude", altitude, "altitude")
+    if depth_range is not None:
+        for z in depth_range:
+            check_physical("--depth-range", z, "depth")
+
+
+def check_export_options(formats: tuple[str, ...], options: Any, waypoints: int) -> None:
+    """Refuse, before planning, export options that cannot work for a route of `waypoints`.
+
+    Slocum: the straight-leg list keeps every mission waypoint, so it has at least
+    `waypoints` points and needs at least ceil((n - 1) / (max - 1)) goto files numbered from
+    `--goto-number`; past goto_l99.ma the export would fail after the whole plan.
+    """
+    if "slocum" not in formats:
+        return
+    per_file = options.max_goto_waypoints - 1
+    files = max(1, -(-(waypoints - 1) // per_file))
+    last = options.goto_number + files - 1
+    if last > SLOCUM_LAST_FILE:
+        room = SLOCUM_LAST_FILE - options.goto_number + 1
+        need = -(-(waypoints - 1) // room) + 1
+        raise InvalidParameterError(
+            "--goto-number",
+            options.goto_number,
+            f"{waypoints} waypoints need at least {files} Slocum goto files of "
+            f"{options.max_goto_waypoints} waypoints, numbered {options.goto_number}..{last} "
+            f"(beyond {SLOCUM_LAST_FILE}): give --max-goto-waypoints {need} or more, a lower "
+            "--goto-number, or leave slocum out of --formats",
+        )
 
 
 def _track_json(plan: Any, track: Any) -> dict[str, list[float]]:
@@ -109,8 +175,11 @@ def mission_plan(
     from glideplan.missions import plan_mission, straight_leg_list
 
     plot = check_figure_file(plot)
+    if plot is not None:
+        check_writable(plot, "--plot")
     if export is not None:
         check_output_dir(export, "--export")
+        check_writable(export, "--export")
     if field is None and (depart is not None or depth_range is not None):
         raise InvalidParameterError("--depart" if depart is not None else "--depth-range",
                                     depart if depart is not None else depth_range,
@@ -121,10 +190,9 @@ def mission_plan(
         raise InvalidParameterError("--wind", wind, "give either --wind or --field, not both")
     if field is not None and objective not in (None, "time"):
         raise InvalidParameterError("--objective", objective, "with --field only time")
-    if not math.isfinite(speed) or speed <= 0:
-        raise InvalidParameterError("--speed", speed, "must be finite and > 0 (m/s)")
-    if not math.isfinite(radius) or radius <= 0:
-        raise InvalidParameterError("--radius", radius, "must be finite and > 0 (m)")
+    check_mission_inputs(speed=speed, radius=radius, wind=wind, headings=headings,
+                         acceptance_radius=acceptance_radius, max_deviation=max_deviation,
+                         altitude=altitude, depth_range=depth_range)
     if wind is not None and wind[0] >= speed:
         raise InvalidParameterError(
             "--wind", wind[0], f"speed must be below the vehicle's speed {speed:g} m/s")
@@ -138,18 +206,21 @@ def mission_plan(
                                 name=route.stem or "mission")
     with file_flag("ROUTE", route):
         r = read_route(route)
+    print_warnings(r.warnings)
     if formats is not None and export is None:
         raise InvalidParameterError("--formats", formats, "needs --export DIR")
     mission: MissionPlan | FieldMission
     with flag_names(formats="--formats", headings="--headings", objective="--objective",
                     field="--field", wind="--wind", speed="--speed", radius="--radius"):
         fmts = parse_formats(formats, r.geographic) if export is not None else ()
+        check_export_options(fmts, options, r.n)
         if field is not None:
             mission = _plan_in_field(r, field, speed, radius, when, depth_range)
         else:
-            mission = plan_mission(r, speed=speed, radius=radius, objective=obj,
-                                   wind=None if wind is None else (wind[0], wind[1]),
-                                   headings=headings)
+            with phase_progress(PHASES) as progress:
+                mission = plan_mission(r, speed=speed, radius=radius, objective=obj,
+                                       wind=None if wind is None else (wind[0], wind[1]),
+                                       headings=headings, progress=progress)
     if not mission.ok:
         raise PlanningError(_failure(mission))
     files: dict[str, Any] = {}

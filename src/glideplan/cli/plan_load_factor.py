@@ -85,9 +85,9 @@ def plan_load_factor_command(
     def draw() -> None:
         assert plot is not None
         if "controls" in solution.extras:
-            from glideplan.figures.ch6 import draw_solution
+            from glideplan.solution_figures import draw_load_factor
 
-            draw_solution(solution, plot)
+            draw_load_factor(solution, plot)
         else:  # no control history (start = goal): the path figure
             from glideplan.plotting import plot_solution, save_figure
 

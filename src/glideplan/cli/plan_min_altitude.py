@@ -119,9 +119,9 @@ def plan_min_altitude_command(
 
     def draw() -> None:
         assert plot is not None
-        from glideplan.figures.ch5 import draw_solution
+        from glideplan.solution_figures import draw_min_altitude
 
-        draw_solution(solution, plot)
+        draw_min_altitude(solution, plot)
 
     drawable = solution.ok and solution.path is not None
     try:  # the table first, then `wrote FILE` (or why nothing was drawn), as every command

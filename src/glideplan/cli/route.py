@@ -224,14 +224,14 @@ def _print_summary(out: dict[str, Any]) -> None:
                    f"{out['endpoint_tolerance_m']:.0f} m)")
         if "glider" in out:
             g = out["glider"]
-            if g["status"] == "followed":
+            if g["status"] == "solved":
                 typer.echo(f"glider path: R0' = {g['feasible_radius_m']:.1f} m, {g['legs']} legs,"
                            f" max cross-track error {g['max_cross_track_m']:.2f} m, miss "
                            f"{g['final_distance_m']:.2f} m")
             else:
                 typer.echo(f"glider path: {g['status']}: {g['message']}")
             tc = g.get("trochoid")
-            if tc is not None and tc["status"] == "planned":
+            if tc is not None and tc["status"] == "solved":
                 typer.echo(f"trochoid pieces (mean current per piece): R0' = "
                            f"{tc['feasible_radius_m']:.1f} m for the residual eps' = "
                            f"{tc['residual_ratio']:.3f}, {hours(tc['duration_s'])}, open-loop "

@@ -167,6 +167,75 @@ def _section_kwargs(section: str, table: Any) -> dict[str, Any]:
     return kwargs
 
 
+# Each numeric field -> its kind in `glideplan.validation.PHYSICAL_RANGES`: a file's value
+# outside the range (gravity_m_s2 = 1e300) is refused naming `section.key` before any work.
+PHYSICAL_KINDS: Mapping[str, str] = {
+    "environment.water_density_kg_m3": "water_density",
+    "environment.gravity_m_s2": "gravity",
+    "environment.atmospheric_pressure_pa": "pressure",
+    "environment.temperature_k": "temperature",
+    "tank.max_pressure_pa": "pressure",
+    "tank.internal_volume_m3": "volume",
+    "tank.empty_mass_kg": "mass",
+    "bladder.max_volume_m3": "volume",
+    "bladder.neutral_volume_m3": "volume",
+    "bladder.elastic_coefficients_pa": "pressure_coefficient",
+    "hull.dry_mass_kg": "mass",
+    "hull.diameter_m": "length",
+    "hull.drag_coefficient": "coefficient",
+    "trim.moving_mass_kg": "mass",
+    "trim.moving_mass_offset_m": "station",
+    "trim.moving_mass_min_station_m": "station",
+    "trim.moving_mass_max_station_m": "station",
+    "trim.tank_mass_kg": "mass",
+    "trim.tank_station_m": "station",
+    "trim.body_mass_kg": "mass",
+    "trim.body_station_m": "station",
+    "trim.body_volume_m3": "volume",
+    "trim.body_buoyancy_station_m": "station",
+    "trim.bladder_station_m": "station",
+    "glide.zero_lift_drag_coefficient": "coefficient",
+    "glide.induced_drag_factor": "coefficient",
+    "glide.lift_slope_per_rad": "coefficient",
+    "glide.reference_area_m2": "area",
+    "lbl.beacons_m": "position",
+    "lbl.beacon_depth_m": "depth",
+    "lbl.receiver_depth_m": "depth",
+    "lbl.range_noise_std_m": "distance",
+    "lbl.sound_speed_assumed_m_s": "sound_speed",
+    "lbl.sound_speed_true_m_s": "sound_speed",
+}
+
+
+def _check_physical(section: str, kwargs: Mapping[str, Any], table: Mapping[str, Any]) -> None:
+    """The numbers a file's `table` gives (converted to SI in `kwargs`) against their range.
+
+    Only numbers are checked here (text, booleans and shapes are the section's own checks);
+    the error names the key as the file spells it (`environment.gravity_m_s2`).
+    """
+    from glideplan.validation import check_physical_array
+
+    for key, raw in table.items():
+        field = _given_field(section, key)
+        kind = PHYSICAL_KINDS.get(f"{section}.{field}")
+        value = kwargs.get(field)
+        if kind is None or isinstance(value, str):
+            continue
+        try:
+            arr = np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            continue  # not numbers: the section's constructor says so
+        try:
+            check_physical_array(f"{section}.{key}", arr, kind)
+        except InvalidParameterError as exc:
+            if key == field:
+                raise
+            shown = raw if np.ndim(raw) == 0 else exc.value
+            raise InvalidParameterError(
+                f"{section}.{key}", shown, f"as {field} = {exc.value:.6g}: {exc.rule}"
+            ) from None
+
+
 def _build(section: str, kwargs: dict[str, Any]) -> Any:
     cls = _SECTIONS[section]
     try:
@@ -191,8 +260,10 @@ def parameters_from_dict(data: Mapping[str, Any]) -> DesignParameters:
     for name in _SECTIONS:
         if name in data:
             base = dataclasses.asdict(getattr(defaults, name))
-            base.update(_section_kwargs(name, data[name]))
-            sections[name] = _build(name, base)
+            given = _section_kwargs(name, data[name])
+            base.update(given)
+            sections[name] = _build(name, base)  # the section's own rules first (sign, shape)
+            _check_physical(name, given, data[name])
     return DesignParameters(**sections)
 
 

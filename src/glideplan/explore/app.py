@@ -20,6 +20,8 @@ from typing import Any
 import numpy as np
 import panel as pn
 from bokeh.events import Pan, PanEnd, PanStart
+from panel.io.document import hold
+from panel.io.state import set_curdoc
 
 from glideplan.explore.catalog import Catalog, PlannerEntry, build_catalog, planner_key
 from glideplan.explore.downloads import path_csv, solution_json, solution_png
@@ -31,7 +33,7 @@ from glideplan.explore.figures import (
     empty_candidates,
     empty_points,
 )
-from glideplan.explore.solve import View, partition_image, solve_view
+from glideplan.explore.solve import View, partition_image, solve_view, with_candidates
 from glideplan.explore.state import (
     ExploreState,
     format_pose,
@@ -40,9 +42,46 @@ from glideplan.explore.state import (
     state_from_query,
     state_to_query,
 )
-from glideplan.explore.texts import error_html, html_pane, strip_html, table_html
+from glideplan.explore.texts import FastHtml, error_html, html_pane, strip_html, table_html
 
 __all__ = ["Explorer", "create_page"]
+
+# The page's frame: a viewport tag for phones and the layout's media rules. Wide screens
+# put the controls (320 px) left of the result strip and the plot, whose height is the
+# window's less the header and the strip (so the x axis stays above the fold); below
+# 760 px the controls stack above the plot, which is then about as tall as wide.
+VIEWPORT_TEMPLATE = """{% extends base %}
+{% block preamble %}{{ super() }}
+<meta name="viewport" content="width=device-width, initial-scale=1">
+{% endblock %}"""
+SIDE_WIDTH = 320
+LAYOUT_CSS = """
+:host { width: 100%; max-width: 100vw; }
+"""
+SIDEBAR_CSS = f"""
+:host {{ flex: 0 0 {SIDE_WIDTH}px; width: {SIDE_WIDTH}px; }}
+@media (max-width: 760px) {{ :host {{ flex: 1 1 100%; width: calc(100vw - 16px) !important; }} }}
+"""
+MAIN_CSS = """
+:host { flex: 1 1 600px; min-width: 0; }
+@media (max-width: 760px) { :host { width: calc(100vw - 16px) !important; flex: 1 1 100%; } }
+"""
+BODY_CSS = """
+:host { width: 100%; }
+"""
+PLOT_CSS = """
+:host { flex: 1 1 420px; min-width: 260px; height: max(300px, calc(100vh - 160px)) !important; }
+@media (max-width: 760px) { :host { flex: 0 0 auto; width: calc(100vw - 24px) !important;
+  height: min(calc(100vw - 24px), 80vh) !important; } }
+"""
+RIGHT_CSS = """
+:host { flex: 0 1 420px; min-width: 280px; }
+@media (max-width: 760px) { :host { width: calc(100vw - 24px) !important; min-width: 0;
+  flex: 0 0 auto; } }
+"""
+ROOT_CSS = """
+:host { overflow-x: hidden; max-width: 100vw; }
+"""
 
 
 def _download_button(callback: Callable[[], Any], filename: str, label: str) -> Any:
@@ -50,6 +89,25 @@ def _download_button(callback: Callable[[], Any], filename: str, label: str) -> 
     return pn.widgets.FileDownload(
         callback=callback, filename=filename, label=label, color="primary", width=92, embed=False
     )
+
+
+class _TextInput(pn.widgets.TextInput):
+    """A text box whose entered value reaches the server at once (Panel waits 50 ms)."""
+
+    _debounce = 0
+
+
+def _parse_view(text: str | None) -> tuple[float, float, float, float] | None:
+    """`view=x0,y0,x1,y1` of a link (the zoom), or None when absent or not four finite
+    numbers with x0 < x1 and y0 < y1."""
+    if not text:
+        return None
+    try:
+        x0, y0, x1, y1 = (float(v) for v in text.split(","))
+    except ValueError:
+        return None
+    ok = all(math.isfinite(v) for v in (x0, y0, x1, y1)) and x0 < x1 and y0 < y1
+    return (x0, y0, x1, y1) if ok else None
 
 
 class Explorer:
@@ -69,6 +127,8 @@ class Explorer:
         self.catalog = catalog or build_catalog()
         self.state = state_from_query(self.catalog, query or {})
         asked = (query or {}).get("planner") if isinstance(query, dict) else None
+        linked = _parse_view((query or {}).get("view") if isinstance(query, dict) else None)
+        self.on_mode: Callable[[str], None] | None = None  # switch to a map mode (the page)
         self._planner_note = (
             f"planner={asked!r}: must be one of {', '.join(self.catalog.keys)}"
             if asked
@@ -87,14 +147,25 @@ class Explorer:
         self._drawn: dict[tuple[str, str], tuple[float, float]] = {}
         self._dragging: tuple[str, str, float, float] | None = None
         self._partition_cache: tuple[Any, dict[str, Any] | None] | None = None
+        self._closed = False
+        self._keep_view = linked is not None  # a link's zoom is kept for its first answer
         self.figs = PlanFigures()
         self._hook_figures()
         self._build_widgets()
         self._set_planner_inputs()
-        self._reset_ranges()
+        if linked is not None:
+            self.figs.set_box(*linked)
+        else:
+            self._reset_ranges()
         self._draw_poses()
         self.layout = self._layout()
+        if self._doc is not None:
+            self._doc.on_session_destroyed(self._on_closed)
         self.solve()
+
+    def _on_closed(self, _context: Any) -> None:
+        """The tab is gone: a result still being planned is dropped, not sent."""
+        self._closed = True
 
     # ----- figures ----------------------------------------------------------------------------
     def _hook_figures(self) -> None:
@@ -108,27 +179,32 @@ class Explorer:
     # ----- widgets ----------------------------------------------------------------------------
     def _build_widgets(self) -> None:
         options = {e.label: e.key for e in self.catalog.entries}
+        options.update(MAP_MODES)
         self.planner_select = pn.widgets.Select(
-            label="Planner", options=options, value=self.state.planner, width=290
+            label="Planner", options=options, value=self.state.planner, sizing_mode="stretch_width"
         )
         self.planner_select.param.watch(self._on_planner, "value")
-        self.planner_help = html_pane(width=290)
+        self.planner_help = html_pane(sizing_mode="stretch_width")
         self.pose_inputs: dict[str, pn.widgets.TextInput] = {}
         self.error_panes: dict[str, pn.pane.HTML] = {}
         for name in ("start", "goal"):
-            w = pn.widgets.TextInput(
-                label=f"{name} (x, y, heading deg)",
+            w = _TextInput(
+                label=self._pose_label(name),
                 value=getattr(self.state, name),
-                width=290,
+                sizing_mode="stretch_width",
                 css_classes=[f"gp-input-{name}"],
             )
             w.param.watch(self._make_pose_watcher(name), "value")
             self.pose_inputs[name] = w
-            self.error_panes[name] = html_pane(width=290)
+            self.error_panes[name] = html_pane(sizing_mode="stretch_width")
         self.vehicle_box = pn.Column(margin=0)
         self.option_box = pn.Column(margin=0)
         self.options_card = pn.Card(
-            self.option_box, title="Planner options", collapsed=True, width=300, margin=(5, 5)
+            self.option_box,
+            title="Planner options",
+            collapsed=True,
+            sizing_mode="stretch_width",
+            margin=(5, 5),
         )
         self.candidates_toggle = pn.widgets.Checkbox(
             label="show every candidate", value=self.state.candidates
@@ -138,10 +214,9 @@ class Explorer:
             label="partition map background (Fig 3.1)", value=self.state.partition
         )
         self.partition_toggle.param.watch(self._on_flags, "value")
-        self.general_error = html_pane(width=290)
-        self.table = html_pane(width=440)
-        self.strip = html_pane(sizing_mode="stretch_width")
-        self.busy = html_pane(width=200, height=24)
+        self.general_error = html_pane(sizing_mode="stretch_width")
+        self.table = FastHtml()
+        self.strip = FastHtml()
         self.downloads = pn.Row(
             _download_button(self._json_file, "glideplan-solution.json", "JSON"),
             _download_button(self._csv_file, "glideplan-path.csv", "CSV"),
@@ -149,32 +224,32 @@ class Explorer:
             margin=(5, 0),
         )
 
+    def _pose_label(self, name: str) -> str:
+        unit = self.entry.length_unit
+        return f"{name}: x ({unit}), y ({unit}), heading (deg CCW from +x)"
+
     def _set_planner_inputs(self) -> None:
         entry = self.entry
         self.planner_help.object = (
-            f'<div class="gp-help">{html.escape(entry.spec.description)}<br>'
+            f'<div class="gp-help">{html.escape(entry.spec.description.replace("`", ""))}<br>'
             f"<i>{html.escape(entry.help)}</i></div>"
         )
+        for name, w in self.pose_inputs.items():
+            w.label = self._pose_label(name)
+        self.figs.set_units(entry.length_unit, "nondim." if entry.nondimensional else "m/s")
         self.param_inputs: dict[str, pn.widgets.TextInput] = {}
         vehicle: list[Any] = []
         option: list[Any] = []
         for p in entry.parameters:
-            hint = ""
-            if p.kind == "group":
-                items = [
-                    f.rpartition(".")[2] + (" deg" if u == "deg" else "")
-                    for f, u in zip(p.fields, p.units, strict=True)
-                ]
-                hint = f" ({', '.join(items)})"
-            w = pn.widgets.TextInput(
-                label=f"{p.label}{hint}",
+            w = _TextInput(
+                label=p.caption(entry.nondimensional),
                 value=self.state.values.get(p.name, p.default),
-                width=290 if p.target == "vehicle" else 270,
+                sizing_mode="stretch_width",
                 css_classes=[f"gp-input-{p.name}"],
             )
             w.param.watch(self._make_value_watcher(p.name), "value")
             self.param_inputs[p.name] = w
-            self.error_panes[p.name] = html_pane(width=290)
+            self.error_panes[p.name] = html_pane(sizing_mode="stretch_width")
             (vehicle if p.target == "vehicle" else option).extend([w, self.error_panes[p.name]])
         self.vehicle_box.objects = vehicle
         self.option_box.objects = option or [html_pane('<span class="gp-help">none</span>')]
@@ -210,15 +285,19 @@ class Explorer:
                 "the path, the figure</div>"
             ),
             self.downloads,
-            width=320,
+            stylesheets=[SIDEBAR_CSS],
         )
+        self.figs.fig.stylesheets = [PLOT_CSS]  # the pane is the figure itself
         self.plot_pane = pn.pane.Bokeh(self.figs.fig)
-        right = pn.Column(self.table, pn.pane.Bokeh(self.figs.profile_col), width=450)
-        main = pn.Column(
-            pn.Row(self.strip, self.busy, sizing_mode="stretch_width"),
-            pn.Row(self.plot_pane, right),
+        right = pn.Column(
+            self.table.pane,
+            pn.pane.Bokeh(self.figs.profile_col, sizing_mode="stretch_width"),
+            stylesheets=[RIGHT_CSS],
         )
-        return pn.Column(header, pn.Row(sidebar, main), sizing_mode="stretch_width")
+        body = pn.FlexBox(self.plot_pane, right, flex_wrap="wrap", stylesheets=[BODY_CSS])
+        main = pn.Column(self.strip.pane, body, stylesheets=[MAIN_CSS])
+        page = pn.FlexBox(sidebar, main, flex_wrap="wrap", stylesheets=[LAYOUT_CSS])
+        return pn.Column(header, page, sizing_mode="stretch_width", stylesheets=[ROOT_CSS])
 
     # ----- state ------------------------------------------------------------------------------
     @property
@@ -237,26 +316,44 @@ class Explorer:
         """Move the goal (m) as a drag does; the heading (deg) is kept unless given."""
         self._move_pose("goal", x, y, heading_deg)
 
+    def push_url(self) -> None:
+        """The state's query into the browser's address."""
+        self._push_url()
+
     def _push_url(self) -> None:
         """Put the state's query in the browser's address (history.replaceState, no reload)."""
         self.figs.fig.tags = ["?" + state_to_query(self.catalog, self.state)]
 
     def _on_planner(self, event: Any) -> None:
+        if event.new in MAP_MODES.values():
+            if self.on_mode is not None:
+                self._locked(lambda: self.on_mode(event.new) if self.on_mode else None)
+            return
         if event.new != self.state.planner:
             self._locked(lambda: self._switch_planner(event.new))
 
     def _locked(self, fn: Callable[[], None]) -> None:
         """Run `fn` holding the document's lock (Panel's widget callbacks do not hold it,
-        and Bokeh models may only change under it)."""
+        and Bokeh models may only change under it), its model changes sent as one message."""
         if self._doc is None:
             fn()
         else:
-            self._doc.add_next_tick_callback(fn)
+            self._doc.add_next_tick_callback(lambda: self._held(fn))
+
+    def _held(self, fn: Callable[[], None]) -> None:
+        """`fn` with the document's events held and sent together (one patch, one render)."""
+        if self._closed or self._doc is None:
+            return
+        with set_curdoc(self._doc), hold(self._doc):
+            fn()
 
     def _switch_planner(self, key: str) -> None:
+        """Another planner: its inputs and defaults, the start and goal kept (as entered)."""
         entry = self.catalog.get(key)
         self._planner_note = ""
-        self.state = initial_state(entry)
+        old = self.state
+        self.state = replace(initial_state(entry), start=old.start, goal=old.goal,
+                             candidates=old.candidates, partition=old.partition)
         self._set_inputs_from_state()
         self._set_planner_inputs()
         self._reset_ranges()
@@ -416,9 +513,15 @@ class Explorer:
 
     # ----- solving ----------------------------------------------------------------------------
     def solve(self) -> None:
-        """Plan the current state (on the worker thread unless `sync`)."""
-        if self.sync:
-            self._apply(*self._compute(self.state))
+        """Plan the current state: at once for the synthesis planners (milliseconds; the
+        answer goes out with the input's echo in one message), on the worker thread for
+        the direct methods (seconds; the old answer is shown as stale meanwhile)."""
+        if self.sync or not self.entry.slow:
+            view, part = self._compute(self.state, candidates=self.sync)
+            self._apply(view, part)
+            if view.candidates_pending and self._doc is not None:
+                # the answer goes out now; its candidates in the next message
+                self._doc.add_next_tick_callback(lambda: self._held(self._add_candidates))
             return
         with self._lock:
             self._pending = self.state
@@ -447,11 +550,29 @@ class Explorer:
     def _schedule(self, fn: Callable[[], None]) -> None:
         if self._doc is None:
             fn()
-        else:
-            self._doc.add_next_tick_callback(fn)
+            return
+        if self._closed:
+            return  # the tab was closed while planning: nobody to show it to
+        try:
+            self._doc.add_next_tick_callback(lambda: self._held(fn))
+        except Exception:  # the session went away between the check and the call
+            self._closed = True
 
-    def _compute(self, state: ExploreState) -> tuple[View, dict[str, Any] | None]:
-        view = solve_view(self.catalog, state)
+    def _add_candidates(self) -> None:
+        """The shown answer's candidates: lines, table and the view fitted to them."""
+        view = self.view
+        if view is None or not view.candidates_pending or view.state != self.state:
+            return
+        self.view = view = with_candidates(view)
+        self.figs.show_candidates(view, self.state.candidates)
+        self.table.object = table_html(view.candidates or empty_candidates())
+        if self._dragging is None:
+            self._expand_ranges(view)
+
+    def _compute(
+        self, state: ExploreState, candidates: bool = True
+    ) -> tuple[View, dict[str, Any] | None]:
+        view = solve_view(self.catalog, state, candidates)
         part = None
         if state.partition and view.request is not None:
             req = view.request
@@ -474,10 +595,14 @@ class Explorer:
         return self.figs.box()
 
     def _show_busy(self, busy: bool) -> None:
-        text = '<span class="gp-busy">computing&hellip;</span>' if busy else ""
-        self.busy.object = text
-        if self.entry.slow:
-            self.plot_pane.loading = busy if hasattr(self, "plot_pane") else False
+        """Mark the shown answer stale ("computing") while a newer state is planned."""
+        if self.view is not None:
+            self.strip.object = strip_html(self.view, stale=busy)
+        elif busy:
+            self.strip.object = '<div class="gp-strip gp-stale"><span class="gp-busy">' \
+                "computing&hellip;</span></div>"
+        if self.entry.slow and hasattr(self, "plot_pane"):
+            self.plot_pane.loading = busy
 
     def _apply(self, view: View, part: dict[str, Any] | None) -> None:
         """Put a computed view into the figure's data sources and the text panes."""
@@ -493,10 +618,13 @@ class Explorer:
         self.general_error.object = "".join(error_html(v) for v in unowned.values())
         self.strip.object = strip_html(view)
         self.figs.show(view, part, self.state.candidates)
-        self.table.object = table_html(view.candidates or empty_candidates())
-        if self._dragging is None:
+        if not view.candidates_pending:
+            self.table.object = table_html(view.candidates or empty_candidates())
+        if self._dragging is None and not self._keep_view:
             self._expand_ranges(view)
-        self._show_busy(False)
+        self._keep_view = False
+        if self.entry.slow:
+            self.plot_pane.loading = False
 
     # ----- view range -------------------------------------------------------------------------
     def _points(self) -> np.ndarray:
@@ -513,7 +641,19 @@ class Explorer:
         self.figs.set_square(lo, hi)
 
     def _expand_ranges(self, view: View) -> None:
-        xs, ys = view.path["x"], view.path["y"]
+        """Grow the view (square, 8 % margin) to hold everything drawn: the path, the air
+        path, the shown candidates and the poses."""
+        parts = [(view.path["x"], view.path["y"])]
+        if view.air_path is not None:
+            parts.append((view.air_path["x"], view.air_path["y"]))
+        if self.state.candidates and view.candidates:
+            parts += list(zip(view.candidates["xs"], view.candidates["ys"], strict=True))
+        pts = self._points()
+        parts.append((pts[:, 0], pts[:, 1]))
+        xs = np.concatenate([np.asarray(p[0], dtype=float) for p in parts])
+        ys = np.concatenate([np.asarray(p[1], dtype=float) for p in parts])
+        keep = np.isfinite(xs) & np.isfinite(ys)
+        xs, ys = xs[keep], ys[keep]
         if len(xs) == 0:
             return
         bx0, bx1, by0, by1 = self.figs.box()
@@ -526,26 +666,64 @@ class Explorer:
             self._draw_poses()
 
     # ----- downloads --------------------------------------------------------------------------
+    def _problem(self) -> tuple[Any, dict[str, str]]:
+        """The shown solution and the messages of the shown state (for the downloads)."""
+        if self.view is None:
+            return None, {"": "no answer yet"}
+        errors = dict(self.view.errors)
+        if self.view.solution is None and not errors:
+            errors[""] = self.view.status or "no solution"
+        return self.view.solution, errors
+
     def _json_file(self) -> io.StringIO:
-        return io.StringIO(solution_json(self.view.solution if self.view else None))
+        solution, errors = self._problem()
+        return io.StringIO(solution_json(solution, errors))
 
     def _csv_file(self) -> io.StringIO:
-        return io.StringIO(path_csv(self.view.solution if self.view else None))
+        solution, errors = self._problem()
+        return io.StringIO(path_csv(solution, errors))
 
     def _png_file(self) -> io.BytesIO:
-        return io.BytesIO(solution_png(self.view.solution if self.view else None))
+        solution, errors = self._problem()
+        return io.BytesIO(solution_png(solution, errors))
 
 
 def _with_pose(state: ExploreState, name: str, text: str) -> ExploreState:
     return replace(state, start=text) if name == "start" else replace(state, goal=text)
 
 
-def create_page(catalog: Catalog | None = None) -> pn.viewable.Viewable:
-    """The page of one session, its state read from the URL query."""
+# The map modes offered beside the planners (label -> key); `create_page` switches to them.
+MAP_MODES: dict[str, str] = {"Route through currents or winds (lat/lon map)": "route"}
+
+
+def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Viewable:
+    """The page of one session, its state read from the URL query (`planner=route` is the
+    route map; `map_kw` go to it: the field file of `explore --field`)."""
     args = pn.state.session_args or {}
     query = {
         k: v[0].decode() if isinstance(v[0], bytes) else str(v[0]) for k, v in args.items() if v
     }
-    explorer = Explorer(catalog, query)
-    pn.state.onload(explorer._push_url)
-    return explorer.layout
+    catalog = catalog or build_catalog()
+    root = pn.Column(sizing_mode="stretch_width", margin=0, stylesheets=[ROOT_CSS])
+    pages: dict[str, Any] = {}
+
+    def show(mode: str, q: dict[str, str]) -> None:
+        if mode == "route":
+            from glideplan.explore.route_page import RoutePage
+
+            page: Any = RoutePage(q, **map_kw)
+        else:
+            page = Explorer(catalog, q)
+        page.on_mode = lambda key: show(key, {"planner": key})
+        pages["current"] = page
+        root.objects = [page.layout]
+        page.push_url()
+
+    show("route" if query.get("planner") == "route" else "plane", query)
+    pn.state.onload(lambda: pages["current"].push_url())
+    doc = pn.state.curdoc
+    if doc is not None:
+        import jinja2
+
+        doc.template = jinja2.Template(VIEWPORT_TEMPLATE)
+    return root

@@ -54,6 +54,43 @@ LABELS: Mapping[str, str] = {
     "min-altitude-direct": "Glider, quadratic polar: minimum altitude loss, direct method (ch. 5)",
     "load-factor": "Glider, speed and load factor: minimum altitude loss, direct method (ch. 6)",
 }
+# Fields entered in degrees at the page's edge (radians inside).
+_DEGREE_FIELDS = frozenset({"bank_max"})
+# Units shown in the page's labels, by the last part of a field's name ("" = a pure number).
+# "speed" marks a speed (m/s, or units of V_ref for a nondimensional vehicle), "length" a length.
+_FIELD_UNITS: Mapping[str, str] = {
+    "speed": "speed",
+    "v_min": "speed",
+    "v_max": "speed",
+    "v_stall": "speed",
+    "turn_radius": "length",
+    "u_max": "rad/s",
+    "turn_rate_max": "rad/s",
+    "bank_max": "deg",
+    "mass_kg": "kg",
+    "reference_mass_kg": "kg",
+    "wing_area_m2": "m²",
+    "bugs_pct": "%",
+    "max_ballast_l": "L",
+    "mc": "m/s",
+    "disturbance_ratio": "ratio W/V",
+    "l_over_d_max": "ratio",
+    "n_max": "g",
+    "mesh_tol": "relative",
+    "classification_tol": "relative",
+}
+# Readable names for option names where the plain words are not enough.
+_CAPTION_NAMES: Mapping[str, str] = {
+    "l_over_d": "(L/D) max",
+    "n_max": "load factor max",
+    "u_max": "turn rate max",
+    "v_stall": "v stall",
+    "polar_mass_kg": "polar mass",
+    "polar_reference_mass_kg": "polar reference mass",
+    "polar_wing_area_m2": "polar wing area",
+    "polar_bugs_pct": "polar bugs",
+    "polar_max_ballast_l": "polar max ballast",
+}
 # Option types the page can enter as text.
 _SCALARS = (bool, int, float, str)
 
@@ -92,6 +129,25 @@ class Parameter:
     def label(self) -> str:
         return self.name.replace("_", "-")
 
+    def caption(self, nondimensional: bool = False) -> str:
+        """The page's label: words and units, e.g. 'v min (m/s)', 'bank max (deg)'.
+
+        Speeds and lengths of a nondimensional vehicle read '(nondim.)'; pure numbers
+        (counts, names, switches) have no unit.
+        """
+        if self.kind == "group":
+            return _group_caption(self, nondimensional)
+        words = _CAPTION_NAMES.get(self.name, self.name.replace("_", " "))
+        for tail in ("kg", "m2", "pct", "l"):
+            if words.endswith(" " + tail) and not words.endswith(" " + self.name):
+                words = words[: -len(tail) - 1]
+        unit = _FIELD_UNITS.get(self.fields[0].rpartition(".")[2], "")
+        if unit in ("speed", "length"):
+            unit = "nondim." if nondimensional else ("m/s" if unit == "speed" else "m")
+        if self.kind == "bool":
+            unit = "true/false"
+        return f"{words} ({unit})" if unit else words
+
     @property
     def flag(self) -> str:
         """The command-line flag, as the CLI's messages name it (`--radius`)."""
@@ -116,7 +172,8 @@ class Parameter:
             return out
         field = self.fields[0]
         if self.kind == "float":
-            return {field: parse_number(self.flag, raw)}
+            value = parse_number(self.flag, raw)
+            return {field: math.radians(value) if self.units == ("deg",) else value}
         if self.kind == "int":
             try:
                 return {field: int(raw)}
@@ -163,8 +220,19 @@ class PlannerEntry:
 
     @property
     def help(self) -> str:
+        """The vehicle's one-paragraph description (code quotes removed)."""
         doc = inspect.getdoc(self.vehicle_type) or ""
-        return " ".join(doc.split("\n\n")[0].split())
+        return " ".join(doc.split("\n\n")[0].split()).replace("`", "")
+
+    @property
+    def nondimensional(self) -> bool:
+        """Lengths and speeds in reference units (the vehicle says so), not m and m/s."""
+        return "nondimensional" in (inspect.getdoc(self.vehicle_type) or "").lower()
+
+    @property
+    def length_unit(self) -> str:
+        """'m', or 'nondim.' for a nondimensional vehicle (axes, costs, endpoint errors)."""
+        return "nondim." if self.nondimensional else "m"
 
     def build_vehicle(self, values: Mapping[str, Any]) -> Any:
         """The vehicle from field values keyed by dotted paths ('polar.a' sets a nested field)."""
@@ -201,6 +269,17 @@ class Catalog:
     @property
     def keys(self) -> tuple[str, ...]:
         return tuple(e.key for e in self.entries)
+
+
+def _group_caption(p: Parameter, nondimensional: bool) -> str:
+    """'wind (m/s, towards deg)' and 'polar a, b, c of w = a v² + b v + c (SI)'."""
+    last = tuple(f.rpartition(".")[2] for f in p.fields)
+    if last == ("wind_speed", "wind_direction"):
+        return "wind: speed (m/s), towards (deg CCW from +x)"
+    if last == ("a", "b", "c"):
+        return "polar: sink w = a v² + b v + c; a (s/m), b, c (m/s)"
+    items = [n + (" (deg)" if u == "deg" else "") for n, u in zip(last, p.units, strict=True)]
+    return f"{p.name.replace('_', ' ')}: {', '.join(items)}"
 
 
 def _fmt(value: Any) -> str:
@@ -308,11 +387,14 @@ def _vehicle_parameters(cls: type, obj: Any, prefix: str = "") -> list[Parameter
         kind = _kind(value, getattr(base, "__name__", base)) or "float"
         if obj is None and f.default is not dataclasses.MISSING:
             value = f.default
+        units: tuple[str, ...] = ()
+        if f.name in _DEGREE_FIELDS and isinstance(value, (int, float)):
+            value, units = round(math.degrees(value), 9), ("deg",)
         default = "" if value is None else _fmt(value)
         out.append(
             (
                 order[f.name],
-                Parameter(opt_name(f.name), (path,), default, kind, "vehicle", (), optional),
+                Parameter(opt_name(f.name), (path,), default, kind, "vehicle", units, optional),
             )
         )
     out.sort(key=lambda item: item[0])

@@ -15,11 +15,13 @@ _CSV_SAMPLES = 400
 
 
 def solution_json(solution: Any) -> str:
-    """`Solution.to_dict()` written by the CLI's JSON helper: the object `plan --json` prints."""
-    from glideplan.cli.common import to_json
+    """`Solution.to_dict()` written by the library's JSON encoder (`glideplan.jsonio`): the
+    object `plan --json` prints; without a solution, status `no_path` and why."""
+    from glideplan.jsonio import to_json
+    from glideplan.solution import Status
 
     if solution is None:
-        return to_json({"status": "no solution"}) + "\n"
+        return to_json({"status": Status.NO_PATH.value, "message": "no solution"}) + "\n"
     return to_json(solution.to_dict()) + "\n"
 
 

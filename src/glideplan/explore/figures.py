@@ -8,14 +8,22 @@ from typing import Any, cast
 
 import numpy as np
 from bokeh.layouts import column
-from bokeh.models import ColumnDataSource, CustomJS, HoverTool, PointDrawTool, Range1d
+from bokeh.models import (
+    ColumnDataSource,
+    CustomJS,
+    HoverTool,
+    Legend,
+    LegendItem,
+    PointDrawTool,
+    Range1d,
+)
 from bokeh.models.annotations.arrows import Arrow, VeeHead
 from bokeh.models.widgets import Div
 from bokeh.plotting import figure
 
 from glideplan.explore.solve import View
 
-__all__ = ["PlanFigures"]
+__all__ = ["ASPECT_JS", "PlanFigures"]
 
 BLUE = "#1f5fa8"
 START = "#2e8540"
@@ -23,6 +31,40 @@ GOAL = "#c0392b"
 WIND = "#0f7c8c"
 GREY = "#7f8c8d"
 POINT_COLUMNS = ("x", "y", "name", "role", "c", "fill", "size")
+# The partition map's words and colours (as `solve._WORD_COLOURS`), for its legend.
+PARTITION_WORDS = ("LSL", "LSR", "RSL", "RSR", "RLR", "LRL")
+
+# Equal scales (data units per pixel) in x and y whatever the frame's shape: after a layout
+# or a range change, the range with the larger scale grows about its centre until both
+# match, so that everything in view stays in view (turn circles stay circles). The view
+# then goes into the address as `view=x0,y0,x1,y1` (a link restores the zoom).
+ASPECT_JS = """
+const w = fig.inner_width, h = fig.inner_height;
+if (!(w > 0 && h > 0)) return;
+const x0 = xr.start, x1 = xr.end, y0 = yr.start, y1 = yr.end;
+const dx = x1 - x0, dy = y1 - y0;
+if (!(dx > 0 && dy > 0)) return;
+const sx = w / dx, sy = h / dy;
+if (Math.abs(sx - sy) > 1e-9 * Math.max(sx, sy)) {
+  const s = Math.min(sx, sy), cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
+  const hx = 0.5 * w / s, hy = 0.5 * h / s;
+  xr.setv({start: cx - hx, end: cx + hx});
+  yr.setv({start: cy - hy, end: cy + hy});
+  return;  // the change calls this again, which writes the address
+}
+if (!fig.tags.length) return;
+const span = Math.max(dx, dy);
+const digits = Math.max(1, Math.ceil(-Math.log10(span)) + 4);
+const f = (v) => String(Number(v.toFixed(Math.min(digits, 12))));
+const view = [x0, y0, x1, y1].map(f).join(',');
+const params = new URLSearchParams(window.location.search);
+if (params.get('view') === view) return;
+const q = fig.tags[0] ? fig.tags[0].replace(/^[?]/, '') : params.toString();
+const next = new URLSearchParams(q);
+next.set('view', view);
+window.history.replaceState(null, '', window.location.pathname + '?' +
+  next.toString().replace(/%2C/g, ','));
+"""
 
 
 def empty_points() -> dict[str, list[Any]]:
@@ -39,15 +81,17 @@ class PlanFigures:
     def __init__(self) -> None:
         self.x_range, self.y_range = Range1d(start=-1.0, end=1.0), Range1d(start=-1.0, end=1.0)
         fig = figure(
-            frame_width=600,
-            frame_height=600,
+            sizing_mode="stretch_both",
+            min_width=240,
+            min_height=240,
             x_range=self.x_range,
             y_range=self.y_range,
             tools="pan,wheel_zoom,box_zoom,reset,save",
             toolbar_location="above",
-            x_axis_label="x",
-            y_axis_label="y",
+            x_axis_label="x (m)",
+            y_axis_label="y (m)",
             output_backend="canvas",
+            match_aspect=True,
         )
         fig.background_fill_color = "#fbfcfe"
         fig.grid.grid_line_color = "#e3e9f0"
@@ -65,17 +109,6 @@ class PlanFigures:
         self.wind_label = ColumnDataSource({"x": [], "y": [], "text": []})
         self.part_renderer = fig.image_rgba(
             "image", x="x", y="y", dw="dw", dh="dh", source=self.part_src
-        )
-        self.part_text = fig.text(
-            "x",
-            "y",
-            "text",
-            source=self.part_labels,
-            text_align="center",
-            text_baseline="middle",
-            text_font_size="12px",
-            text_color="#2c3e50",
-            text_alpha=0.8,
         )
         self.cand_renderer = fig.multi_line(
             "xs",
@@ -157,26 +190,66 @@ class PlanFigures:
         draw = PointDrawTool(renderers=[cast(Any, points)], add=False, drag=True)
         fig.add_tools(draw)
         fig.toolbar.active_drag = draw
-        self._legend_items: list[Any] = list(fig.legend.items)
-        fig.legend.location = "top_left"
-        fig.legend.background_fill_alpha = 0.8
-        fig.legend.label_text_font_size = "11px"
-        fig.legend.click_policy = "hide"
+        self.legend = fig.legend[0]
+        self._legend_items: list[Any] = list(self.legend.items)
+        self.legend.location = "top_left"
+        self.legend.background_fill_alpha = 0.8
+        self.legend.label_text_font_size = "11px"
+        self.legend.click_policy = "hide"
+        # the partition map's legend: one coloured square per word (no labels on the map)
+        from glideplan.explore.solve import _WORD_COLOURS
+
+        swatches = [
+            fig.scatter(
+                x=[],
+                y=[],
+                marker="square",
+                size=12,
+                fill_color="#%02x%02x%02x" % _WORD_COLOURS[w],
+                fill_alpha=0.6,
+                line_color=None,
+            )
+            for w in PARTITION_WORDS
+        ]
+        self.part_legend = Legend(
+            items=[LegendItem(label=w, renderers=[r]) for w, r in zip(PARTITION_WORDS, swatches)],
+            location="bottom_right",
+            orientation="horizontal",
+            title="optimal word (partition map)",
+            title_text_font_size="10px",
+            label_text_font_size="10px",
+            background_fill_alpha=0.8,
+            visible=False,
+            spacing=4,
+            padding=4,
+        )
+        fig.add_layout(self.part_legend)
         self.fig = fig
+        aspect = CustomJS(args={"fig": fig, "xr": self.x_range, "yr": self.y_range},
+                          code=ASPECT_JS)
+        for model in (self.x_range, self.y_range):
+            model.js_on_change("start", aspect)
+            model.js_on_change("end", aspect)
+        fig.js_on_change("inner_width", aspect)
+        fig.js_on_change("inner_height", aspect)
         # The page's URL follows the state: the server sets the figure's tag, the browser
         # replaces the address (Panel's Location pushes history entries on every drag).
         fig.js_on_change(
             "tags",
             CustomJS(
-                code="const q = cb_obj.tags[0]; if (q && window.location.search !== q) "
-                "{ window.history.replaceState(null, '', window.location.pathname + q); }"
+                args={"xr": self.x_range, "yr": self.y_range},
+                code="const q = cb_obj.tags[0]; if (!q) return; const p = new URLSearchParams(q);"
+                " const v = new URLSearchParams(window.location.search).get('view');"
+                " if (v) p.set('view', v); const s = '?' + p.toString().replace(/%2C/g, ',');"
+                " if (window.location.search !== s) "
+                "{ window.history.replaceState(null, '', window.location.pathname + s); }",
             ),
         )
         self.prof_src = ColumnDataSource({"t": [], "speed": [], "second": [], "third": []})
-        self.speed_fig = self._profile_figure("speed", "speed", BLUE)
+        self.speed_fig = self._profile_figure("speed", "speed (m/s)", BLUE)
         x_range = self.speed_fig.x_range
-        self.second_fig = self._profile_figure("second", "turn rate", "#8e44ad", x_range)
-        self.third_fig = self._profile_figure("third", "load factor", "#d35400", x_range)
+        self.second_fig = self._profile_figure("second", "turn rate (rad/s)", "#8e44ad", x_range)
+        self.third_fig = self._profile_figure("third", "load factor n (g)", "#d35400", x_range)
         for f in (self.speed_fig, self.second_fig, self.third_fig):
             f.background_fill_color = "#fbfcfe"
             f.grid.grid_line_color = "#e3e9f0"
@@ -185,6 +258,7 @@ class PlanFigures:
             self.speed_fig,
             self.second_fig,
             self.third_fig,
+            sizing_mode="stretch_width",
         )
 
     def _profile_figure(
@@ -193,10 +267,11 @@ class PlanFigures:
         """A small plot of the profile column `key` against time (shared time axis)."""
         extra = {} if x_range is None else {"x_range": x_range}
         fig = figure(
-            height=170,
-            width=430,
+            height=150,
+            sizing_mode="stretch_width",
+            min_width=200,
             **extra,
-            x_axis_label="time",
+            x_axis_label="time (s)",
             y_axis_label=label,
             tools="save,reset",
             toolbar_location=None,
@@ -209,6 +284,20 @@ class PlanFigures:
         r = (self.x_range.start, self.x_range.end, self.y_range.start, self.y_range.end)
         return cast(tuple[float, float, float, float], tuple(float(cast(float, v)) for v in r))
 
+    def set_units(self, length: str, speed: str) -> None:
+        """Axis labels for lengths in `length` ('m' or 'nondim.') and speeds in `speed`."""
+        self.fig.xaxis.axis_label = f"x ({length})"
+        self.fig.yaxis.axis_label = f"y ({length})"
+        self.speed_fig.yaxis.axis_label = f"speed ({speed})"
+        time = "nondim." if length == "nondim." else "s"
+        for f in (self.speed_fig, self.second_fig, self.third_fig):
+            f.xaxis.axis_label = f"time ({time})"
+
+    def set_box(self, x0: float, y0: float, x1: float, y1: float) -> None:
+        """Show the data box (the browser grows one side to equal scales)."""
+        self.x_range.update(start=x0, end=x1)
+        self.y_range.update(start=y0, end=y1)
+
     def set_square(self, lo: np.ndarray, hi: np.ndarray) -> None:
         centre, half = 0.5 * (lo + hi), 0.5 * float(np.max(hi - lo))
         self.x_range.update(start=centre[0] - half, end=centre[0] + half)
@@ -220,29 +309,38 @@ class PlanFigures:
         air = view.air_path
         self.air_src.data = {"x": air["x"], "y": air["y"]} if air else {"x": [], "y": []}
         self.air_renderer.visible = air is not None
-        self.fig.legend.items = [
-            it for it in self._legend_items if it.renderers[0] is not self.air_renderer or air
-        ]
-        cands = view.candidates or empty_candidates()
-        self.cand_src.selected.indices = []
-        self.cand_src.data = {k: v for k, v in cands.items() if k != "cost"} | {
-            "cost": np.asarray(cands["cost"], dtype=float)
-        }
-        self.cand_renderer.visible = candidates
+        items = [it for it in self._legend_items if it.renderers[0] is not self.air_renderer or air]
+        if list(self.legend.items) != items:
+            self.legend.items = items
+        if not view.candidates_pending:
+            self.show_candidates(view, candidates)
         self.show_profile(view)
         self.show_wind(view)
         if part is not None:
             self.part_src.data = {k: [part[k]] for k in ("image", "x", "y", "dw", "dh")}
-            self.part_labels.data = part["labels"]
-        else:
+        elif len(self.part_src.data["image"]):
             self.part_src.data = {"image": [], "x": [], "y": [], "dw": [], "dh": []}
-            self.part_labels.data = {"x": [], "y": [], "text": []}
+        if self.part_legend.visible != (part is not None):
+            self.part_legend.visible = part is not None
+
+    def show_candidates(self, view: View, visible: bool) -> None:
+        """Every candidate's line (grey), shown when `visible`."""
+        cands = view.candidates or empty_candidates()
+        if self.cand_src.selected.indices:
+            self.cand_src.selected.indices = []
+        self.cand_src.data = {k: v for k, v in cands.items() if k != "cost"} | {
+            "cost": np.asarray(cands["cost"], dtype=float)
+        }
+        if self.cand_renderer.visible != visible:
+            self.cand_renderer.visible = visible
 
     def show_profile(self, view: View) -> None:
         prof = view.profile
-        self.profile_col.visible = prof is not None
+        if self.profile_col.visible != (prof is not None):
+            self.profile_col.visible = prof is not None
         if prof is None:
-            self.prof_src.data = {"t": [], "speed": [], "second": [], "third": []}
+            if len(self.prof_src.data["t"]):
+                self.prof_src.data = {"t": [], "speed": [], "second": [], "third": []}
             return
         third = prof.get("third")
         self.prof_src.data = {
@@ -251,13 +349,16 @@ class PlanFigures:
             "second": prof["second"],
             "third": third if third is not None else np.full_like(prof["t"], np.nan),
         }
-        self.second_fig.yaxis.axis_label = view.profile_labels[1]
-        self.third_fig.visible = third is not None
+        if self.second_fig.yaxis[0].axis_label != view.profile_labels[1]:
+            self.second_fig.yaxis.axis_label = view.profile_labels[1]
+        if self.third_fig.visible != (third is not None):
+            self.third_fig.visible = third is not None
 
     def show_wind(self, view: View) -> None:
         if view.wind is None or view.request is None:
-            self.wind_src.data = {"x_start": [], "y_start": [], "x_end": [], "y_end": []}
-            self.wind_label.data = {"x": [], "y": [], "text": []}
+            if len(self.wind_src.data["x_start"]):
+                self.wind_src.data = {"x_start": [], "y_start": [], "x_end": [], "y_end": []}
+                self.wind_label.data = {"x": [], "y": [], "text": []}
             return
         wx, wy = view.wind
         w = math.hypot(wx, wy)

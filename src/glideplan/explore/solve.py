@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -21,7 +21,7 @@ from glideplan.errors import InvalidParameterError
 from glideplan.explore.catalog import Catalog, PlannerEntry
 from glideplan.explore.state import ExploreState, Request, one_line, request
 
-__all__ = ["View", "partition_image", "solve_view"]
+__all__ = ["View", "cost_unit", "partition_image", "solve_view", "with_candidates"]
 
 _COST_UNITS: Mapping[str, str] = {"length": "m", "time": "s", "altitude": "m"}
 _PATH_SAMPLES = 240
@@ -45,9 +45,10 @@ class View:
     air_path: dict[str, np.ndarray] | None = None
     candidates: dict[str, list[Any]] = field(default_factory=dict)
     profile: dict[str, np.ndarray] | None = None
-    profile_labels: tuple[str, str] = ("speed", "turn rate (rad/s)")
+    profile_labels: tuple[str, str] = ("speed (m/s)", "turn rate (rad/s)")
     wind: tuple[float, float] | None = None
     units: str = ""
+    candidates_pending: bool = False  # solved, its candidates not yet sampled
 
     @property
     def ok(self) -> bool:
@@ -80,7 +81,8 @@ class View:
         err = self.solution.endpoint_error if self.ok else None
         if err is None:
             return "n/a"
-        return f"{err.position:.1e} {self.units or 'm'}, {err.heading:.1e} rad"
+        unit = self.entry.length_unit if self.entry is not None else "m"
+        return f"{err.position:.1e} {unit}, {err.heading:.1e} rad"
 
     @property
     def time_text(self) -> str:
@@ -91,8 +93,8 @@ class View:
 
 
 def _units(entry: PlannerEntry) -> str:
-    doc = (entry.help or "") + (entry.vehicle_type.__module__ or "")
-    return "" if "nondimensional" in doc.lower() else "m"
+    """The length unit of the entry's vehicle: 'm' or 'nondim.'."""
+    return entry.length_unit
 
 
 def _sample_path(path: Any, n: int) -> dict[str, np.ndarray]:
@@ -121,13 +123,26 @@ def _profile(path: Any, vehicle: Any) -> tuple[dict[str, np.ndarray], tuple[str,
     return out, ("speed", "turn rate (rad/s)")
 
 
+def cost_unit(entry: PlannerEntry | None) -> str:
+    """The unit of the entry's cost: m for length and altitude, s for time ('nondim.' for a
+    nondimensional vehicle); '' without an entry."""
+    if entry is None:
+        return ""
+    if entry.nondimensional:
+        return "nondim."
+    return {"length": "m", "time": "s", "altitude": "m"}.get(entry.objective, "")
+
+
 def _variable_speed(vehicle: Any) -> bool:
     fields = getattr(type(vehicle), "__dataclass_fields__", {})
     return "speed" not in fields
 
 
-def solve_view(catalog: Catalog, state: ExploreState) -> View:
-    """Plan `state` with `glideplan.plan()` and build the figure data (see the module doc)."""
+def solve_view(catalog: Catalog, state: ExploreState, candidates: bool = True) -> View:
+    """Plan `state` with `glideplan.plan()` and build the figure data (see the module doc).
+
+    `candidates=False` leaves the candidates' lines and table for `with_candidates` (the
+    page shows the answer first and the candidates a moment later)."""
     from glideplan import plan
 
     req, errors = request(catalog, state)
@@ -168,8 +183,18 @@ def solve_view(catalog: Catalog, state: ExploreState) -> View:
             }
         if _variable_speed(req.vehicle):
             view["profile"], view["profile_labels"] = _profile(solution.path, req.vehicle)
-    view["candidates"] = _candidates(solution)
+    if candidates:
+        view["candidates"] = _candidates(solution)
+    else:
+        view["candidates_pending"] = True
     return View(state, entry, {}, solution, req, seconds, **view)
+
+
+def with_candidates(view: View) -> View:
+    """`view` with its candidates sampled (as `solve_view(..., candidates=True)`)."""
+    if not view.candidates_pending or view.solution is None:
+        return view
+    return replace(view, candidates=_candidates(view.solution), candidates_pending=False)
 
 
 def _candidates(solution: Any) -> dict[str, list[Any]]:

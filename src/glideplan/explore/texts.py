@@ -11,9 +11,9 @@ from typing import Any
 
 import panel as pn
 
-from glideplan.explore.solve import View
+from glideplan.explore.solve import View, cost_unit
 
-__all__ = ["PAGE_CSS", "error_html", "html_pane", "strip_html", "table_html"]
+__all__ = ["PAGE_CSS", "FastHtml", "error_html", "html_pane", "strip_html", "table_html"]
 
 PAGE_CSS = """
 :host { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; }
@@ -27,6 +27,10 @@ PAGE_CSS = """
 .gp-small { font-size: 13px !important; color: #3b4a59 !important; }
 .gp-status-bad { color: #b03a2e !important; }
 .gp-error { color: #b03a2e; font-size: 12.5px; line-height: 1.3; margin: -2px 0 4px 2px; }
+.gp-stale .gp-v { opacity: .45; }
+.gp-stale { background: repeating-linear-gradient(-45deg, #f4f7fb, #f4f7fb 8px, #e9eff7 8px,
+  #e9eff7 16px); }
+.gp-computing { align-self: center; }
 .gp-busy { color: #1f5fa8; font-size: 13px; font-weight: 600; }
 .gp-busy::before { content: ""; display: inline-block; width: 10px; height: 10px;
   margin-right: 6px; border: 2px solid #1f5fa8; border-right-color: transparent;
@@ -79,16 +83,16 @@ def table_html(cands: dict[str, list[Any]]) -> str:
     )
 
 
-def strip_html(view: View) -> str:
-    """The result strip: cost, word, family, status, endpoint error, planner time."""
-    unit = (
-        {"length": "m", "time": "s", "altitude": "m"}.get(view.entry.objective, "")
-        if view.entry
-        else ""
-    )
-    if not view.units and view.entry is not None and view.entry.objective != "time":
-        unit = "(nondim.)"
+def strip_html(view: View, stale: bool = False) -> str:
+    """The result strip: cost, word, family, status, endpoint error, planner time.
+
+    The cost's header names the objective and its unit from the planner (not from the
+    result: an error keeps it); `stale` greys the values and says "computing" while a newer
+    state is being planned.
+    """
     objective = view.entry.objective if view.entry else ""
+    unit = cost_unit(view.entry)
+    header = ", ".join(t for t in (objective, unit) if t)
     status = html.escape(view.status or "")
     bad = "" if view.ok else " gp-status-bad"
 
@@ -98,13 +102,75 @@ def strip_html(view: View) -> str:
             f'<span class="gp-v {cls}">{v}</span></div>'
         )
 
+    busy = (
+        '<div class="gp-item gp-computing"><span class="gp-busy">computing&hellip;</span></div>'
+        if stale
+        else ""
+    )
     return (
-        '<div class="gp-strip">'
-        + item(f"cost ({objective}, {unit})", html.escape(view.cost_text), "gp-cost")
+        f'<div class="gp-strip{" gp-stale" if stale else ""}">'
+        + item(f"cost ({header})" if header else "cost", html.escape(view.cost_text), "gp-cost")
         + item("word", html.escape(view.word) or "&ndash;", "gp-word")
         + item("family", html.escape(view.family) or "&ndash;", "gp-family")
         + item("status", status, "gp-small gp-status" + bad)
         + item("endpoint error", html.escape(view.endpoint_text), "gp-small gp-endpoint")
         + item("time", html.escape(view.time_text), "gp-small gp-time")
+        + busy
         + "</div>"
     )
+
+
+class FastHtml:
+    """HTML shown in a Bokeh `Div` and updated without re-laying out the page.
+
+    `.object = text` (as Panel's HTML pane) changes one column of a small data source; in the
+    browser a callback writes it into the Div's element (and, silently, into its `text`), so
+    a new result costs one innerHTML, not Bokeh's re-render and layout pass of the page.
+    """
+
+    def __init__(self, text: str = "", **kw: Any) -> None:
+        from bokeh.models import ColumnDataSource, CustomJS, Div
+
+        self.src = ColumnDataSource({"html": [text]})
+        self.model = Div(
+            text=text,
+            stylesheets=[PAGE_CSS],
+            sizing_mode="stretch_width",
+            margin=(0, 5),
+            tags=[self.src],
+            **kw,
+        )
+        self.src.js_on_change("data", CustomJS(args={"div": self.model}, code=_FAST_HTML_JS))
+        self.pane = pn.pane.Bokeh(self.model, sizing_mode="stretch_width")
+        self._text = text
+
+    @property
+    def object(self) -> str:
+        return self._text
+
+    @object.setter
+    def object(self, text: str) -> None:
+        if text != self._text:
+            self._text = text
+            self.src.data = {"html": [text]}
+
+
+_FAST_HTML_JS = """
+const html = cb_obj.data.html[0];
+let view = null;
+for (const root of Bokeh.index.roots) {
+  const stack = [root];
+  while (stack.length && view == null) {
+    const v = stack.pop();
+    if (v.model === div) { view = v; break; }
+    for (const c of (v.child_views || [])) stack.push(c);
+  }
+  if (view != null) break;
+}
+if (view != null && view.markup_el != null) {
+  div.setv({text: html}, {silent: true});
+  view.markup_el.innerHTML = html;
+} else {
+  div.text = html;
+}
+"""

@@ -4,6 +4,11 @@
 the field's `epoch` (or datetime64). `open_field(paths, depth_range)` reads NetCDF (CF) and
 GRIB; `from_xarray(ds)` converts a dataset; `double_gyre()` is the built-in example.
 NaN = land/missing = obstacle. Queries outside the extent or time span raise naming the bound.
+
+Global files wrap in longitude (`GriddedField.periodic_lon`, `Extent.periodic`): queries at any
+longitude interpolate across the seam. ERA5 (`valid_time`, descending latitude), curvilinear
+ROMS/NEMO grids (regridded to regular lat/lon), depth layers from the surface and single time
+steps are read; what the reader changed or assumed is in `field.warnings` (and `describe()`).
 """
 
 from glideplan.fields.io import pyproj_before_eccodes

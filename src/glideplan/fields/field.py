@@ -13,6 +13,15 @@ Three kinds share one interface (`FlowField`):
 Time `t` is seconds since the field's `epoch` (a `numpy.datetime64`, or None for a field with
 no calendar); `datetime64` values are accepted too. A query outside the field's extent or
 time span raises `InvalidParameterError` naming the bound; nothing is extrapolated.
+
+Global fields wrap in longitude. A `GriddedField` whose nx columns at step dlon close the circle
+(|nx dlon - 360| <= dlon / 2, e.g. 0..359.75 or -180..179.75 at 0.25 deg) is periodic
+(`periodic_lon`, `Extent.periodic`): every longitude is inside it, and a query in the seam
+between the last and the first column (359.75..360) interpolates linearly between them, as
+anywhere else. Longitudes are taken modulo 360 (-3 and 357 are the same meridian).
+
+Fields carry `warnings` (e.g. a depth layer extended to the surface, a regridded curvilinear
+grid, a single time step held constant); `describe()` lists them.
 """
 
 from __future__ import annotations
@@ -41,19 +50,32 @@ FloatArray = NDArray[np.float64]
 
 @dataclass(frozen=True)
 class Extent:
-    """Latitude/longitude box (degrees). Longitudes may run past 180 (a 0..360 field)."""
+    """Latitude/longitude box (degrees). Longitudes may run past 180 (a 0..360 field).
+
+    `periodic`: the field closes the circle of longitude (a global file); then
+    lon_max = lon_min + 360 and every longitude is inside (taken modulo 360).
+    """
 
     lat_min: float
     lat_max: float
     lon_min: float
     lon_max: float
+    periodic: bool = False
 
-    def to_dict(self) -> dict[str, float]:
+    def contains_lon(self, lon: ArrayLike) -> NDArray[np.bool_]:
+        """Whether each longitude (any representation, degrees) lies inside the extent."""
+        lo = self.lon_min + np.mod(np.asarray(lon, dtype=float) - self.lon_min, 360.0)
+        if self.periodic:
+            return np.ones(lo.shape, dtype=bool)
+        return lo <= self.lon_max + 1e-9
+
+    def to_dict(self) -> dict[str, Any]:
         return {
             "lat_min": self.lat_min,
             "lat_max": self.lat_max,
             "lon_min": self.lon_min,
             "lon_max": self.lon_max,
+            "periodic": self.periodic,
         }
 
 
@@ -81,6 +103,8 @@ class FlowField:
     #: (t_first, t_last) seconds since epoch, or None for a steady field.
     time_span: tuple[float, float] | None = None
     info: Mapping[str, Any] = {}
+    #: What the reader changed or assumed (printed by the CLI as "glideplan: warning: ...").
+    warnings: tuple[str, ...] = ()
 
     def velocity(self, t: Any, lat: ArrayLike, lon: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """(u_east, v_north) in m/s at times t (s since epoch) and WGS84 lat/lon (deg)."""
@@ -120,6 +144,11 @@ class FlowField:
         ext = self.extent
         if ext is None:
             return la, lo
+        if ext.periodic:  # every longitude is inside: its representative in [lon_min, +360)
+            lo = ext.lon_min + np.mod(lo - ext.lon_min, 360.0)
+            lo = np.where(lo >= ext.lon_max, lo - 360.0, lo)  # rounding of mod
+            self._check_lat(la, ext, name)
+            return la, lo
         # The representative of each longitude nearest the field's centre (0..360 or -180..180).
         centre = 0.5 * (ext.lon_min + ext.lon_max)
         lo = centre + np.mod(lo - centre + 180.0, 360.0) - 180.0
@@ -141,6 +170,15 @@ class FlowField:
                 )
         return la, lo
 
+    @staticmethod
+    def _check_lat(la: FloatArray, ext: Extent, name: str, tol: float = 1e-9) -> None:
+        if la.size and np.min(la) < ext.lat_min - tol:
+            raise InvalidParameterError(f"{name} latitude", float(np.min(la)),
+                                        f"outside the field: south bound {ext.lat_min:g}")
+        if la.size and np.max(la) > ext.lat_max + tol:
+            raise InvalidParameterError(f"{name} latitude", float(np.max(la)),
+                                        f"outside the field: north bound {ext.lat_max:g}")
+
     def format_time(self, t: float) -> str:
         """ISO 8601 of t seconds since epoch (or 't=...s' without a calendar)."""
         if self.epoch is None:
@@ -148,12 +186,13 @@ class FlowField:
         return str(self.epoch + np.timedelta64(round(t * 1e3), "ms"))[:19] + "Z"
 
     def describe(self) -> dict[str, Any]:
-        """JSON-ready description: kind, variables, extent, time span."""
+        """JSON-ready description: kind, variables, extent, time span, warnings."""
         out: dict[str, Any] = dict(self.info)
         out["extent"] = None if self.extent is None else self.extent.to_dict()
         if self.time_span is not None:
             out["time_span"] = [self.format_time(self.time_span[0]),
                                 self.format_time(self.time_span[1])]
+        out["warnings"] = list(self.warnings)
         return out
 
 
@@ -209,7 +248,10 @@ class GriddedField(FlowField):
     """Velocity on a (time, lat, lon) grid; linear interpolation (SciPy); NaN = land.
 
     times: (nt,) seconds since `epoch` (ascending; nt = 1 is a steady field); lat: (ny,)
-    ascending degrees; lon: (nx,) ascending degrees (may exceed 180); u, v: (nt, ny, nx) m/s.
+    ascending degrees; lon: (nx,) ascending degrees (may exceed 180; span < 360); u, v:
+    (nt, ny, nx) m/s. When the columns close the circle (`periodic_lon`) the field wraps in
+    longitude: the seam between the last column and the first (+360) is interpolated like any
+    other cell. `warnings`: what the reader changed or assumed (listed by `describe()`).
     """
 
     times: FloatArray
@@ -219,6 +261,7 @@ class GriddedField(FlowField):
     v: FloatArray
     epoch: np.datetime64 | None = None
     info: Mapping[str, Any] = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         shape = (self.times.size, self.lat.size, self.lon.size)
@@ -235,11 +278,34 @@ class GriddedField(FlowField):
             raise InvalidParameterError(
                 "field", (self.lat.size, self.lon.size), "needs at least 2 latitudes and longitudes"
             )
+        if self.lat[0] < -90.0 - 1e-9 or self.lat[-1] > 90.0 + 1e-9:
+            raise InvalidParameterError(
+                "field latitude", (float(self.lat[0]), float(self.lat[-1])),
+                "must lie within -90..90 degrees",
+            )
+        if self.lon[-1] - self.lon[0] >= 360.0 - 1e-9:
+            raise InvalidParameterError(
+                "field longitude", (float(self.lon[0]), float(self.lon[-1])),
+                "spans 360 degrees or more: drop the repeated column (e.g. 360 = 0)",
+            )
+        if not isinstance(self.warnings, tuple):
+            object.__setattr__(self, "warnings", tuple(self.warnings))
+
+    @cached_property
+    def periodic_lon(self) -> bool:
+        """Whether the columns close the circle: |nx dlon - 360| <= dlon / 2 (dlon the mean step).
+
+        Equivalently the seam lon[0] + 360 - lon[-1] lies between dlon / 2 and 3 dlon / 2.
+        """
+        n = self.lon.size
+        dlon = float(self.lon[-1] - self.lon[0]) / (n - 1)
+        return abs(n * dlon - 360.0) <= 0.5 * dlon
 
     @property
     def extent(self) -> Extent:  # type: ignore[override]
-        return Extent(float(self.lat[0]), float(self.lat[-1]), float(self.lon[0]),
-                      float(self.lon[-1]))
+        lon_max = float(self.lon[0]) + 360.0 if self.periodic_lon else float(self.lon[-1])
+        return Extent(float(self.lat[0]), float(self.lat[-1]), float(self.lon[0]), lon_max,
+                      periodic=self.periodic_lon)
 
     @property
     def time_span(self) -> tuple[float, float] | None:  # type: ignore[override]
@@ -257,17 +323,29 @@ class GriddedField(FlowField):
 
         Linear interpolation multiplies every corner of the cell by its weight, so a cell
         that touches a NaN node (land) gives NaN, even at a weight of zero: land is land.
+        A periodic field is padded with one wrapped column on each side (lon[-1] - 360 and
+        lon[0] + 360), so the seam cell interpolates between the last and the first column.
         """
         from scipy.interpolate import RegularGridInterpolator
 
-        values = np.stack([self.u, self.v], axis=-1)
+        lon = self.lon
+        if self.periodic_lon:  # one allocation: columns [last, 0 .. nx-1, first]
+            lon = np.concatenate([[lon[-1] - 360.0], lon, [lon[0] + 360.0]])
+            nt, ny, nx = self.u.shape
+            values = np.empty((nt, ny, nx + 2, 2))
+            for k, comp in enumerate((self.u, self.v)):
+                values[:, :, 1:-1, k] = comp
+                values[:, :, 0, k] = comp[:, :, -1]
+                values[:, :, -1, k] = comp[:, :, 0]
+        else:
+            values = np.stack([self.u, self.v], axis=-1)
         if self.times.size == 1:
             return RegularGridInterpolator(
-                (self.lat, self.lon), values[0], method="linear", bounds_error=False,
+                (self.lat, lon), values[0], method="linear", bounds_error=False,
                 fill_value=np.nan,
             )
         return RegularGridInterpolator(
-            (self.times, self.lat, self.lon), values, method="linear", bounds_error=False,
+            (self.times, self.lat, lon), values, method="linear", bounds_error=False,
             fill_value=np.nan,
         )
 

@@ -1,4 +1,8 @@
-"""What the chapter figure modules share: pyplot on the Agg backend and saving a PNG."""
+"""What the chapter figure modules share: pyplot and saving a PNG (`plotting.save_figure`).
+
+The backend is not chosen here: `glideplan reproduce` (`figures.registry.run_figure`) selects
+Agg where it makes files; a notebook keeps its own backend.
+"""
 
 from __future__ import annotations
 
@@ -7,27 +11,17 @@ from typing import Any
 
 
 def pyplot() -> Any:
-    """`matplotlib.pyplot` on the non-interactive Agg backend (Matplotlib imported on use)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
+    """`matplotlib.pyplot` (Matplotlib imported on use)."""
     import matplotlib.pyplot as plt
 
     return plt
 
 
-def save_png(
-    fig: Any, path: pathlib.Path | str, *, dpi: int = 120, crop: bool = False
-) -> pathlib.Path:
-    """Write `fig` to `path`, close it and return `path`.
+def save_png(fig: Any, path: pathlib.Path | str, *, crop: bool = False) -> pathlib.Path:
+    """Write `fig` to `path` with the one saver (`plotting.save_figure`), close it, return
+    `path`; the subplots are spaced by `tight_layout`, or with `crop` the image is instead
+    cropped to what is drawn (`bbox_inches="tight"`)."""
+    from glideplan.plotting import save_figure
 
-    The subplots are first spaced with `fig.tight_layout()`; with `crop` the saved image is
-    instead cropped to what is drawn (`bbox_inches="tight"`).
-    """
-    if crop:
-        fig.savefig(path, dpi=dpi, bbox_inches="tight")
-    else:
-        fig.tight_layout()
-        fig.savefig(path, dpi=dpi)
-    pyplot().close(fig)
+    save_figure(fig, path, crop=crop, tight=not crop)
     return pathlib.Path(path)

@@ -69,7 +69,7 @@ def fig3_1(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
                 f"{', '.join(missing) or '-'}; found only: {', '.join(extra) or '-'}",
             )
         )
-    path = save_png(fig, out_dir / "fig3_1_partitions.png", dpi=110)
+    path = save_png(fig, out_dir / "fig3_1_partitions.png")
     return FigureReport(
         files=(path.name,),
         rows=tuple(rows),
@@ -124,5 +124,5 @@ def fig3_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
                 note=f"ours - reference = {ours - ref:+.4f}",
             )
         )
-    path = save_png(fig, out_dir / "fig3_2_tradespace.png", dpi=110)
+    path = save_png(fig, out_dir / "fig3_2_tradespace.png")
     return FigureReport(files=(path.name,), rows=tuple(rows), notes=f"{n} x {n} grid.")

@@ -120,7 +120,7 @@ def fig4_1(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_ylabel("speed v (m/s)")
     ax.set_title("control constraint set (v_min = 0.3, u_max = 1)")
     ax.grid(alpha=0.3)
-    f = save_png(fig, out_dir / "fig4_1_control_set.png", dpi=130)
+    f = save_png(fig, out_dir / "fig4_1_control_set.png")
     rows = (
         compare("sharpest turn |kappa| = u_max/v_min", car.u_max / car.v_min, unit="1/m"),
         compare("B arc radius R = v_max/u_max", car.bang_radius, PRINTED_RADII["R"]),
@@ -180,7 +180,7 @@ def fig4_2(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_ylabel("cost rate f0 = 1/v")
     ax.set_title(f"hodograph, adjoint (eta_psi, eta0) = ({eta_psi}, {eta0})")
     ax.legend(loc="lower left", fontsize=8)
-    f = save_png(fig, out_dir / "fig4_2_hodograph.png", dpi=130)
+    f = save_png(fig, out_dir / "fig4_2_hodograph.png")
     rows = []
     for ep, e0 in ((0.0, 1.0), (-0.5, 1.0), (-1.5, 1.0), (-1.0, 0.0)):
         ours = _hodograph_minimiser(ep, e0, car)
@@ -335,7 +335,7 @@ def _draw_candidates(cands: list, filename: pathlib.Path, title: str) -> pathlib
     ax.set_ylabel("y (m)")
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_title(title)
-    return save_png(fig, filename, dpi=130, crop=True)
+    return save_png(fig, filename, crop=True)
 
 
 def _candidate_rows(cands: list) -> list[Comparison]:

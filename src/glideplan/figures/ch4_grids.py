@@ -75,7 +75,7 @@ def _grid_figure(fid: str, out_dir: pathlib.Path, full: bool) -> FigureReport:
     ax.set_xlabel("x1 (m)")
     ax.set_ylabel("y1 (m)")
     ax.set_title("ratio Dubins(v_max) / optimal")
-    f = save_png(fig, out_dir / f"{fid.replace('.', '_')}_grid.png", dpi=120)
+    f = save_png(fig, out_dir / f"{fid.replace('.', '_')}_grid.png")
     ratio = grid.ratio[np.isfinite(grid.ratio)]
     rows = [
         compare("grid points solved", int(np.isfinite(grid.time).sum()), unit="",

@@ -77,114 +77,19 @@ def plan_example(figure_id: str, method: str = "synthesis") -> Solution:
 
 
 def solution_figure(solution: Solution, *, max_candidates: int = 6, title: str = "") -> Any:
-    """The figure of `draw_solution` (returned, not saved): left the candidate paths in units
-    of R_stf with the Dubins path at v_stf (dashed), start and goal with their headings and
-    the legend below the axes; right the optimal control history (turn rate and speed
-    against time, limits dashed); the title states the problem (after `title`, e.g. the
-    figure's name) and the answer."""
-    from glideplan.planners.min_altitude import dubins_reference
-    from glideplan.plotting import describe_vehicle, mark_pose, pose_text
+    """Figs. 5.5-5.7's figure: `glideplan.solution_figures.min_altitude_figure`."""
+    from glideplan.solution_figures import min_altitude_figure
 
-    plt = pyplot()
-    glider = solution.vehicle
-    assert isinstance(glider, QuadraticPolarGlider)
-    unit = glider.radius_stf
-    fig = plt.figure(figsize=(12.5, 6.4), layout="constrained")
-    grid = fig.add_gridspec(2, 2, width_ratios=(1.15, 1.0))
-    ax = fig.add_subplot(grid[:, 0])
-    feasible = [c for c in solution.candidates if c.path is not None]
-    styles = ("--", "-.", ":", (0, (5, 1, 1, 1)))
-    for k, cand in enumerate(feasible[:max_candidates]):
-        assert cand.path is not None
-        smp = cand.path.sample(n=400)
-        best = k == 0
-        name = "optimal" if best else "candidate"
-        ax.plot(
-            smp.x / unit,
-            smp.y / unit,
-            color="black" if best else f"C{k - 1}",
-            ls="-" if best else styles[(k - 1) % len(styles)],
-            lw=2.4 if best else 1.1,
-            alpha=1.0 if best else 0.8,
-            zorder=3 if best else 2,
-            label=f"{name} {cand.family} {cand.word}, {cand.cost:.2f} m",
-        )
-    ref = dubins_reference(solution.start, solution.goal, glider)
-    if ref is not None and ref.path is not None:
-        smp = ref.path.sample(n=400)
-        ax.plot(
-            smp.x / unit,
-            smp.y / unit,
-            color="0.45",
-            ls=(0, (2, 2)),
-            lw=1.2,
-            label=f"Dubins {ref.word} at v_stf, {ref.cost:.2f} m",
-        )
-    if solution.path is not None:
-        opt = solution.path.sample(n=200)
-        span = max(float(np.ptp(opt.x)), float(np.ptp(opt.y))) / unit
-    else:
-        span = math.hypot(solution.goal.x - solution.start.x, solution.goal.y - solution.start.y)
-        span /= unit
-    arrow = max(0.3, 0.1 * span)
-    mark_pose(ax, solution.start, arrow, colour="tab:green", marker="o",
-              label="start (heading)", scale=unit)
-    mark_pose(ax, solution.goal, arrow, colour="tab:red", marker="s",
-              label="goal (heading)", scale=unit)
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.grid(True, lw=0.4, alpha=0.5)
-    ax.set_xlabel(f"x / R_stf  (R_stf = {unit:.4g} m)")
-    ax.set_ylabel("y / R_stf")
-    ax.set_title("candidate paths, altitude loss in m", fontsize=10)
-    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=2,
-              borderaxespad=0.0)
-    if solution.path is not None:
-        smp = solution.path.sample(n=600)
-        ax_u = fig.add_subplot(grid[0, 1])
-        ax_u.plot(smp.t, smp.turn_rate, "b-")
-        for lim in (-glider.u_max, glider.u_max):
-            ax_u.axhline(lim, color="k", ls="--", lw=0.8)
-        for lim, name, va in ((glider.u_max, "u_max", "top"), (-glider.u_max, "-u_max", "bottom")):
-            ax_u.text(0.99, lim, f"{name} ", transform=ax_u.get_yaxis_transform(), ha="right",
-                      va=va, fontsize=7)
-        ax_u.set_ylabel("turn rate u (rad/s)")
-        ax_u.set_title("optimal control history", fontsize=10)
-        ax_u.grid(True, lw=0.4, alpha=0.5)
-        ax_u.tick_params(labelbottom=False)
-        ax_v = fig.add_subplot(grid[1, 1], sharex=ax_u)
-        ax_v.plot(smp.t, ms_to_kmh(smp.speed), "b-")
-        for v, name in ((glider.v_stall, "v_stall"), (glider.v_stf, "v_stf")):
-            ax_v.axhline(ms_to_kmh(v), color="k", ls="--", lw=0.8)
-            ax_v.text(0.99, ms_to_kmh(v), f"{name} ", transform=ax_v.get_yaxis_transform(),
-                      ha="right", va="bottom" if name == "v_stall" else "top", fontsize=7)
-        ax_v.set_xlabel("time t (s)")
-        ax_v.set_ylabel("speed v (km/h)")
-        ax_v.grid(True, lw=0.4, alpha=0.5)
-    problem = (
-        f"Minimum altitude loss, {describe_vehicle(glider)}\n"
-        f"start {pose_text(solution.start, 'R_stf', unit)} -> "
-        f"goal {pose_text(solution.goal, 'R_stf', unit)}"
-    )
-    if solution.ok:
-        answer = (
-            f"optimal word {solution.word or '-'}, family {solution.family or '-'}, "
-            f"altitude loss {solution.cost:.4g} m"
-        )
-        if ref is not None and ref.path is not None:
-            answer += f" (Dubins path at v_stf: {ref.cost:.4g} m)"
-    else:
-        answer = f"status {solution.status.value}: {solution.message}"
-    text = f"{problem}\n{answer}"
-    fig.suptitle(f"{title}\n{text}" if title else text, fontsize=10, x=0.01, ha="left")
-    return fig
+    return min_altitude_figure(solution, max_candidates=max_candidates, title=title)
 
 
 def draw_solution(
     solution: Solution, filename: pathlib.Path | str, *, max_candidates: int = 6, title: str = ""
 ) -> None:
     """Write `solution_figure(solution)` to `filename` (PNG), as Figs. 5.5-5.7."""
-    fig = solution_figure(solution, max_candidates=max_candidates, title=title)
-    save_png(fig, filename, crop=True)
+    from glideplan.solution_figures import draw_min_altitude
+
+    draw_min_altitude(solution, filename, max_candidates=max_candidates, title=title)
 
 
 # ----- Fig 5.1 and Table 5.2 -----------------------------------------------------------------

@@ -18,6 +18,7 @@ from glideplan.analysis import load_factor as lf
 from glideplan.figures._common import pyplot, save_png
 from glideplan.figures.registry import FigureReport, Printed, compare, reproducible, yes_no
 from glideplan.pose import Pose
+from glideplan.solution_figures import draw_control_set
 from glideplan.studies.load_factor_hodograph import hc_minimiser
 from glideplan.vehicles.load_factor_glider import LoadFactorGlider
 
@@ -25,35 +26,6 @@ __all__ = ["GLIDER", "draw_solution", "solution_figure", "solve_example"]
 
 GLIDER = LoadFactorGlider()  # (6.21)
 S67 = "section 6.7"
-_CLASS_STYLE = {
-    "corner": ("tab:red", "corner"),
-    "stall": ("tab:orange", "stall boundary"),
-    "locus": ("tab:blue", "extremal locus"),
-    "wings_level": ("tab:green", "wings level"),
-    "other": ("0.5", "other"),
-}
-
-
-def _draw_control_set(ax, glider: LoadFactorGlider) -> None:
-    cs = lf.control_set(glider)
-    corridor = cs["corridor"]
-    ax.fill(corridor.x, corridor.y, color="0.9", label="manoeuvre corridor")
-    for key, style in (
-        ("stall", "k-"),
-        ("max_load", "k-"),
-        ("max_speed", "k-"),
-        ("wings_level", "k-"),
-        ("best_glide", "k:"),
-        ("extremal_locus", "b--"),
-    ):
-        c = cs[key]
-        ax.plot(c.x, c.y, style, lw=1.2, label=c.label if key not in ("max_load",) else None)
-    vc, nm = lf.corner(glider)
-    vl, nl = lf.locus_stall_intersection(glider)
-    ax.plot([vc], [nm], "rs", label=f"corner ({vc:.3f}, {nm:g})")
-    ax.plot([vl], [nl], "bo", ms=4, label=f"locus meets stall ({vl:.3f}, {nl:.3f})")
-    ax.set_xlabel("speed v")
-    ax.set_ylabel("load factor n")
 
 
 # ----- 6.3 to 6.10: analysis --------------------------------------------------------------
@@ -67,7 +39,7 @@ def fig6_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     plt = pyplot()
     g = GLIDER
     fig, ax = plt.subplots(figsize=(6, 4.5))
-    _draw_control_set(ax, g)
+    draw_control_set(ax, g)
     ax.set_xlim(0.5, 2.1)
     ax.set_ylim(0.8, 2.2)
     ax.legend(fontsize=7, loc="upper right")
@@ -168,7 +140,7 @@ def fig6_5(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     lams = 2 * g.p1 * lamp
     mins = np.array([hc_minimiser(g, lam, grid) for lam in lams])
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 4))
-    _draw_control_set(a1, g)
+    draw_control_set(a1, g)
     a1.plot(mins[:, 0], mins[:, 1], "ro-", ms=3, label="minimiser of Hc")
     a1.set_xlim(0.5, 2.1)
     a1.set_ylim(0.8, 2.2)
@@ -396,74 +368,15 @@ def solve_example(goal: tuple[float, float, float], scheme: str = "hermite-simps
     return plan(Pose(), Pose(*goal), GLIDER, "altitude", "direct", scheme=scheme)
 
 
-def solution_figure(solution, title: str = "") -> Any:
-    """The figure of `draw_solution` (returned, not saved): (a) v and n against s, (b) the
-    path with start and goal headings, (c) (v, n) over Omega coloured by arc class; lengths in
-    l_ref = V_ref^2 / g, speeds in V_ref; legends below the panels; the title states the
-    problem (after `title`, e.g. the figure's name) and the answer."""
-    from glideplan.plotting import describe_vehicle, mark_pose, pose_text
+def solution_figure(solution: Any, title: str = "") -> Any:
+    """Figs. 6.11-6.13's panels: `glideplan.solution_figures.load_factor_figure`."""
+    from glideplan.solution_figures import load_factor_figure
 
-    plt = pyplot()
-    glider = solution.vehicle
-    ctr = solution.extras["controls"]
-    s, v, n = (np.asarray(ctr[k]) for k in ("s", "v", "n"))
-    labels = np.asarray(ctr["label"])
-    fig = plt.figure(figsize=(13.5, 5.6), layout="constrained")
-    def below(ax: Any) -> dict[str, Any]:
-        """Legend placement 40 pt under the panel's bottom edge (clear of its tick labels
-        and axis label) whatever height the equal aspect leaves the panel."""
-        from matplotlib.transforms import ScaledTranslation
-
-        shift = ScaledTranslation(0.0, -40.0 / 72.0, fig.dpi_scale_trans)
-        return {"loc": "upper center", "bbox_to_anchor": (0.5, 0.0), "borderaxespad": 0.0,
-                "bbox_transform": ax.transAxes + shift}
-
-    a1 = fig.add_subplot(1, 3, 1)
-    a1.plot(s, v, "b-", label="speed v / V_ref")
-    a1.plot(s, n, "r-", label="load factor n")
-    a1.set_xlabel("arc length s / l_ref")
-    a1.set_ylabel("v / V_ref, n")
-    a1.grid(True, lw=0.4, alpha=0.5)
-    a1.legend(fontsize=8, ncol=2, **below(a1))
-    a1.set_title("(a) controls", fontsize=10)
-    a2 = fig.add_subplot(1, 3, 2)
-    smp = solution.path.sample(400)
-    a2.plot(smp.x, smp.y, "k-", lw=2.0,
-            label=f"optimal {solution.word or '-'} ({solution.family or '-'}), "
-                  f"{solution.cost:.5g} l_ref")
-    span = float(max(np.ptp(smp.x), np.ptp(smp.y), 1e-9))
-    mark_pose(a2, solution.start, 0.1 * span, colour="tab:green", marker="o",
-              label="start (heading)")
-    mark_pose(a2, solution.goal, 0.1 * span, colour="tab:red", marker="s",
-              label="goal (heading)")
-    a2.margins(0.08)
-    a2.set_aspect("equal", adjustable="box")
-    a2.set_xlabel("x / l_ref")
-    a2.set_ylabel("y / l_ref")
-    a2.grid(True, lw=0.4, alpha=0.5)
-    a2.legend(fontsize=8, ncol=1, **below(a2))
-    a2.set_title("(b) path", fontsize=10)
-    a3 = fig.add_subplot(1, 3, 3)
-    _draw_control_set(a3, glider)
-    for cls, (color, name) in _CLASS_STYLE.items():
-        m = labels == cls
-        if np.any(m):
-            a3.plot(v[m], n[m], "o", color=color, ms=3, label=f"path: {name}")
-    a3.set_xlim(0.5, 2.1)
-    a3.set_ylim(0.8, 2.2)
-    a3.set_xlabel("speed v / V_ref")
-    a3.legend(fontsize=7, ncol=2, **below(a3))
-    a3.set_title("(c) controls over Omega", fontsize=10)
-    problem = (
-        f"Minimum altitude loss, {describe_vehicle(glider)}; lengths in l_ref = V_ref^2 / g\n"
-        f"start {pose_text(solution.start, 'l_ref')} -> goal {pose_text(solution.goal, 'l_ref')}"
-        f"\noptimal word {solution.word or '-'}, family {solution.family or '-'}, "
-        f"altitude loss {solution.cost:.5g} l_ref, path length {solution.path.length:.4g} l_ref"
-    )
-    fig.suptitle(f"{title}\n{problem}" if title else problem, fontsize=10, x=0.01, ha="left")
-    return fig
+    return load_factor_figure(solution, title)
 
 
-def draw_solution(solution, filename: str | pathlib.Path, title: str = "") -> None:
+def draw_solution(solution: Any, filename: str | pathlib.Path, title: str = "") -> None:
     """Fig 6.11-style panels (`solution_figure`) written to `filename` (PNG)."""
-    save_png(solution_figure(solution, title), filename, crop=True)
+    from glideplan.solution_figures import draw_load_factor
+
+    draw_load_factor(solution, filename, title)

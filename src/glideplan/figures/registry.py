@@ -292,7 +292,11 @@ def get_figure(figure_id: str) -> FigureSpec:
 
 
 def run_figure(spec: FigureSpec, out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
-    """Run one figure function into `out_dir`."""
+    """Run one figure function into `out_dir` (on Matplotlib's file backend, Agg: the one
+    place the library chooses a backend, since `reproduce` only makes files)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
     out_dir.mkdir(parents=True, exist_ok=True)
     report = spec.function(out_dir, full=full)
     if not isinstance(report, FigureReport):

@@ -1,8 +1,11 @@
 """Interchange files of a planned mission: GeoJSON, KML, GPX (track + waypoints) and CSV.
 
 GeoJSON (RFC 7946) and KML put longitude first. Each file carries the mission waypoints
-(points with name and compass heading), the straight-leg waypoint list (a route) and the
-dense planned track.
+(points with name and compass heading), the straight-leg waypoint list (a route, with its
+waypoint names: GeoJSON property `names`, KML ExtendedData `names`, GPX `<name>`, a CSV
+column) and the dense planned track. `read_route` reads the straight-leg list back, names
+included. Lines crossing the antimeridian are split there in GeoJSON and KML
+(`formats.tracks`, RFC 7946 section 3.1.9); GPX and CSV give longitudes in [-180, 180).
 """
 
 from __future__ import annotations
@@ -16,6 +19,8 @@ from xml.sax.saxutils import escape
 
 import numpy as np
 
+from glideplan.formats.antimeridian import wrap_longitude
+from glideplan.formats.tracks import geojson_line, kml_line, vertex_names
 from glideplan.missions.field_mission import FieldMission
 from glideplan.missions.plan import MissionPlan, Track
 from glideplan.missions.straight_legs import StraightLegList
@@ -41,12 +46,8 @@ def _latlon(plan: MissionPlan | FieldMission, legs: StraightLegList, track: Trac
     assert r.lat is not None and r.lon is not None and legs.lat is not None
     assert legs.lon is not None and r.projection is not None
     lat, lon = r.projection.to_geographic(track.x, track.y)
-    return _LatLon(r.lat, r.lon, legs.lat, legs.lon, lat, lon)
-
-
-def _lonlat_pairs(lon: np.ndarray, lat: np.ndarray) -> list[list[float]]:
-    """GeoJSON positions [lon, lat] (degrees) as plain floats."""
-    return [[float(a), float(b)] for a, b in zip(lon, lat, strict=True)]
+    return _LatLon(r.lat, wrap_longitude(r.lon), legs.lat, wrap_longitude(legs.lon), lat,
+                   wrap_longitude(lon))
 
 
 def write_geojson(
@@ -66,24 +67,19 @@ def write_geojson(
     ]
     feats.append({
         "type": "Feature",
-        "geometry": {"type": "LineString",
-                     "coordinates": _lonlat_pairs(g.legs_lon, g.legs_lat)},
+        "geometry": geojson_line(g.legs_lat, g.legs_lon),
         "properties": {"name": "straight legs", "kind": "straight_legs",
-                       "max_deviation_m": legs.max_deviation_m},
+                       "max_deviation_m": legs.max_deviation_m,
+                       "names": vertex_names(g.legs_lat, g.legs_lon, legs.names)},
     })
     feats.append({
         "type": "Feature",
-        "geometry": {"type": "LineString",
-                     "coordinates": _lonlat_pairs(g.track_lon, g.track_lat)},
+        "geometry": geojson_line(g.track_lat, g.track_lon),
         "properties": {"name": "track", "kind": "track",
                        "length_m": plan.total_length_m, "duration_s": plan.total_duration_s},
     })
     path.write_text(json.dumps({"type": "FeatureCollection", "features": feats}, indent=1))
     return path
-
-
-def _kml_coords(lon: np.ndarray, lat: np.ndarray) -> str:
-    return " ".join(f"{a:.9f},{b:.9f},0" for a, b in zip(lon, lat, strict=True))
 
 
 def write_kml(
@@ -109,15 +105,15 @@ def write_kml(
             f"<Point><coordinates>{g.lon[i]:.9f},{g.lat[i]:.9f},0</coordinates></Point>"
             "</Placemark>"
         )
+    names = json.dumps(vertex_names(g.legs_lat, g.legs_lon, legs.names), ensure_ascii=False)
     parts.append(
-        "<Placemark><name>straight legs</name><styleUrl>#legs</styleUrl><LineString>"
-        f"<tessellate>1</tessellate><coordinates>{_kml_coords(g.legs_lon, g.legs_lat)}"
-        "</coordinates></LineString></Placemark>"
+        "<Placemark><name>straight legs</name><styleUrl>#legs</styleUrl>"
+        f'<ExtendedData><Data name="names"><value>{escape(names)}</value></Data>'
+        f"</ExtendedData>{kml_line(g.legs_lat, g.legs_lon)}</Placemark>"
     )
     parts.append(
-        "<Placemark><name>track</name><styleUrl>#track</styleUrl><LineString>"
-        f"<tessellate>1</tessellate><coordinates>{_kml_coords(g.track_lon, g.track_lat)}"
-        "</coordinates></LineString></Placemark>"
+        "<Placemark><name>track</name><styleUrl>#track</styleUrl>"
+        f"{kml_line(g.track_lat, g.track_lon)}</Placemark>"
     )
     parts += ["</Document>", "</kml>", ""]
     path.write_text("\n".join(parts), encoding="utf-8")
@@ -162,9 +158,10 @@ def write_csv(
     with path.open("w", newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)
         if legs.lat is not None and legs.lon is not None:
+            lon = wrap_longitude(legs.lon)
             w.writerow(["name", "lat", "lon", "heading_deg", "mission"])
             for i, name in enumerate(legs.names):
-                w.writerow([name, f"{legs.lat[i]:.9f}", f"{legs.lon[i]:.9f}",
+                w.writerow([name, f"{legs.lat[i]:.9f}", f"{lon[i]:.9f}",
                             f"{legs.bearing_deg[i]:.4f}", int(legs.mission[i])])
         else:
             w.writerow(["name", "x", "y", "heading_deg", "mission"])

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -31,6 +31,7 @@ from glideplan.errors import InvalidParameterError
 from glideplan.geodesy import LocalProjection, compass_to_heading
 from glideplan.missions.plan import LegTotals, Track
 from glideplan.missions.route import Route
+from glideplan.solution import Status
 from glideplan.validation import check_positive
 
 __all__ = ["FieldLeg", "FieldMission", "plan_mission_in_field"]
@@ -56,10 +57,21 @@ class FieldLeg:
     def ok(self) -> bool:
         return bool(self.result.ok)
 
+    @property
+    def status_text(self) -> str:
+        """The leg's route status and message."""
+        res = self.result
+        return str(res.status) + (f": {res.message}" if getattr(res, "message", "") else "")
+
 
 @dataclass(frozen=True, eq=False)
 class FieldMission(LegTotals):
-    """A mission routed through a field; the interface of `MissionPlan` the exporters use."""
+    """A mission routed through a field; the interface of `MissionPlan` the exporters use.
+
+    An `Outcome` (`glideplan.results`): status SOLVED or UNREACHABLE (a leg is).
+    """
+
+    failure_status: ClassVar[Status] = Status.UNREACHABLE
 
     route: Route
     headings: NDArray[np.float64]
@@ -110,8 +122,8 @@ class FieldMission(LegTotals):
             legs.append(np.full(x.size - first, leg.index))
             ts.append(t0 + np.asarray(res.t, dtype=float)[first:])
             t0 += leg.duration_s
-        return Track(np.concatenate(xs), np.concatenate(ys), np.concatenate(hs),
-                     np.concatenate(legs).astype(np.intp), np.concatenate(ts))
+        return Track(t=np.concatenate(ts), x=np.concatenate(xs), y=np.concatenate(ys),
+                     heading=np.concatenate(hs), leg=np.concatenate(legs).astype(np.intp))
 
     def _flyable_track(self, spacing: float) -> Track:
         proj = self.route.projection
@@ -138,14 +150,16 @@ class FieldMission(LegTotals):
             legs.append(np.full(x.size - first, leg.index))
             ts.append(t0 + t[first:])
             t0 += leg.duration_s
-        return Track(np.concatenate(xs), np.concatenate(ys), np.concatenate(hs),
-                     np.concatenate(legs).astype(np.intp), np.concatenate(ts))
+        return Track(t=np.concatenate(ts), x=np.concatenate(xs), y=np.concatenate(ys),
+                     heading=np.concatenate(hs), leg=np.concatenate(legs).astype(np.intp))
 
     def to_dict(self) -> dict[str, Any]:
         r = self.route
         assert r.lat is not None and r.lon is not None
         return {
-            "status": "solved" if self.ok else "unreachable",
+            "status": self.status.value,
+            "message": self.message,
+            "warnings": list(self.warnings),
             "objective": "time",
             "speed": self.speed,
             "radius": self.radius,

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
@@ -45,6 +46,9 @@ __all__ = [
 ]
 
 _GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
+
+Progress = Callable[[str, int, int], None]
+"""A progress report: phase name, steps done, steps in all."""
 
 
 class LegCost(Protocol):
@@ -206,7 +210,7 @@ def _candidates(
 
 
 def _dynamic_programme(
-    cost: LegCost, sets: list[NDArray[np.float64]]
+    cost: LegCost, sets: list[NDArray[np.float64]], progress: Progress | None = None
 ) -> tuple[NDArray[np.float64], float]:
     """Exact minimum over the candidate sets (forward values, backward choice)."""
     value = np.zeros(sets[0].size)
@@ -216,6 +220,8 @@ def _dynamic_programme(
         arg = np.argmin(total, axis=0)
         value = total[arg, np.arange(arg.size)]
         back.append(arg)
+        if progress is not None:
+            progress("headings", i + 1, len(sets) - 1)
     j = int(np.argmin(value))
     best = float(value[j])
     h = np.empty(len(sets))
@@ -286,24 +292,33 @@ def optimise_headings(
     refine: bool = True,
     include_heuristics: bool = True,
     sweeps: int = 3,
+    progress: Progress | None = None,
 ) -> HeadingPlan:
-    """Headings minimising the total leg cost: DP over K candidates, then local refinement."""
+    """Headings minimising the total leg cost: DP over K candidates, then local refinement.
+
+    `progress("headings", done, total)` is called after each leg of the DP, `progress("refine",
+    0 | 1, 1)` before and after the refinement (for a progress bar).
+    """
     t0 = time.perf_counter()
     extra = []
     if include_heuristics:
         extra = [f(points, fixed) for f in (point_at_next_headings, bisector_headings,
                                             alternating_headings)]
     sets = _candidates(fixed, k, extra)
-    h, dp_total = _dynamic_programme(cost, sets)
+    h, dp_total = _dynamic_programme(cost, sets, progress)
     t1 = time.perf_counter()
     free = np.nonzero(np.isnan(fixed))[0]
     n_sweeps = 0
     total, legs = _chain_cost(cost, h)
     if refine and free.size:
+        if progress is not None:
+            progress("refine", 0, 1)
         cheap = isinstance(cost, StillAirCost)  # the wind times cost far more per call
         h, total, legs, n_sweeps = _refine(
             cost, h, free, TWO_PI / k, sweeps if cheap else 1,
             max_iter=200 if cheap else 15, golden_iters=30 if cheap else 12)
+        if progress is not None:
+            progress("refine", 1, 1)
     t2 = time.perf_counter()
     stats = {
         "headings_per_waypoint": k,

@@ -10,8 +10,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -27,7 +28,8 @@ from glideplan.missions.headings import (
 )
 from glideplan.missions.route import Route
 from glideplan.path import Path
-from glideplan.solution import Solution
+from glideplan.solution import Solution, Status
+from glideplan.track import Track
 from glideplan.validation import check_positive
 
 __all__ = ["MissionLeg", "MissionPlan", "Track", "plan_mission"]
@@ -55,23 +57,48 @@ class MissionLeg:
     def word(self) -> str:
         return self.solution.word
 
+    @property
+    def ok(self) -> bool:
+        return self.solution.ok
 
-@dataclass(frozen=True, eq=False)
-class Track:
-    """Dense samples of the planned track: local x, y (m), heading (rad), leg index, time (s)."""
-
-    x: NDArray[np.float64]
-    y: NDArray[np.float64]
-    heading: NDArray[np.float64]
-    leg: NDArray[np.intp]
-    t: NDArray[np.float64]
+    @property
+    def status_text(self) -> str:
+        """The leg's status and message (`Solution`)."""
+        sol = self.solution
+        return sol.status.value + (f": {sol.message}" if sol.message else "")
 
 
 class LegTotals:
-    """Totals over a mission's `legs` (each with `length_m`, `duration_s`) and its `headings`."""
+    """Totals over a mission's `legs` (each with `length_m`, `duration_s`, `ok`) and its
+    `headings`, and the `Outcome` contract's status, message and plot shared by the mission
+    results (`MissionPlan`, `glideplan.missions.FieldMission`)."""
 
     legs: tuple[Any, ...]
     headings: NDArray[np.float64]
+    route: Route
+    # the status of a mission that is not solved (a leg failed)
+    failure_status: ClassVar[Status] = Status.FAILED
+    warnings: tuple[str, ...] = ()
+
+    @property
+    def ok(self) -> bool:
+        return all(leg.ok for leg in self.legs)
+
+    @property
+    def status(self) -> Status:
+        """SOLVED when every leg is, else `failure_status` (FAILED, or UNREACHABLE in a field)."""
+        return Status.SOLVED if self.ok else self.failure_status
+
+    @property
+    def message(self) -> str:
+        """One line: the legs and totals, or the first leg that failed and why."""
+        names = self.route.names
+        for leg in self.legs:
+            if not leg.ok:
+                why = getattr(leg, "status_text", "")
+                return f"leg {leg.index + 1} ({names[leg.start]} -> {names[leg.end]}): {why}"
+        return (f"{len(self.legs)} legs, {self.total_length_m:.0f} m, "
+                f"{self.total_duration_s:.0f} s")
 
     @property
     def total_length_m(self) -> float:
@@ -86,10 +113,19 @@ class LegTotals:
         """Compass bearing (deg) at each waypoint, chosen or given."""
         return [float(b) for b in np.atleast_1d(heading_to_compass(self.headings))]
 
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """The mission figure (`glideplan.missions.plot.plot_mission`); returns the figure."""
+        from glideplan.missions.plot import plot_mission
+
+        return plot_mission(self, ax=ax, **kwargs)  # type: ignore[arg-type]
+
 
 @dataclass(frozen=True, eq=False)
 class MissionPlan(LegTotals):
-    """A planned mission: the route, chosen headings (rad), verified legs and statistics."""
+    """A planned mission: the route, chosen headings (rad), verified legs and statistics.
+
+    An `Outcome` (`glideplan.results`): status SOLVED (every leg verified) or FAILED.
+    """
 
     route: Route
     headings: NDArray[np.float64]
@@ -100,10 +136,7 @@ class MissionPlan(LegTotals):
     wind: tuple[float, float] | None  # (speed m/s, compass direction it blows FROM, deg)
     heading_plan: HeadingPlan
     stats: dict[str, Any] = field(default_factory=dict)
-
-    @property
-    def ok(self) -> bool:
-        return all(leg.solution.ok for leg in self.legs)
+    warnings: tuple[str, ...] = ()
 
     def track_spacing(self, tolerance: float) -> float:
         """Sample spacing (m) whose arcs leave their chords by <= 1 % of `tolerance`.
@@ -130,16 +163,16 @@ class MissionPlan(LegTotals):
             legs.append(np.full(n - first, leg.index))
             ts.append(t0 + s.t[first:])
             t0 += path.duration
-        return Track(
-            np.concatenate(xs), np.concatenate(ys), np.concatenate(hs),
-            np.concatenate(legs).astype(np.intp), np.concatenate(ts),
-        )
+        return Track(t=np.concatenate(ts), x=np.concatenate(xs), y=np.concatenate(ys),
+                     heading=np.concatenate(hs), leg=np.concatenate(legs).astype(np.intp))
 
     def to_dict(self) -> dict[str, Any]:
         """The mission as JSON data (without the track or files: the CLI adds those)."""
         r = self.route
         return {
-            "status": "solved" if self.ok else "failed",
+            "status": self.status.value,
+            "message": self.message,
+            "warnings": list(self.warnings),
             "objective": self.objective,
             "speed": self.speed,
             "radius": self.radius,
@@ -189,12 +222,15 @@ def plan_mission(
     headings: int | None = None,
     precision: str = "single",
     refine: bool = True,
+    progress: Callable[[str, int, int], None] | None = None,
 ) -> MissionPlan:
     """Plan `route` for a vehicle of `speed` (m/s) and minimum turn `radius` (m).
 
     `objective` "length" (m) or "time" (s); `wind` = (speed m/s, compass direction it blows
     FROM, deg) plans time-optimal convected Dubins legs (the objective must be "time").
     `headings` = K candidates per free waypoint (default 360 in still air, 36 in a wind).
+    `progress(phase, done, total)` reports the long phases ("headings": the DP over the
+    legs; "legs": planning and verifying each leg) for a progress bar.
     """
     from glideplan.planning import plan
     from glideplan.pose import Pose
@@ -214,7 +250,7 @@ def plan_mission(
     if wind is not None:
         if objective != "time":
             raise InvalidParameterError(
-                "objective", objective, "with --wind the planner minimises time: use time"
+                "objective", objective, "with a wind the planner minimises time: use time"
             )
         u, v = wind_from_to_vector(float(wind[0]), float(wind[1]))
         w = math.hypot(u, v)
@@ -224,7 +260,7 @@ def plan_mission(
         vehicle = DubinsCar(speed=speed, turn_radius=radius)
         cost = StillAirCost(pts, radius, 1.0 if objective == "length" else 1.0 / speed,
                             precision)
-    hp = optimise_headings(cost, pts, route.headings, k, refine=refine)
+    hp = optimise_headings(cost, pts, route.headings, k, refine=refine, progress=progress)
     h = hp.headings
     t0 = time.perf_counter()
     legs = []
@@ -237,10 +273,14 @@ def plan_mission(
         )
         if sol.path is None:
             legs.append(MissionLeg(i, i, i + 1, sol, math.nan, math.nan))
+            if progress is not None:
+                progress("legs", i + 1, route.n - 1)
             continue
         legs.append(
             MissionLeg(i, i, i + 1, sol, _ground_length(sol.path), float(sol.path.duration))
         )
+        if progress is not None:
+            progress("legs", i + 1, route.n - 1)
     errors = [leg.solution.endpoint_error.max for leg in legs if leg.solution.endpoint_error]
     stats: dict[str, Any] = dict(hp.stats)
     stats.update(
@@ -260,5 +300,8 @@ def plan_mission(
             "planned_cost": hp.total,
         }
     )
-    return MissionPlan(route, h, tuple(legs), objective, speed, radius,
-                       None if wind is None else (float(wind[0]), float(wind[1])), hp, stats)
+    return MissionPlan(
+        route=route, headings=h, legs=tuple(legs), objective=objective, speed=speed,
+        radius=radius, wind=None if wind is None else (float(wind[0]), float(wind[1])),
+        heading_plan=hp, stats=stats,
+    )

@@ -40,16 +40,17 @@ def _ground_scale_axes(ax: Any, lon: np.ndarray, lat: np.ndarray, origin: str) -
 
 
 def plot_mission(
-    plan: MissionPlan | FieldMission, legs: StraightLegList | None = None
+    plan: MissionPlan | FieldMission, legs: StraightLegList | None = None, *, ax: Any = None
 ) -> Any:
     """A figure of `plan`: axes in degrees (lon, lat) at equal ground scale with km east /
-    north of the first waypoint on the top and right axes for geographic routes, else metres."""
-    import matplotlib
-
-    matplotlib.use("Agg")
+    north of the first waypoint on the top and right axes for geographic routes, else metres.
+    Drawn on `ax` when given (else a new figure); returns the figure."""
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(10, 7))
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(10, 7))
+    else:
+        fig = ax.get_figure()
     r = plan.route
     track = plan.track()
     geo = r.projection is not None

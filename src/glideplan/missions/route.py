@@ -26,7 +26,8 @@ class Route:
     """Ordered waypoints: names, local (x, y) in m, headings in rad (NaN = free).
 
     `lat`, `lon` (degrees) and `projection` are set for a geographic route, None for a local
-    one; `source` names the file the route came from (for error messages).
+    one; `source` names the file the route came from (for error messages); `warnings` what
+    its reader read despite a flaw (e.g. a GeoJSON feature without geometry, skipped).
     """
 
     names: tuple[str, ...]
@@ -40,6 +41,7 @@ class Route:
     roundtrip_error_deg: float = 0.0
     source: str = "route"
     labels: tuple[str, ...] = field(default=())
+    warnings: tuple[str, ...] = field(default=())  # what the file reader read despite a flaw
 
     def __post_init__(self) -> None:
         n = len(self.names)

@@ -13,7 +13,8 @@ line to the virtual target) in steps of
 left end: L_W jumps by 2 pi where an arc wraps) changes sign; as in the planner, a root must
 make F_W itself vanish (a jump of L_W across zero is not an arrival), else the scan goes on.
 A root closer than `step` to another may be missed, which only overestimates the time; the
-final legs are planned (and verified) with the planner itself.
+final legs are planned (and verified) with the planner itself. F_W and the crossing test are
+the planner's own (`glideplan.planners.wind_kernel`).
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from glideplan.planners.dubins import dubins_word_lengths
+from glideplan.planners.wind_kernel import crossing_cells, word_residuals
 from glideplan.pose import TWO_PI
 
 __all__ = ["convected_times"]
@@ -33,10 +34,7 @@ def _f(
     s: NDArray[np.float64], g: NDArray[np.float64], w: NDArray[np.float64], tau: NDArray[np.float64]
 ) -> NDArray[np.float64]:
     """F_W(tau) for all six words: `(m, 6)` (NaN where a word does not exist)."""
-    goal = g.copy()
-    goal[:, 0] -= w[0] * tau
-    goal[:, 1] -= w[1] * tau
-    return dubins_word_lengths(s, goal, 1.0) - tau[:, None]
+    return word_residuals(s, g, w, tau)
 
 
 def convected_times(
@@ -107,12 +105,7 @@ def _scan(
     while active.size:
         t_next = np.minimum(tau + step, hi)
         f_next = _f(s[active], g[active], w, t_next)
-        with np.errstate(invalid="ignore"):
-            jumps = np.round((f_next - f_prev) / TWO_PI)
-            cross = (f_prev > 0.0) & ((f_next - TWO_PI * jumps <= 0.0) | (f_next <= 0.0))
-            # a word that ends or starts inside the cell: a root may lie next to its boundary
-            cross |= (f_prev > 0.0) & np.isnan(f_next)
-            cross |= np.isnan(f_prev) & (f_next <= 0.0)
+        cross = crossing_cells(f_prev, f_next)
         hit = np.any(cross, axis=1)
         out_rows.append(active[hit])
         out_a.append(tau[hit])

@@ -23,7 +23,14 @@ from numpy.typing import ArrayLike
 
 from glideplan.errors import InvalidParameterError
 from glideplan.path import Path
-from glideplan.planners.dubins_kernel import flat_word_totals, mod_2pi_snapped, segment_table
+from glideplan.planners.dubins_kernel import (
+    DIRECTIONS,
+    WORDS,
+    flat_word_totals,
+    mod_2pi_snapped,
+    segment_table,
+    shortest_word,
+)
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import TWO_PI as TWO_PI  # re-exported: callers use dubins.TWO_PI
 from glideplan.pose import Pose
@@ -44,17 +51,7 @@ __all__ = [
     "word_directions",
 ]
 
-WORDS: tuple[str, ...] = ("LSL", "LSR", "RSL", "RSR", "RLR", "LRL")
-"""The Dubins candidate set (eq. 2.11); indices into it are the `word_index` of results."""
-
-_DIRECTIONS: dict[str, tuple[int, int, int]] = {
-    "LSL": (1, 0, 1),
-    "LSR": (1, 0, -1),
-    "RSL": (-1, 0, 1),
-    "RSR": (-1, 0, -1),
-    "RLR": (-1, 1, -1),
-    "LRL": (1, -1, 1),
-}
+_DIRECTIONS = DIRECTIONS
 
 
 def word_directions(word: str) -> tuple[int, int, int]:
@@ -190,11 +187,7 @@ def dubins_shortest(start: ArrayLike, goal: ArrayLike, radius: ArrayLike = 1.0) 
     Returns `DubinsBatch(length (...), word_index (...), segment_lengths (..., 3))` with
     lengths in the units of the positions; ties go to the first word in `WORDS`.
     """
-    table = dubins_segment_lengths(start, goal, radius)
-    totals = np.where(np.isnan(table[..., 0]), np.inf, table.sum(axis=-1))
-    idx = np.argmin(totals, axis=-1)
-    seg = np.take_along_axis(table, idx[..., None, None], axis=-2)[..., 0, :]
-    length = np.take_along_axis(totals, idx[..., None], axis=-1)[..., 0]
+    length, idx, seg = shortest_word(dubins_segment_lengths(start, goal, radius))
     return DubinsBatch(length=length, word_index=idx, segment_lengths=seg)
 
 

@@ -29,17 +29,33 @@ import numpy as np
 from glideplan.pose import TWO_PI
 
 __all__ = [
+    "DIRECTIONS",
     "MATH",
     "NUMPY32",
     "NUMPY64",
+    "WORDS",
     "WORD_FUNCTIONS",
     "Ops",
     "mod_2pi_snapped",
     "ops_for",
     "segment_table",
+    "shortest_word",
     "word_segments",
     "word_totals",
 ]
+
+WORDS: tuple[str, ...] = ("LSL", "LSR", "RSL", "RSR", "RLR", "LRL")
+"""The Dubins candidate set (eq. 2.11); indices into it are the `word_index` of results."""
+
+DIRECTIONS: dict[str, tuple[int, int, int]] = {
+    "LSL": (1, 0, 1),
+    "LSR": (1, 0, -1),
+    "RSL": (-1, 0, 1),
+    "RSR": (-1, 0, -1),
+    "RLR": (-1, 1, -1),
+    "LRL": (1, -1, 1),
+}
+"""Turn directions (+1 left, -1 right, 0 straight) of each word's three segments."""
 
 _INV_2PI = 1.0 / TWO_PI
 _CHUNK = 32768
@@ -250,6 +266,16 @@ def segment_table(x: np.ndarray, y: np.ndarray, psi: np.ndarray) -> np.ndarray:
     out[..., [0, 2]] = turns
     np.maximum(out, 0.0, out=out, where=~np.isnan(out))
     return out
+
+
+def shortest_word(table: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The optimal word of each query of a `segment_table` `(..., 6, 3)` (ties to the first
+    word in `WORDS`): total length `(...)`, word index `(...)`, segment lengths `(..., 3)`."""
+    totals = np.where(np.isnan(table[..., 0]), np.inf, table.sum(axis=-1))
+    idx = np.argmin(totals, axis=-1)
+    seg = np.take_along_axis(table, idx[..., None, None], axis=-2)[..., 0, :]
+    length = np.take_along_axis(totals, idx[..., None], axis=-1)[..., 0]
+    return length, idx, seg
 
 
 def _total(t: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarray:

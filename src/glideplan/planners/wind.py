@@ -11,7 +11,8 @@ smallest root of
     F_W(T) = L_W(start -> g(T)) - v T            (REFERENCE_NOTES §3.4)
 
 with L_W the air-frame length of W (F_W(0) > 0). T* = min_W T_W. The roots are bracketed on a
-grid of T (one vectorised call of the Dubins kernel `word_totals` for all words) and polished with
+grid of T (`wind_kernel`: F_W of all words in one vectorised call of the Dubins kernel, and the
+crossing test the mission costs share) and polished with
 Brent's method on a scalar, independent implementation of the six words (REFERENCE_NOTES
 §4.2, the (alpha, beta) form). A bracket across one of L_W's 2 pi R jumps (an arc wrapping
 through a full turn) is not a root and is discarded.
@@ -44,7 +45,8 @@ from glideplan.planners.dubins import (
     feasible_radius,
     word_directions,
 )
-from glideplan.planners.dubins_kernel import NUMPY64, word_segments, word_totals
+from glideplan.planners.dubins_kernel import word_segments
+from glideplan.planners.wind_kernel import crossing_cells, word_residuals
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import TWO_PI, Pose
 from glideplan.segments import DriftingStraight, Segment, TrochoidArc
@@ -267,23 +269,16 @@ def _first_roots(
         if tpq is not None and sum(tpq) <= 1e-12:
             taus[k], tpqs[k] = 0.0, (0.0, 0.0, 0.0)
     lo, hi, count = _root_window(goal, wind)
-    psi = float(NUMPY64.mod(psi1))
-    psi_sc = (psi, math.sin(psi), math.cos(psi))
+    origin, target = np.zeros((1, 3)), np.array([[x1, y1, psi1]])
+    w = np.asarray(wind, dtype=float)
     open_words = [k for k in range(6) if taus[k] != 0.0]
     for first in range(0, count - 1, _CHUNK):
         idx = np.arange(first, min(count, first + _CHUNK + 1))
         grid = lo + (hi - lo) * idx / (count - 1)
-        # the six words' lengths to the virtual targets g(grid), one vectorised kernel call
-        f = np.stack(word_totals(x1 - wind[0] * grid, y1 - wind[1] * grid, *psi_sc, NUMPY64), -1)
-        f[np.isinf(f)] = np.nan
-        f -= grid[:, None]  # (n, 6)
-        fa, fb = f[:-1], f[1:]
-        with np.errstate(invalid="ignore"):
-            # L_W jumps by multiples of 2 pi where an arc wraps through a full turn; within a
-            # cell the branch through the cell's left end is F unwrapped relative to F(a).
-            jumps = np.round((fb - fa) / TWO_PI)
-            cand = (fa > 0.0) & ((fb - TWO_PI * jumps <= 0.0) | (fb <= 0.0) | np.isnan(fb))
-            cand |= np.isnan(fa) & (fb <= 0.0)
+        # F_W of the six words at the virtual targets g(grid) (n, 6), and the cells where
+        # each may cross zero: the kernel the mission costs share (`wind_kernel`)
+        f = word_residuals(origin, target, w, grid)
+        cand = crossing_cells(f[:-1], f[1:])
         for k in list(open_words):
             for i in np.nonzero(cand[:, k])[0]:
                 root, skip = _polish(k, float(grid[i]), float(grid[i + 1]), goal, wind)

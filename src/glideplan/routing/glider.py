@@ -26,9 +26,12 @@ from numpy.typing import NDArray
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import FlowField
 from glideplan.geodesy import LocalProjection
+from glideplan.results import OutcomeBase
 from glideplan.routing.route import RouteResult
 from glideplan.routing.verify import local_current
 from glideplan.simulation.disturbances import VelocityFunction
+from glideplan.solution import Status
+from glideplan.track import Track
 
 __all__ = ["FlyablePath", "GliderFollow", "TrochoidChain", "flyable_path", "follow_route",
            "trochoid_chain"]
@@ -37,10 +40,15 @@ FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True, eq=False)
-class GliderFollow:
-    """Outcome of building and following the flyable path (m, s)."""
+class GliderFollow(OutcomeBase):
+    """Outcome of building and following the flyable path (m, s): an `Outcome`.
 
-    status: str
+    status: SOLVED (crossed the goal's finish line), LOST (stopped on land, off the field or
+    timed out; `message` says which) or INFEASIBLE (no feasible radius: eps >= 1). `track`:
+    the simulated vehicle, geographic, heading its ground course.
+    """
+
+    status: Status
     radius_m: float
     disturbance_ratio: float
     feasible_radius_m: float | None
@@ -51,12 +59,13 @@ class GliderFollow:
     rms_cross_track_m: float | None = None
     final_distance_m: float | None = None
     message: str = ""
-    track: dict[str, Any] = field(default_factory=dict)
+    track: Track = field(default_factory=Track.empty)
     flyable: FlyablePath | None = None
+    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         return {
-            "status": self.status,
+            "status": self.status.value,
             "radius_m": self.radius_m,
             "disturbance_ratio": self.disturbance_ratio,
             "feasible_radius_m": self.feasible_radius_m,
@@ -67,8 +76,16 @@ class GliderFollow:
             "rms_cross_track_m": self.rms_cross_track_m,
             "final_distance_m": self.final_distance_m,
             "message": self.message,
-            "track": self.track,
+            "warnings": list(self.warnings),
+            "track": self.track.to_dict() if self.track.size else {},
         }
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """The followed track (lon, lat; deg)."""
+        from glideplan.plotting import plot_track
+
+        return plot_track(self.track, ax, label=f"glider following, R0 = {self.radius_m:.4g} m",
+                          title=f"following: {self.status.value}", **kwargs)
 
 
 def _waypoints(x: FloatArray, y: FloatArray, spacing: float) -> FloatArray:
@@ -180,7 +197,8 @@ def follow_route(
     fp = flyable_path(result, field_, speed, radius, spacing, end_course)
     eps, r_f, proj = fp.disturbance_ratio, fp.feasible_radius_m, fp.proj
     if fp.path is None:
-        return GliderFollow("infeasible", radius, eps, None, message=fp.message, flyable=fp)
+        return GliderFollow(status=Status.INFEASIBLE, radius_m=radius, disturbance_ratio=eps,
+                            feasible_radius_m=None, message=fp.message, flyable=fp)
     path_length = fp.length_m
     t0 = result.depart_s
     settings = FollowerSettings(
@@ -199,9 +217,9 @@ def follow_route(
     e = e[np.isfinite(e)] if np.isfinite(e).any() else np.zeros(1)
     every = np.unique(np.r_[np.arange(0, steps + 1, 20), steps])
     lat, lon = proj.to_geographic(xy[every, 0], xy[every, 1])
-    status, message = "followed", ""
+    status, message = Status.SOLVED, "followed to the goal's finish line"
     if not res.crossed[0]:
-        status = "lost"
+        status = Status.LOST
         if res.stopped is not None and res.stopped[0]:
             message = _why_stopped(field_, proj, t0 + steps * settings.dt, xy[-1])
         else:
@@ -209,10 +227,15 @@ def follow_route(
     end = fp.path.end[0]
     final = float(res.error[0]) if res.crossed[0] else math.hypot(
         xy[-1, 0] - end[0], xy[-1, 1] - end[1])
+    px, py = xy[every, 0], xy[every, 1]
+    course = (np.arctan2(np.gradient(py), np.gradient(px)) if every.size > 1
+              else np.zeros(every.size))
     return GliderFollow(
-        status, radius, eps, r_f, fp.pieces, path_length, float(res.time[0]),
-        float(e.max()), float(np.sqrt(np.mean(e**2))), final, message,
-        {"t": (every * settings.dt).tolist(), "lat": lat.tolist(), "lon": lon.tolist()},
+        status=status, radius_m=radius, disturbance_ratio=eps, feasible_radius_m=r_f,
+        legs=fp.pieces, path_length_m=path_length, duration_s=float(res.time[0]),
+        max_cross_track_m=float(e.max()), rms_cross_track_m=float(np.sqrt(np.mean(e**2))),
+        final_distance_m=final, message=message,
+        track=Track(every * settings.dt, px, py, course, lat=lat, lon=lon),
         flyable=fp,
     )
 
@@ -241,7 +264,7 @@ def _why_stopped(field_: FlowField, proj: LocalProjection, t: float, xy: FloatAr
 
 
 @dataclass(frozen=True, eq=False)
-class TrochoidChain:
+class TrochoidChain(OutcomeBase):
     """The route's flyable path from trochoid pieces (m, s): each piece the minimum-time path of
     the Dubins car in the piece's mean current (`planners.wind.convected_dubins`, dissertation
     §3.2), planned with R0' = R0 (1 + eps')^2 for the residual eps' = max |c - c_mean| / V.
@@ -252,7 +275,7 @@ class TrochoidChain:
     field itself (`routing.verify.integrate_headings`), distance from the route's end.
     """
 
-    status: str
+    status: Status
     residual_ratio: float
     feasible_radius_m: float | None
     pieces: int = 0
@@ -261,11 +284,21 @@ class TrochoidChain:
     max_piece_error_m: float | None = None
     field_endpoint_error_m: float | None = None
     message: str = ""
+    track: Track = field(default_factory=Track.empty)
+    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        return {k: getattr(self, k) for k in (
-            "status", "residual_ratio", "feasible_radius_m", "pieces", "duration_s",
+        out: dict[str, Any] = {k: getattr(self, k) for k in (
+            "residual_ratio", "feasible_radius_m", "pieces", "duration_s",
             "ground_length_m", "max_piece_error_m", "field_endpoint_error_m", "message")}
+        return {"status": self.status.value, **out, "warnings": list(self.warnings)}
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """The chain's waypoint poses (lon, lat; deg)."""
+        from glideplan.plotting import plot_track
+
+        return plot_track(self.track, ax, label=f"trochoid chain, {self.pieces} pieces",
+                          title=f"trochoid chain: {self.status.value}", **kwargs)
 
 
 def trochoid_chain(
@@ -303,12 +336,14 @@ def trochoid_chain(
                      for c in (cx, cy)], axis=1)
     residual = float(np.max(np.hypot(cx - mean[piece, 0], cy - mean[piece, 1]))) / speed
     if float(np.max(np.hypot(mean[:, 0], mean[:, 1]))) / speed + residual >= 1.0:
-        return TrochoidChain("infeasible", residual, None,
+        return TrochoidChain(status=Status.INFEASIBLE, residual_ratio=residual,
+                             feasible_radius_m=None,
                              message="mean current + residual reach the speed: no feasible "
                              "radius (|c| + eps' V must be < V)")
     r_f = float(feasible_radius(radius, residual))
     duration, ground, worst = 0.0, 0.0, 0.0
     nodes_t, nodes_h = [0.0], [float(poses[0, 2])]
+    piece_t = [0.0]
     for i in range(n):
         a, b = poses[i], poses[i + 1]
         c, sn = math.cos(a[2]), math.sin(a[2])
@@ -317,7 +352,8 @@ def trochoid_chain(
         wind = (c * mean[i, 0] + sn * mean[i, 1], -sn * mean[i, 0] + c * mean[i, 1])
         sol = convected_dubins(goal, speed=speed, radius=radius, wind=wind, eps=residual)
         if not math.isfinite(sol.time):
-            return TrochoidChain("infeasible", residual, r_f, i,
+            return TrochoidChain(status=Status.INFEASIBLE, residual_ratio=residual,
+                                 feasible_radius_m=r_f, pieces=i,
                                  message=f"piece {i + 1}: no convected Dubins path found")
         k = sol.best
         path = convected_dubins_path(Pose(*a), WORDS[k], sol.segment_lengths[k], radius=r_f,
@@ -332,7 +368,14 @@ def trochoid_chain(
             nodes_h.extend(seg.states(local)[2].tolist())
             duration += seg.duration
         ground += sum(float(getattr(seg, "ground_length", seg.length)) for seg in path.segments)
+        piece_t.append(duration)
     flown = integrate_headings(field_, proj, speed, result.depart_s + np.array(nodes_t),
                                np.array(nodes_h), (float(x[-1]), float(y[-1])))
-    return TrochoidChain("planned", residual, r_f, n, duration, ground, worst,
-                         float(flown.endpoint_error_m))
+    lat, lon = proj.to_geographic(poses[:, 0], poses[:, 1])
+    return TrochoidChain(
+        status=Status.SOLVED, residual_ratio=residual, feasible_radius_m=r_f, pieces=n,
+        duration_s=duration, ground_length_m=ground, max_piece_error_m=worst,
+        field_endpoint_error_m=float(flown.endpoint_error_m),
+        message=f"{n} convected Dubins pieces",
+        track=Track(np.array(piece_t), poses[:, 0], poses[:, 1], poses[:, 2], lat=lat, lon=lon),
+    )

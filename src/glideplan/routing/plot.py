@@ -183,14 +183,11 @@ def plot_route(
     glider: GliderFollow | None = None,
 ) -> pathlib.Path:
     """Draw the route (`route_figure`, same arguments) to `filename`; returns its path."""
-    import matplotlib.pyplot as plt
+    from glideplan.plotting import save_figure
 
     fig = route_figure(result, field_, arrows, speed=speed, start=start, goal=goal,
                        glider=glider)
-    path = pathlib.Path(filename)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
-    plt.close(fig)
-    return path
+    return pathlib.Path(save_figure(fig, pathlib.Path(filename), tight=False))
 
 
 def route_figure(
@@ -210,9 +207,6 @@ def route_figure(
     `water_speed_from_track`); start, goal: (lat, lon) (default: the track's ends);
     glider: the followed flyable path (`routing.glider.follow_route`), drawn when given.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
@@ -299,8 +293,8 @@ def route_figure(
             label += f", {result.duration_s / 3600:.2f} h"
         (line,) = ax.plot(lon_t, result.lat, color="C3", lw=2.2, label=label, zorder=4)
         handles.append(line)
-    if glider is not None and glider.track.get("lat"):
-        (line,) = ax.plot(frame(np.asarray(glider.track["lon"])), glider.track["lat"], "--",
+    if glider is not None and glider.track.size:
+        (line,) = ax.plot(frame(glider.track.lon), glider.track.lat, "--",
                           color="black", lw=1.0, zorder=4,
                           label=f"glider following, R0 = {glider.radius_m:.4g} m")
         handles.append(line)

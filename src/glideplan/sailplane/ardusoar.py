@@ -20,8 +20,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from glideplan.errors import InvalidParameterError
-from glideplan.sailplane.polar import GRAVITY, SailplanePolar
 from glideplan.validation import check_positive
+from glideplan.vehicles.sailplane_polar import GRAVITY, SailplanePolar
 
 __all__ = ["RHO_SEA_LEVEL", "ArduSoarFit", "ardusoar_sink", "fit_ardusoar", "write_parm"]
 

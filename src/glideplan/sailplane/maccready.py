@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from glideplan.sailplane.polar import SailplanePolar
+from glideplan.vehicles.sailplane_polar import SailplanePolar
 
 __all__ = ["ground_speed", "maccready_table", "speed_to_fly"]
 

@@ -97,12 +97,10 @@ def _wind_arrow(ax: Any, fig: Any, d: FinalGlideDrawing, xk: np.ndarray, yk: np.
 
 
 def draw_final_glide(d: FinalGlideDrawing, filename: str | pathlib.Path) -> None:
-    """Draw `final_glide_figure(d)` to `filename`."""
-    import matplotlib.pyplot as plt
+    """Draw `final_glide_figure(d)` to `filename` (`plotting.save_figure`)."""
+    from glideplan.plotting import save_figure
 
-    fig = final_glide_figure(d)
-    fig.savefig(filename, dpi=110, bbox_inches="tight")
-    plt.close(fig)
+    save_figure(final_glide_figure(d), filename)
 
 
 def final_glide_figure(d: FinalGlideDrawing) -> Any:
@@ -111,9 +109,6 @@ def final_glide_figure(d: FinalGlideDrawing) -> Any:
     blows from). Right: altitude (m) against ground distance (km) with the goal elevation,
     the safety height and the arrival. Legends below the panels; the title states the problem
     (`d.title`, the wind) and the answer (`glide_summary`)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 5.6), layout="constrained")

@@ -1,35 +1,46 @@
-"""A final-glide request on the Earth: geographic edges in, numbers and a track out.
+"""Final glide on the Earth: `final_glide()`, a service above `plan()`, returning `FinalGlide`.
 
-Start (lat, lon, altitude) and goal (lat, lon, elevation) in WGS84 degrees and metres, wind as
-speed and compass direction it blows FROM, headings as compass bearings: converted once with
-`glideplan.geodesy` into a local plane about the start (azimuthal equidistant: the distance and
-bearing to the goal are the geodesic ones). The straight final glide
+Start (lat, lon, altitude) and goal (lat, lon, elevation) in WGS84 degrees and metres, the wind
+as its (east, north) velocity in m/s (where the air moves TOWARDS; the CLI converts its compass
+"from" direction), headings as compass bearings (degrees, the geographic edge): converted once
+with `glideplan.geodesy` into a local plane about the start (azimuthal equidistant: the
+distance and bearing to the goal are the geodesic ones). The straight final glide
 (`straight.straight_final_glide`) always runs; with an arrival heading, the path is planned
 by `plan()` with the `final_glide` planner (verified by integration) from the given or the best
 start heading (`planners.final_glide.best_start_heading`).
+
+Status (`glideplan.solution.Status`): SOLVED when the glide arrives at or above the goal
+elevation + safety height, BELOW_GLIDE when it arrives lower, UNREACHABLE when no airspeed
+makes progress against the wind (no altitude is enough).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from glideplan.errors import InvalidParameterError
-from glideplan.sailplane.polar import SailplanePolar
 from glideplan.sailplane.straight import straight_final_glide
+from glideplan.solution import Status
+from glideplan.track import Track
 from glideplan.validation import check_finite, check_nonnegative
+from glideplan.vehicles.sailplane_polar import SailplanePolar
 
-__all__ = ["FinalGlideDrawing", "run_final"]
+if TYPE_CHECKING:
+    from glideplan.solution import Solution
+
+__all__ = ["FinalGlide", "FinalGlideDrawing", "final_glide", "run_final"]
 
 
 @dataclass(frozen=True, eq=False)
 class FinalGlideDrawing:
     """What a figure needs: local track (m; x east, y north), distance along it (m), altitude
     (m), levels (m), the problem in words (`title`), and the wind: speed (m/s) and the compass
-    direction it blows FROM (deg; None when no wind was given)."""
+    direction it blows FROM (deg, a label at the figure's edge; None when no wind was given)."""
 
     x: np.ndarray
     y: np.ndarray
@@ -43,11 +54,69 @@ class FinalGlideDrawing:
     wind_from_deg: float | None = None
 
 
+@dataclass(frozen=True, eq=False)
+class FinalGlide:
+    """The outcome of `final_glide()`: an `Outcome` (`glideplan.results`).
+
+    status SOLVED / BELOW_GLIDE / UNREACHABLE (module docstring); altitudes in m (None when
+    unreachable); `wind` (east, north) m/s; `track` the ground track with altitude (geographic;
+    with an arrival heading the planned path, else the straight line); `solution` the verified
+    `Solution` of `plan()` with an arrival heading; `details` the rest of the `--json` object
+    (speeds to fly, the straight glide, the path's word, endpoint error, ...).
+    """
+
+    status: Status
+    message: str
+    polar: SailplanePolar
+    distance_m: float
+    wind: tuple[float, float]
+    altitude_loss_m: float | None
+    altitude_required_m: float | None
+    arrival_margin_m: float | None
+    glide_ratio_required: float | None
+    track: Track
+    drawing: FinalGlideDrawing
+    details: Mapping[str, Any] = field(default_factory=dict)
+    solution: Solution | None = None
+    warnings: tuple[str, ...] = ()
+
+    @property
+    def ok(self) -> bool:
+        return self.status is Status.SOLVED
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON object of `glideplan glide final --json`."""
+        return {
+            **self.details,
+            "altitude_required_m": self.altitude_required_m,
+            "arrival_margin_m": self.arrival_margin_m,
+            "glide_ratio_required": self.glide_ratio_required,
+            "status": self.status.value,
+            "message": self.message,
+            "warnings": list(self.warnings),
+        }
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Ground track and altitude profile (`sailplane.plot.final_glide_figure`); returns the
+        figure (two panels: `ax` is not used)."""
+        from glideplan.sailplane.plot import final_glide_figure
+
+        return final_glide_figure(self.drawing)
+
+
 def _finite(v: float | None) -> float | None:
     return float(v) if v is not None and math.isfinite(v) else None
 
 
-def run_final(
+def _wind_from_deg(wind: tuple[float, float]) -> float:
+    """The compass direction (deg, [0, 360)) a wind of velocity (east, north) blows FROM."""
+    from glideplan.geodesy import heading_to_compass
+
+    b = float(heading_to_compass(math.atan2(-wind[1], -wind[0])))
+    return round(b, 9) % 360.0  # round-off of the vector's components, not the data
+
+
+def final_glide(
     polar: SailplanePolar,
     start: tuple[float, float, float],
     goal: tuple[float, float, float],
@@ -59,34 +128,35 @@ def run_final(
     start_heading: float | None = None,
     bank_max: float = 45.0,
     track_points: int = 200,
-) -> tuple[dict[str, Any], FinalGlideDrawing]:
-    """The JSON object of `glideplan glide final` and the data of its figure.
+) -> FinalGlide:
+    """Altitude needed to reach `goal` from `start`: straight, or to an arrival heading.
 
-    Headings and the wind direction are compass degrees (wind: where it blows FROM).
+    start: (lat, lon, altitude m); goal: (lat, lon, elevation m); mc: MacCready setting (m/s);
+    wind: (east, north) velocity of the air (m/s, towards), None for still air;
+    safety_height: arrival height above the goal (m); arrival_heading, start_heading: compass
+    degrees (start heading None: the best one); bank_max: bank limit in turns (degrees).
+    Bad input raises `InvalidParameterError` naming the parameter (`start latitude`, `mc`, ...).
     """
-    from glideplan.geodesy import (
-        LocalProjection,
-        check_latlon,
-        heading_to_compass,
-        wind_from_to_vector,
-    )
+    from glideplan.geodesy import LocalProjection, check_latlon, heading_to_compass
 
     lat0, lon0, alt0 = start
     lat1, lon1, elev1 = goal
-    check_latlon(lat0, lon0, "--from")
-    check_latlon(lat1, lon1, "--to")
-    alt0 = check_finite("--from altitude", alt0)
-    elev1 = check_finite("--to elevation", elev1)
-    mc = check_nonnegative("--mc", mc)
-    safety = check_nonnegative("--safety-height", safety_height)
-    wx, wy = (0.0, 0.0) if wind is None else wind_from_to_vector(*wind)
+    check_latlon(lat0, lon0, "start")
+    check_latlon(lat1, lon1, "goal")
+    alt0 = check_finite("start altitude", alt0)
+    elev1 = check_finite("goal elevation", elev1)
+    mc = check_nonnegative("mc", mc)
+    safety = check_nonnegative("safety_height", safety_height)
+    wx, wy = (0.0, 0.0) if wind is None else (
+        check_finite("wind east", wind[0]), check_finite("wind north", wind[1]))
     wind_speed = math.hypot(wx, wy)
     proj = LocalProjection(float(lat0), float(lon0))
     gx, gy = (float(v) for v in proj.to_local(lat1, lon1))
     proj.check_extent(np.array([lat0, lat1]), np.array([lon0, lon1]))
     dist = math.hypot(gx, gy)
-    if dist <= 0.0:
-        raise InvalidParameterError("--to", goal, "must differ from the start position")
+    if dist <= 0.0 and arrival_heading is not None:
+        raise InvalidParameterError(
+            "goal", goal, "must differ from the start position for an arrival heading")
     track = math.atan2(gy, gx)
     sg = straight_final_glide(
         polar,
@@ -99,6 +169,8 @@ def run_final(
         safety_height=safety,
     )
     row = sg.row()
+    if dist <= 0.0:  # start = goal: nothing to fly (as plan() answers a start = goal)
+        row.update(altitude_loss=0.0, duration=0.0)
     straight = {
         "altitude_loss_m": _finite(row["altitude_loss"]),
         "speed_to_fly_kmh": _finite(row["speed"] * 3.6),
@@ -108,6 +180,7 @@ def run_final(
         "crab_angle_deg": _finite(math.degrees(row["crab"])),
         "duration_s": _finite(row["duration"]),
     }
+    wind_from = None if wind is None else _wind_from_deg((wx, wy))
     data: dict[str, Any] = {
         "polar": polar.name,
         "mass_kg": polar.mass_kg,
@@ -115,13 +188,14 @@ def run_final(
         "bearing_deg": float(heading_to_compass(track)),
         "mc": mc,
         "safety_height_m": safety,
-        "wind": {"speed_ms": wind_speed, "from_deg": None if wind is None else wind[1]},
+        "wind": {"speed_ms": wind_speed, "from_deg": wind_from},
     }
     floor = elev1 + safety
     title = (
         f"{polar.name} ({polar.mass_kg:.0f} kg): final glide {dist / 1000:.1f} km "
         f"on bearing {data['bearing_deg']:.0f}°, MC {mc:g} m/s"
     )
+    sol = None
     if arrival_heading is None:
         loss = row["altitude_loss"]
         data.update(
@@ -133,12 +207,13 @@ def run_final(
             duration_s=straight["duration_s"],
         )
         s = np.linspace(0.0, dist, 2)
+        frac = s / dist if dist > 0.0 else s
         drawing = FinalGlideDrawing(
             x=np.array([0.0, gx]),
             y=np.array([0.0, gy]),
             distance=s,
             # the start altitude is known even when the goal is not reachable (loss inf)
-            altitude=alt0 - (s / dist) * loss if math.isfinite(loss) else np.array([alt0, np.nan]),
+            altitude=alt0 - frac * loss if math.isfinite(loss) else np.array([alt0, np.nan]),
             goal_elevation=elev1,
             safety_height=safety,
             title=title,
@@ -165,7 +240,7 @@ def run_final(
             title=title,
         )
     else:
-        data_arr, drawing = _arrival(
+        data_arr, drawing, sol = _arrival(
             polar,
             proj,
             alt0,
@@ -189,36 +264,71 @@ def run_final(
         )
     required = floor + loss
     height = alt0 - floor
-    data.update(
+    margin = alt0 - required
+    status = _status(loss, margin)
+    if status is Status.UNREACHABLE:
+        message = _unreachable_why(polar, (wx, wy), row)
+    else:
+        message = (f"arrives {margin:.0f} m " + ("above" if margin >= 0.0 else "below")
+                   + f" the goal elevation + safety height ({floor:.0f} m)")
+    drawing = replace(drawing, wind_speed=wind_speed, wind_from_deg=wind_from)
+    lat_t, lon_t = proj.to_geographic(drawing.x, drawing.y)
+    dx, dy = np.diff(drawing.x), np.diff(drawing.y)
+    course = np.arctan2(np.r_[dy, dy[-1:]], np.r_[dx, dx[-1:]]) if dx.size else np.zeros(1)
+    t_end = data.get("duration_s") or 0.0
+    times = drawing.distance / drawing.distance[-1] * t_end if drawing.distance[-1] > 0 \
+        else np.zeros(drawing.distance.size)
+    ground_track = Track(times, drawing.x, drawing.y, course, lat=lat_t, lon=lon_t,
+                         alt=drawing.altitude)
+    return FinalGlide(
+        status=status,
+        message=message,
+        polar=polar,
+        distance_m=dist,
+        wind=(wx, wy),
+        altitude_loss_m=_finite(loss),
         altitude_required_m=_finite(required),
-        arrival_margin_m=_finite(alt0 - required),
+        arrival_margin_m=_finite(margin),
         glide_ratio_required=dist / height if height > 0.0 else None,
-        status=_status(loss, alt0 - required),
+        track=ground_track,
+        drawing=drawing,
+        details=data,
+        solution=sol,
     )
+
+
+def run_final(
+    polar: SailplanePolar,
+    start: tuple[float, float, float],
+    goal: tuple[float, float, float],
+    *,
+    wind: tuple[float, float] | None = None,
+    **options: Any,
+) -> tuple[dict[str, Any], FinalGlideDrawing]:
+    """Compatibility: `final_glide()` (same `options`) with the wind as (speed m/s, compass
+    direction it blows FROM, deg), returning (the JSON object, the figure's data). New code:
+    `final_glide()`, the wind as its (east, north) vector."""
+    from glideplan.geodesy import wind_from_to_vector
+
+    vec = None if wind is None else wind_from_to_vector(float(wind[0]), float(wind[1]))
+    res = final_glide(polar, start, goal, wind=vec, **options)
+    return res.to_dict(), res.drawing
+
+
+def _status(loss: float, margin: float) -> Status:
+    """UNREACHABLE (no airspeed makes progress: the loss is infinite), else SOLVED when the
+    arrival margin is >= 0 m, BELOW_GLIDE when it is negative."""
     if not math.isfinite(loss):
-        data["message"] = _unreachable_why(polar, wind, row)
-    drawing = replace(
-        drawing,
-        wind_speed=wind_speed,
-        wind_from_deg=None if wind is None else float(wind[1]) % 360.0,
-    )
-    return data, drawing
+        return Status.UNREACHABLE
+    return Status.SOLVED if margin >= 0.0 else Status.BELOW_GLIDE
 
 
-def _status(loss: float, margin: float) -> str:
-    """`unreachable` (no airspeed makes progress: the loss is infinite), else `reachable` when
-    the arrival margin is >= 0 m, `below glide` when it is negative."""
-    if not math.isfinite(loss):
-        return "unreachable"
-    return "reachable" if margin >= 0.0 else "below glide"
-
-
-def _unreachable_why(
-    polar: SailplanePolar, wind: tuple[float, float] | None, row: dict[str, float]
-) -> str:
-    """Why no airspeed makes progress: the wind (m/s, compass FROM) against the polar's top
-    speed, with its headwind and crosswind components on the track (m/s)."""
-    speed, from_deg = (0.0, 0.0) if wind is None else (float(wind[0]), float(wind[1]) % 360.0)
+def _unreachable_why(polar: SailplanePolar, wind: tuple[float, float], row: dict[str, float]
+                     ) -> str:
+    """Why no airspeed makes progress: the wind ((east, north) m/s; said as speed and the
+    compass direction it blows from) against the polar's top speed, with its headwind and
+    crosswind components on the track (m/s)."""
+    speed, from_deg = math.hypot(*wind), _wind_from_deg(wind)
     along = row["tailwind"]
     part = f"headwind {-along:.1f}" if along <= 0.0 else f"tailwind {along:.1f}"
     return (
@@ -244,17 +354,17 @@ def _arrival(
     bank_max: float,
     track_points: int,
     title: str,
-) -> tuple[dict[str, Any], FinalGlideDrawing]:
+) -> tuple[dict[str, Any], FinalGlideDrawing, Solution]:
     from glideplan.geodesy import compass_to_heading, heading_to_compass
     from glideplan.planners.final_glide import best_start_heading
     from glideplan.planning import plan
     from glideplan.pose import Pose
     from glideplan.vehicles.sailplane import Sailplane
 
-    check_finite("--arrival-heading", arrival_heading)
-    bank = check_finite("--bank-max", bank_max)
+    check_finite("arrival_heading", arrival_heading)
+    bank = check_finite("bank_max", bank_max)
     if not 0.0 < bank <= 80.0:
-        raise InvalidParameterError("--bank-max", bank_max, "must be in (0, 80] degrees")
+        raise InvalidParameterError("bank_max", bank_max, "must be in (0, 80] degrees")
     speed = math.hypot(*wind)
     vehicle = Sailplane(
         polar,
@@ -266,7 +376,7 @@ def _arrival(
     if start_heading is None:
         psi0 = best_start_heading((0.0, 0.0), goal_pose, vehicle, mc=mc)
     else:
-        psi0 = float(compass_to_heading(check_finite("--start-heading", start_heading)))
+        psi0 = float(compass_to_heading(check_finite("start_heading", start_heading)))
     sol = plan(Pose(0.0, 0.0, psi0), goal_pose, vehicle, "altitude", mc=mc)
     if not sol.ok or sol.path is None:
         raise_planning(sol.message or sol.status.value)
@@ -317,7 +427,7 @@ def _arrival(
             f"(path {sol.word}, start heading {heading_to_compass(psi0):.0f}°)"
         ),
     )
-    return data, drawing
+    return data, drawing, sol
 
 
 def raise_planning(message: str) -> None:

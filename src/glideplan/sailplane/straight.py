@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from glideplan.sailplane.maccready import ground_speed, speed_to_fly
-from glideplan.sailplane.polar import SailplanePolar
+from glideplan.vehicles.sailplane_polar import SailplanePolar
 
 __all__ = ["StraightGlide", "straight_final_glide"]
 

@@ -25,14 +25,20 @@ from numpy.typing import ArrayLike
 
 from glideplan.errors import InvalidParameterError
 from glideplan.path import Path
-from glideplan.planners.dubins import WORDS, dubins_shortest, word_directions
+from glideplan.planners.dubins_kernel import (
+    DIRECTIONS,
+    WORDS,
+    mod_2pi_snapped,
+    segment_table,
+    shortest_word,
+)
 from glideplan.pose import Pose
 from glideplan.segments import Arc, Segment, Straight
 from glideplan.validation import check_finite_array, check_positive
 
 __all__ = ["GuidanceCommand", "PathArrays", "lookahead_guidance"]
 
-_DIRS = np.array([word_directions(w) for w in WORDS], dtype=float)  # (6, 3)
+_DIRS = np.array([DIRECTIONS[w] for w in WORDS], dtype=float)  # (6, 3)
 
 
 def _advance(x, y, h, kappa, d):
@@ -107,9 +113,15 @@ class PathArrays:
     def dubins(cls, goals: ArrayLike, radius: ArrayLike) -> PathArrays:
         """Shortest Dubins paths from the origin (heading 0) to goals (N, 3) with radii (N,)."""
         g = check_finite_array("goals", goals, last_dim=3).reshape(-1, 3)
-        batch = dubins_shortest(np.zeros(3), g, radius)
-        dirs = _DIRS[batch.word_index]
-        return cls.from_segments(np.zeros_like(g), dirs, batch.segment_lengths, radius)
+        r = np.asarray(radius, dtype=float)
+        if not np.all(np.isfinite(r)) or np.any(r <= 0.0):
+            raise InvalidParameterError("radius", radius, "must be finite and > 0")
+        # the Dubins kernel in the start frame (origin, heading 0), scaled by 1 / radius
+        r = np.broadcast_to(r, g.shape[:1])
+        inv = 1.0 / r
+        table = segment_table(g[:, 0] * inv, g[:, 1] * inv, mod_2pi_snapped(g[:, 2]))
+        _, word_index, seg = shortest_word(table * r[:, None, None])
+        return cls.from_segments(np.zeros_like(g), _DIRS[word_index], seg, radius)
 
     @classmethod
     def from_paths(cls, paths: Sequence[Path]) -> PathArrays:

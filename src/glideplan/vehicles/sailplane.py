@@ -22,10 +22,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from glideplan.errors import InvalidParameterError
-from glideplan.sailplane.polar import GRAVITY, SailplanePolar
 from glideplan.validation import check_positive
 from glideplan.vehicles.base import Vehicle
 from glideplan.vehicles.dubins_car_in_wind import SteadyWind
+from glideplan.vehicles.sailplane_polar import GRAVITY, SailplanePolar
 
 __all__ = ["Sailplane", "dg1001m_sailplane"]
 

@@ -32,9 +32,9 @@ from glideplan.planners.wind import (
 )
 from glideplan.pose import Pose
 from glideplan.sailplane.maccready import speed_to_fly
-from glideplan.sailplane.polar import GRAVITY, SailplanePolar
 from glideplan.validation import check_nonnegative
 from glideplan.vehicles.sailplane import Sailplane
+from glideplan.vehicles.sailplane_polar import GRAVITY, SailplanePolar
 
 __all__ = [
     "ArrivalResult",

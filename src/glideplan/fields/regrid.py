@@ -1,0 +1,248 @@
+"""Regrid a curvilinear ocean-model grid (ROMS, NEMO) to a regular lat/lon grid (SciPy).
+
+Each component is interpolated linearly on its own source points (staggered grids: u on
+`lat_u/lon_u`, v on `lat_v/lon_v`) over triangles of the source grid's own cells: the points
+are triangulated (`scipy.spatial.Delaunay`, in the plane x = lon cos(lat_c), y = lat) and only
+the triangles whose three corners are neighbours in the grid (index offsets <= 1) are kept, so
+a concave or curved grid boundary is not bridged. A target node gets
+
+    f(P) = sum_k w_k f(P_k),   w = barycentric weights of P in its triangle (P_1, P_2, P_3),
+
+NaN outside the source grid, and NaN when a corner is NaN (land stays land, as on regular
+grids). The target spacing is the median distance between neighbouring source nodes, d
+(degrees of arc): d in latitude and d / cos(lat_c) in longitude.
+
+Grid-relative components (ROMS `u/v`, NEMO `vozocrtx/vomecrty`: along the grid's i and j
+axes) are rotated to east/north by the angle alpha of the i axis counter-clockwise from east
+(ROMS `angle`, else from the coordinates: alpha = atan2(d lat / di, cos(lat) d lon / di)):
+
+    u_east = u cos(alpha) - v sin(alpha),   v_north = u sin(alpha) + v cos(alpha),
+
+with cos(alpha) and sin(alpha) interpolated (not alpha, which wraps at +-pi).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from glideplan.errors import InvalidParameterError
+
+__all__ = ["CurvilinearSource", "RegularGrid", "regrid_curvilinear"]
+
+FloatArray = NDArray[np.float64]
+
+_WHAT_TO_DO = ("regrid it to a regular lat/lon grid first (e.g. `cdo remapbil,r<nx>x<ny> in.nc "
+               "out.nc`, or xESMF) and give that file")
+
+
+@dataclass(frozen=True)
+class CurvilinearSource:
+    """One component on a curvilinear grid: values (nt, ny, nx); lat, lon (ny, nx) degrees."""
+
+    values: FloatArray
+    lat: FloatArray
+    lon: FloatArray
+    label: str = "lat/lon"
+
+
+@dataclass(frozen=True)
+class RegularGrid:
+    """The regridded field: lat (nlat,), lon (nlon,) ascending degrees; u, v (nt, nlat, nlon)."""
+
+    lat: FloatArray
+    lon: FloatArray
+    u: FloatArray
+    v: FloatArray
+    warnings: tuple[str, ...]
+
+
+def _refuse(src: CurvilinearSource, reason: str) -> InvalidParameterError:
+    ny, nx = src.lat.shape
+    return InvalidParameterError(
+        "field grid", f"curvilinear {ny}x{nx} ({src.label})",
+        f"cannot be regridded ({reason}): {_WHAT_TO_DO}",
+    )
+
+
+def _unwrap_lon(lon: FloatArray, lon0: float) -> FloatArray:
+    """Each longitude's representative within 180 degrees of lon0."""
+    return lon0 + np.mod(lon - lon0 + 180.0, 360.0) - 180.0
+
+
+def _native_spacing(src: CurvilinearSource, lon: FloatArray) -> float:
+    """Median distance (degrees of arc) between neighbouring nodes along both grid axes."""
+    coslat = np.cos(np.radians(src.lat))
+    steps = []
+    for axis in (0, 1):
+        dlat = np.diff(src.lat, axis=axis)
+        dlon = np.diff(lon, axis=axis) * 0.5 * (
+            np.take(coslat, range(coslat.shape[axis] - 1), axis=axis)
+            + np.take(coslat, range(1, coslat.shape[axis]), axis=axis))
+        steps.append(np.hypot(dlat, dlon).ravel())
+    d = np.concatenate(steps)
+    d = d[np.isfinite(d) & (d > 0.0)]
+    return float(np.median(d)) if d.size else math.nan
+
+
+class _Triangles:
+    """Barycentric weights of target points in the source grid's own triangles."""
+
+    def __init__(self, src: CurvilinearSource, lon: FloatArray, scale_x: float,
+                 tlat: FloatArray, tlon: FloatArray) -> None:
+        from scipy.spatial import Delaunay, QhullError
+
+        ok = np.isfinite(src.lat) & np.isfinite(lon)
+        jj, ii = np.nonzero(ok)
+        if jj.size < 3:
+            raise _refuse(src, f"{jj.size} nodes with finite coordinates, need >= 3")
+        pts = np.column_stack([lon[ok] * scale_x, src.lat[ok]])
+        try:
+            tri = Delaunay(pts)
+        except (QhullError, ValueError) as exc:
+            raise _refuse(src, "the nodes are collinear or coincide: "
+                          + " ".join(str(exc).split())[:80]) from None
+        simp = tri.simplices
+        # Keep triangles of neighbouring grid nodes only (|di|, |dj| <= 1 between corners).
+        span_i = np.ptp(ii[simp], axis=1)
+        span_j = np.ptp(jj[simp], axis=1)
+        good = (span_i <= 1) & (span_j <= 1)
+        if not np.any(good):
+            raise _refuse(src, "no grid cell has an area (degenerate coordinates)")
+        xi = np.column_stack([tlon.ravel() * scale_x, tlat.ravel()])
+        node = np.ravel_multi_index((jj, ii), src.lat.shape)
+        self.weights = np.empty((xi.shape[0], 3))
+        self.flat_index = np.empty((xi.shape[0], 3), dtype=np.intp)
+        self.inside = np.empty(xi.shape[0], dtype=bool)
+        block = 500_000  # bounds the (m, 3, 2) transforms in memory
+        for k0 in range(0, xi.shape[0], block):
+            x = xi[k0:k0 + block]
+            s = tri.find_simplex(x)
+            inside = s >= 0
+            inside[inside] = good[s[inside]]
+            s = np.where(inside, s, 0)
+            trans = tri.transform[s]
+            b = np.einsum("ijk,ik->ij", trans[:, :2], x - trans[:, 2])
+            self.weights[k0:k0 + block] = np.column_stack([b, 1.0 - b.sum(axis=1)])
+            self.flat_index[k0:k0 + block] = node[simp[s]]
+            self.inside[k0:k0 + block] = inside
+        self.shape = tlat.shape
+
+    def __call__(self, values: FloatArray) -> FloatArray:
+        """values (nt, ny, nx) -> (nt, nlat, nlon); NaN outside or next to a NaN corner."""
+        flat = values.reshape(values.shape[0], -1)
+        out = np.empty((values.shape[0], self.inside.size))
+        for k in range(values.shape[0]):
+            out[k] = np.einsum("ij,ij->i", flat[k][self.flat_index], self.weights)
+        out[:, ~self.inside] = np.nan
+        return out.reshape((values.shape[0], *self.shape))
+
+
+def _grid_angle(lat: FloatArray, lon: FloatArray) -> FloatArray:
+    """Angle (rad, CCW from east) of the grid's i axis: atan2(dlat/di, cos(lat) dlon/di)."""
+    dlat = np.gradient(lat, axis=1)
+    dlon = np.gradient(lon, axis=1) * np.cos(np.radians(lat))
+    return np.arctan2(dlat, dlon)
+
+
+def _lon_frame(lon: FloatArray) -> FloatArray:
+    """Shift an ascending longitude axis by 360 k into -180..180 if it fits, else 0..360."""
+    a = lon - 360.0 * math.floor((lon[0] + 180.0) / 360.0)
+    if a[-1] <= 180.0:
+        return a
+    b = lon - 360.0 * math.floor(lon[0] / 360.0)
+    return b if b[-1] < 360.0 else a
+
+
+def regrid_curvilinear(
+    east: CurvilinearSource,
+    north: CurvilinearSource,
+    angle: CurvilinearSource | None = None,
+    grid_relative: bool = False,
+    max_nodes: int = 4_000_000,
+) -> RegularGrid:
+    """Regrid two components to a regular lat/lon grid (module docstring for the method).
+
+    east, north: the components (grid-relative x, y when `grid_relative`); angle: the grid's
+    i-axis angle (rad, CCW from east; ROMS `angle`), computed from east's coordinates when
+    None. max_nodes bounds nlat x nlon (the spacing is coarsened to fit, with a warning).
+    """
+    for src in (east, north) + (() if angle is None else (angle,)):
+        if src.lat.ndim != 2 or src.lat.shape != src.lon.shape:
+            raise _refuse(src, f"coordinates of shapes {src.lat.shape} and {src.lon.shape}")
+        if src.values.shape[1:] != src.lat.shape:
+            raise _refuse(src, f"values {src.values.shape[1:]} on coordinates {src.lat.shape}")
+        if min(src.lat.shape) < 2:
+            raise _refuse(src, "a single row or column of nodes")
+    ok = np.isfinite(east.lat) & np.isfinite(east.lon)
+    if not np.any(ok):
+        raise _refuse(east, "no finite coordinates")
+    rad = np.radians(east.lon[ok])
+    lon0 = math.degrees(math.atan2(float(np.mean(np.sin(rad))), float(np.mean(np.cos(rad)))))
+    lons = [_unwrap_lon(s.lon, lon0) for s in (east, north)]
+    all_lat = np.concatenate([s.lat[np.isfinite(s.lat)] for s in (east, north)])
+    all_lon = np.concatenate([x[np.isfinite(x)] for x in lons])
+    lat_min, lat_max = float(np.min(all_lat)), float(np.max(all_lat))
+    lon_min, lon_max = float(np.min(all_lon)), float(np.max(all_lon))
+    if lon_max - lon_min > 300.0:
+        raise _refuse(east, f"it spans {lon_max - lon_min:.0f} degrees of longitude: a global "
+                      "(tripolar) grid; cut a regional subset or")
+    d = _native_spacing(east, lons[0])
+    if not (math.isfinite(d) and d > 0.0):
+        raise _refuse(east, "no two distinct neighbouring nodes")
+    lat_c = 0.5 * (lat_min + lat_max)
+    coslat = max(math.cos(math.radians(lat_c)), 0.05)
+    dlat, dlon = d, d / coslat
+    notes = []
+    nlat = math.floor((lat_max - lat_min) / dlat + 1e-9) + 1
+    nlon = math.floor((lon_max - lon_min) / dlon + 1e-9) + 1
+    if nlat * nlon > max_nodes:
+        f = math.sqrt(nlat * nlon / max_nodes)
+        dlat, dlon = dlat * f, dlon * f
+        nlat = math.floor((lat_max - lat_min) / dlat + 1e-9) + 1
+        nlon = math.floor((lon_max - lon_min) / dlon + 1e-9) + 1
+        notes.append(f"coarsened {f:.2f}x to stay within {max_nodes} nodes")
+    if nlat < 2 or nlon < 2:
+        raise _refuse(east, f"it spans {lat_max - lat_min:.3g} x {lon_max - lon_min:.3g} "
+                      f"degrees, less than two nodes at its spacing {d:.3g} degrees")
+    tlat: FloatArray = lat_min + dlat * np.arange(nlat, dtype=float)
+    tlon: FloatArray = lon_min + dlon * np.arange(nlon, dtype=float)
+    glat, glon = np.meshgrid(tlat, tlon, indexing="ij")
+    scale_x = coslat
+    tri_e = _Triangles(east, lons[0], scale_x, glat, glon)
+    u = tri_e(east.values)
+    tri_n = tri_e if (north.lat.shape == east.lat.shape and np.array_equal(
+        north.lat, east.lat, equal_nan=True) and np.array_equal(
+        lons[1], lons[0], equal_nan=True)) else _Triangles(north, lons[1], scale_x, glat, glon)
+    v = tri_n(north.values)
+    if grid_relative:
+        if angle is None:
+            alpha = _grid_angle(east.lat, lons[0])[None]
+            tri_a, src_label = tri_e, f"its coordinates {east.label}"
+        else:
+            alpha = angle.values[:1]
+            tri_a = _Triangles(angle, _unwrap_lon(angle.lon, lon0), scale_x, glat, glon)
+            src_label = "the file's `angle`"
+        c = tri_a(np.cos(alpha))[0]
+        s = tri_a(np.sin(alpha))[0]
+        norm = np.hypot(c, s)
+        c, s = c / norm, s / norm
+        u, v = u * c - v * s, u * s + v * c
+        biggest = float(np.nanmax(np.abs(np.degrees(alpha)))) if np.any(
+            np.isfinite(alpha)) else 0.0
+        if biggest >= 0.05:
+            notes.append(f"velocities rotated from the grid's axes to east/north by the grid "
+                         f"angle from {src_label} (|angle| up to {biggest:.1f} deg)")
+    land = np.isnan(u) | np.isnan(v)
+    u[land] = np.nan
+    v[land] = np.nan
+    ny, nx = east.lat.shape
+    text = (f"regridded the curvilinear {ny}x{nx} grid ({east.label}) to a regular {nlat}x{nlon} "
+            f"lat/lon grid, {dlat:.4g} deg latitude x {dlon:.4g} deg longitude (linear in the "
+            f"grid's own cells, SciPy); NaN outside the source grid and next to land")
+    if notes:
+        text += "; " + "; ".join(notes)
+    return RegularGrid(lat=tlat, lon=_lon_frame(tlon), u=u, v=v, warnings=(text,))

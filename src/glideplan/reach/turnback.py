@@ -1,0 +1,374 @@
+"""`turnback`: how far out along a course the glider can fly and still glide home.
+
+Outbound: from the start (lat, lon, ALT) along the compass `course` at the speed to fly for
+that direction (`Glide.along`): after s metres it is at P(s) (rhumb line) at altitude
+A(s) = ALT - s / r_out. The turn-back point is the largest s (the first, going out) from
+which home is still reachable with the safety height: from (P(s), A(s)) a path to home that
+keeps A - terrain >= safety all along and arrives >= home elevation + safety.
+
+Why forward fronts from P(s), not one front from home backwards: the altitude needed at a
+point to reach home is the backward front's time only while the terrain does not bind; over
+a ridge it is floored by the ridge (required >= terrain + safety), a lower bound on the
+backward arrival ("cannot be entered before ..."), which the front's block times (an upper
+bound) do not express. So each probe is one forward front from (P(s), A(s)) with the reach's
+block times, stopped at home (`glideplan.fronts`), and the answer at the probe is the flown
+return path (`reach.flight`; front path string-pulled, or the straight glide).
+
+Search: the straight glide home without terrain bounds s from above (terrain only adds
+constraints), as does the first point where the outbound glide itself loses the safety
+height over the terrain (s_hi). From the last reachable probe (first s = 0), its return
+path's tail (the waypoints after the first) is flown from points further out, bisecting to
+1 m the largest s from which it still works; then one front probe one grid cell further
+asks whether another way home works there; if it does, repeat from it, if not that s is the
+turn-back point (the first crossing, to the grid's resolution; usually 2-3 fronts).
+Without terrain the ground is flat at the home's elevation and the straight glide home is
+optimal (uniform wind, convex set of velocities): no front is run.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from glideplan.errors import InvalidParameterError
+from glideplan.geodesy import check_latlon
+from glideplan.reach.flight import FlownPath, fly, pull_string, rhumb
+from glideplan.reach.grid import ReachGrid, reach_grid
+from glideplan.reach.model import Glide
+from glideplan.reach.problem import Landable, ReachProblem
+from glideplan.reach.solve import front_problem, interp_arrival, solve_front
+from glideplan.sailplane.polar import SailplanePolar
+from glideplan.solution import Status
+from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
+from glideplan.validation import check_finite
+
+__all__ = ["TurnbackResult", "turnback"]
+
+FloatArray = NDArray[np.float64]
+_REFINE_TOL_M = 1.0
+_MAX_FRONT_STEPS = 24
+
+
+def destination(lat: float, lon: float, chi: float, s: FloatArray) -> tuple[FloatArray, ...]:
+    """Points s metres from (lat, lon) along the rhumb line of direction chi (rad CCW from
+    east): lat = lat0 + s sin(chi) / R, lon from the isometric latitude (as `flight`)."""
+    s = np.asarray(s, dtype=float)
+    p0 = math.radians(lat)
+    p = p0 + s * math.sin(chi) / EARTH_RADIUS_M
+    dpsi = np.log(np.tan(0.25 * np.pi + 0.5 * p)) - math.log(math.tan(0.25 * math.pi + 0.5 * p0))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        q = np.where(np.abs(dpsi) > 1e-12, (p - p0) / np.where(dpsi == 0, 1, dpsi), math.cos(p0))
+    dl = s * math.cos(chi) / (EARTH_RADIUS_M * q)
+    return np.degrees(p), lon + np.degrees(dl)
+
+
+@dataclass(frozen=True, eq=False)
+class TurnbackResult:
+    """The turn-back point: status SOLVED (found, return flown and clear) or UNREACHABLE
+    (home is out of reach already at the start); distance_m out along the course; the point
+    and the altitude there; the return's arrival altitude at home (flown) and its margin
+    above home elevation + safety; limited_by: "glide home" or "outbound terrain" (the
+    outbound glide itself meets terrain + safety first); outbound and return flights;
+    probes: (s, reachable) of the search."""
+
+    status: Status
+    message: str
+    start: tuple[float, float, float]
+    home: Landable
+    course_deg: float
+    safety_height: float
+    glide: Glide
+    distance_m: float
+    lat: float
+    lon: float
+    altitude_m: float
+    arrival_altitude_m: float | None
+    arrival_margin_m: float | None
+    limited_by: str
+    outbound: FlownPath | None
+    back: FlownPath | None
+    probes: tuple[tuple[float, bool], ...]
+    terrain: Terrain | None
+    resolution_m: float
+    warnings: tuple[str, ...] = ()
+    timings: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        return self.status is Status.SOLVED
+
+    def to_dict(self) -> dict[str, Any]:
+        def num(x: float | None) -> float | None:
+            return None if x is None or not math.isfinite(x) else float(x)
+
+        def profile(path: FlownPath | None, s0: float) -> dict[str, list[float]] | None:
+            if path is None:
+                return None
+            d, _ = rhumb(path.lat[:-1], path.lon[:-1], path.lat[1:], path.lon[1:])
+            return {"distance_m": (s0 + np.concatenate([[0.0], np.cumsum(d)])).tolist(),
+                    "altitude_m": path.altitude.tolist(), "lat": path.lat.tolist(),
+                    "lon": path.lon.tolist()}
+
+        lat, lon, alt = self.start
+        return {
+            "status": self.status.value,
+            "message": self.message,
+            "start": {"lat": lat, "lon": lon, "altitude_m": alt},
+            "home": {"name": self.home.name, "lat": self.home.lat, "lon": self.home.lon,
+                     "elevation_m": self.home.elevation_m},
+            "course_deg": self.course_deg,
+            "safety_height_m": self.safety_height,
+            "glide": self.glide.to_dict(),
+            "turnback": {"distance_m": self.distance_m, "lat": self.lat, "lon": self.lon,
+                         "altitude_m": self.altitude_m},
+            "arrival_altitude_m": num(self.arrival_altitude_m),
+            "arrival_margin_m": num(self.arrival_margin_m),
+            "return_distance_m": None if self.back is None else self.back.distance_m,
+            "limited_by": self.limited_by,
+            "grid_resolution_m": self.resolution_m,
+            "outbound": profile(self.outbound, 0.0),
+            "return": profile(self.back, self.distance_m),
+            "probes": [{"distance_m": s, "reachable": ok} for s, ok in self.probes],
+            "timings_s": dict(self.timings),
+            "warnings": list(self.warnings),
+        }
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Map (terrain, outbound, turn-back point, return) and the altitude profile."""
+        from glideplan.reach.plot import plot_turnback
+
+        return plot_turnback(self, ax=ax, **kwargs)
+
+
+def _flat(home: Landable, start: tuple[float, float, float], reach_m: float) -> Terrain:
+    """Ground everywhere at the home's elevation (no terrain given): a grid about start and
+    home wide enough for any glide from the start."""
+    lat0, lon0 = start[0], start[1]
+    dlat = math.degrees(1.1 * reach_m / EARTH_RADIUS_M) + 0.01
+    dlon = dlat / max(math.cos(math.radians(abs(lat0) + dlat)), 1e-3)
+    s, n = min(lat0, home.lat) - dlat, max(lat0, home.lat) + dlat
+    w, e = min(lon0, home.lon) - dlon, max(lon0, home.lon) + dlon
+    ny = nx = 801
+    return Terrain(np.linspace(s, n, ny), np.linspace(w, e, nx),
+                   np.full((ny, nx), home.elevation_m, dtype=np.float32))
+
+
+def turnback(
+    start: tuple[float, float, float],
+    course_deg: float,
+    home: tuple[float, float, float] | Landable,
+    polar: SailplanePolar,
+    *,
+    terrain: Terrain | None = None,
+    mc: float = 0.0,
+    wind: tuple[float, float] = (0.0, 0.0),
+    safety_height: float = 300.0,
+    safety_glide_ratio: float | None = None,
+    resolution_m: float | None = None,
+) -> TurnbackResult:
+    """The turn-back point along compass `course_deg` from `start` = (lat, lon, ALT m) for
+    `home` = (lat, lon, elevation m) (module docstring). Without terrain the ground is flat
+    at the home's elevation. wind: (east, north) m/s towards."""
+    import time
+
+    t_all = time.perf_counter()
+    course = check_finite("course", course_deg)
+    if not isinstance(home, Landable):
+        if len(home) != 3:
+            raise InvalidParameterError("home", home, "must be (lat, lon, elevation_m)")
+        check_latlon(home[0], home[1], "home")
+        home = Landable("HOME", float(home[0]), float(home[1]), float(home[2]))
+    glide = Glide(polar, mc, wind, safety_glide_ratio)
+    lat0, lon0, alt = float(start[0]), float(start[1]), float(start[2])
+    warnings: list[str] = []
+    use_front = terrain is not None
+    if terrain is None:
+        reach = max(alt - home.elevation_m, 0.0) * glide.max_ratio
+        terrain = _flat(home, (lat0, lon0, alt), reach + 5000.0)
+    warnings += list(terrain.warnings)
+    problem = ReachProblem(terrain, (lat0, lon0, alt), glide, (home,), safety_height,
+                           resolution_m)
+    if not math.isfinite(float(terrain.elevation(home.lat, home.lon))):
+        raise InvalidParameterError("home", (home.lat, home.lon), "lies outside the terrain")
+    grid = reach_grid(problem, glide.max_ratio)
+    chi = math.radians(90.0 - course)
+    out = glide.along(np.array([chi]))
+    r_out = float(out.ratio[0])
+    if not (math.isfinite(r_out) and r_out > 0):
+        raise InvalidParameterError("course", course, "the wind allows no progress along it")
+    min_ratio = float(np.nanmin(glide.ratio(np.linspace(0, 2 * np.pi, 72, endpoint=False))))
+    fine = problem.terrain
+
+    def P(s: float) -> tuple[float, float, float]:
+        la, lo = destination(lat0, lon0, chi, np.array(s))
+        return float(la), float(lo), alt - s / r_out
+
+    # outbound limit: where the outbound glide loses the safety height (or leaves the data)
+    s_max = (alt - home.elevation_m - safety_height) * r_out
+    if s_max <= 0:
+        s_max = 0.0
+    step = min(fine.spacing_m) / 3.0
+    ss = np.linspace(0.0, s_max, max(2, math.ceil(s_max / step) + 1))
+    la_s, lo_s = destination(lat0, lon0, chi, ss)
+    ground = fine.elevation(la_s, lo_s)
+    inside = np.isfinite(ground) & np.asarray(grid_contains(grid, la_s, lo_s))
+    clear = np.where(inside, alt - ss / r_out - np.where(inside, ground, 0.0), -np.inf)
+    bad = ~(clear >= safety_height - 1e-6)
+    first_bad = int(np.argmax(bad))
+    s_hit = float(ss[max(first_bad - 1, 0)]) if np.any(bad) else s_max
+    hit_edge = bool(np.any(bad)) and not bool(inside[first_bad])
+    # straight glide home without terrain: an upper bound on the turn-back distance
+    def straight_margin(s: float) -> float:
+        la, lo, a = P(s)
+        d, c = rhumb(np.array(la), np.array(lo), np.array(home.lat), np.array(home.lon))
+        r = float(glide.ratio(float(c))[0]) if float(d) > 0 else 1.0
+        if not (math.isfinite(r) and r > 0):
+            return -math.inf
+        return a - float(d) / r - home.elevation_m - safety_height
+
+    lo_b, hi_b = 0.0, s_max
+    if straight_margin(0.0) < 0:
+        hi_b = 0.0
+    else:
+        for _ in range(80):
+            mid = 0.5 * (lo_b + hi_b)
+            lo_b, hi_b = (mid, hi_b) if straight_margin(mid) >= 0 else (lo_b, mid)
+        hi_b = lo_b
+    s_hi = min(hi_b, s_hit)
+    limited = (("terrain edge" if hit_edge else "outbound terrain") if s_hit < hi_b
+               else "glide home")
+    if limited == "terrain edge":
+        warnings.append("the outbound course leaves the terrain before the turn-back point: "
+                        "the answer is clipped to the terrain's extent")
+
+    probes: list[tuple[float, bool]] = []
+
+    def probe(s: float) -> tuple[bool, FlownPath | None]:
+        la, lo, a = P(s)
+        block = a - grid.z - safety_height
+        block = np.where(np.isfinite(block), block, -np.inf)
+        for (i, j) in _special_nodes(grid, [(la, lo), (home.lat, home.lon)]):
+            zp = float(fine.elevation(grid.lat[i], grid.lon[j]))
+            if math.isfinite(zp):
+                block[i, j] = a - zp - safety_height
+        fp = front_problem(grid, glide, block_time=block)
+        cands = [fly(glide, fine, safety_height, np.array([la, home.lat]),
+                     np.array([lo, home.lon]), a)]
+        t_max = a - home.elevation_m - safety_height
+        if t_max > 0 and use_front:
+            from glideplan.fronts import backtrack
+
+            state, res = solve_front(fp, la, lo, t_max + 1.0, grid.spacing_m, min_ratio,
+                                     goal=(home.lat, home.lon))
+            T = interp_arrival(res.arrival, grid.lat, grid.lon, home.lat, home.lon)
+            if math.isfinite(T):
+                ch = backtrack(fp, res.arrival, (home.lat, home.lon), T, 0.0, (la, lo),
+                               state.start_radius_m)
+                if ch.complete:
+                    wla, wlo = pull_string(glide, fine, safety_height, ch.lat, ch.lon, a)
+                    cands.append(fly(glide, fine, safety_height, wla, wlo, a))
+        good = [c for c in cands if c.clear and
+                c.arrival_altitude - home.elevation_m - safety_height >= -1e-6]
+        best = max(good, key=lambda c: c.arrival_altitude) if good else None
+        probes.append((s, best is not None))
+        return best is not None, best
+
+    t = time.perf_counter()
+    ok0, path0 = probe(0.0)
+    if not ok0:
+        return _result(Status.UNREACHABLE, "home is out of reach already: turn back is not "
+                       "enough", problem, home, course, glide, 0.0, P(0.0), None, "glide home",
+                       None, None, probes, fine, grid, warnings, {"total_s": time.perf_counter()
+                                                                  - t_all})
+    timings: dict[str, float] = {}
+
+    def flight(s: float, tail_la: FloatArray, tail_lo: FloatArray) -> FlownPath:
+        la, lo, a = P(s)
+        return fly(glide, fine, safety_height, np.concatenate([[la], tail_la]),
+                   np.concatenate([[lo], tail_lo]), a)
+
+    def fine_ok(f: FlownPath) -> bool:
+        return f.clear and f.arrival_altitude - home.elevation_m - safety_height >= -1e-6
+
+    def along_path(path: FlownPath, a_: float, b_: float) -> tuple[float, FlownPath]:
+        """Largest s in [a_, b_] from which the path's tail (its waypoints after the first)
+        still works, flown (bisection to 1 m); (a_, path) if not even at a_."""
+        tail_la, tail_lo = path.waypoints_lat[1:], path.waypoints_lon[1:]
+        best = flight(a_, tail_la, tail_lo)
+        if not fine_ok(best):
+            return a_, path
+        end = flight(b_, tail_la, tail_lo)
+        if fine_ok(end):
+            return b_, end
+        while b_ - a_ > _REFINE_TOL_M:
+            mid = 0.5 * (a_ + b_)
+            f = flight(mid, tail_la, tail_lo)
+            if fine_ok(f):
+                a_, best = mid, f
+            else:
+                b_ = mid
+        return a_, best
+
+    s_lo, back = 0.0, path0
+    assert back is not None
+    ok_hi, path_hi = probe(s_hi) if s_hi > 0 else (True, path0)
+    if ok_hi and path_hi is not None:
+        s_lo, back = s_hi, path_hi
+    else:
+        # follow the last reachable probe's return path out with flights, then ask the front
+        # one cell further whether another way home still works (first crossing wins)
+        for _ in range(_MAX_FRONT_STEPS):
+            s_lo, back = along_path(back, s_lo, s_hi)
+            s_next = s_lo + grid.spacing_m
+            if s_next >= s_hi:
+                break
+            ok, path = probe(s_next)
+            if not ok or path is None:
+                break
+            s_lo, back = s_next, path
+        else:
+            warnings.append(f"the search stopped after {_MAX_FRONT_STEPS} front probes; the "
+                            "turn-back point may lie further out")
+    timings["probes_s"] = time.perf_counter() - t
+    s_star = s_lo
+    outbound = fly(glide, fine, safety_height, np.array([lat0, P(s_star)[0]]),
+                   np.array([lon0, P(s_star)[1]]), alt)
+    timings["total_s"] = time.perf_counter() - t_all
+    margin = back.arrival_altitude - home.elevation_m - safety_height
+    if limited == "glide home" and margin > 1.0 and back.min_clearance_m < safety_height + 1.0:
+        limited = "terrain on the way home"
+    msg = (f"turn back after {s_star / 1000:.2f} km along {course:g} deg at "
+           f"{P(s_star)[2]:.0f} m: home reached at {back.arrival_altitude:.0f} m "
+           f"({margin:+.1f} m over the safety height); limited by {limited}")
+    return _result(Status.SOLVED, msg, problem, home, course, glide, s_star, P(s_star),
+                   outbound, limited, back, margin, probes, fine, grid, warnings, timings)
+
+
+def grid_contains(grid: ReachGrid, lat: FloatArray, lon: FloatArray) -> NDArray[np.bool_]:
+    """Inside the front's grid (its nodes' extent)."""
+    return ((lat >= grid.lat[0]) & (lat <= grid.lat[-1]) & (lon >= grid.lon[0])
+            & (lon <= grid.lon[-1]))
+
+
+def _special_nodes(grid: ReachGrid, pts: list[tuple[float, float]]) -> list[tuple[int, int]]:
+    from glideplan.reach.grid import _cell_nodes
+
+    return _cell_nodes(grid.lat, grid.lon, pts)
+
+
+def _result(status: Status, message: str, problem: ReachProblem, home: Landable, course: float,
+            glide: Glide, s: float, p: tuple[float, float, float], outbound: FlownPath | None,
+            limited: str, back: FlownPath | None, margin: float | None,
+            probes: list[tuple[float, bool]], terrain: Terrain, grid: ReachGrid,
+            warnings: list[str], timings: dict[str, float]) -> TurnbackResult:
+    return TurnbackResult(
+        status=status, message=message, start=problem.start, home=home, course_deg=course,
+        safety_height=problem.safety_height, glide=glide, distance_m=s, lat=p[0], lon=p[1],
+        altitude_m=p[2], arrival_altitude_m=None if back is None else back.arrival_altitude,
+        arrival_margin_m=margin, limited_by=limited, outbound=outbound, back=back,
+        probes=tuple(probes), terrain=terrain, resolution_m=grid.spacing_m,
+        warnings=tuple(warnings), timings=timings)

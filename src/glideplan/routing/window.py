@@ -1,0 +1,487 @@
+"""The routing window: a lat/lon grid about the start and goal that grows with the front.
+
+Nodes sit on one lattice for the whole solve: lat_i = lat_s + i dlat, lon_j = lon_s + j dlon
+(degrees), (lat_s, lon_s) the start, longitudes in a frame unwrapped about the start (the goal
+is taken within 180 deg of it, so a route across 0 or 180 deg is continuous). dlat = h / R
+(h the spacing in metres), dlon = dlat / cos(lat_ref) rounded so that 360 / dlon is an
+integer (lat_ref the mean |latitude| of start and goal, at most 80 deg): a window that grows
+to the whole circle of a global field closes exactly (`periodic`). Because the nodes never
+move, a grown window holds the old one as a block (the front's state is embedded in it).
+
+The lattice is bounded by the field's extent (in the frame) and by +-85 deg latitude (the
+metric's cos(lat) vanishes at the poles); `fixed_sides` are the window's sides on a bound.
+
+`WindowCurrents` samples the field on the window at time levels (the field's own, one for a
+steady field, or every `sample_dt` seconds for an analytic one), lazily, and interpolates
+linearly in time; `obstacles` marks the nodes within the land clearance of land: the land
+points are the field's own NaN nodes (for a gridded field; its linear interpolation reads NaN
+anywhere within one cell of them) and the window's NaN nodes, at their coasts; the distance is
+the great-circle distance (a k-d tree on 3-D positions, chord radius 2 R sin(c / 2R)).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from glideplan.errors import InvalidParameterError
+from glideplan.fields.field import FlowField, GriddedField, UniformField
+from glideplan.routing.sphere import EARTH_RADIUS_M, unwrap_lon
+
+__all__ = ["MAX_LAT_DEG", "Lattice", "Window", "WindowCurrents", "initial_window",
+           "land_clearance_default", "obstacles"]
+
+FloatArray = NDArray[np.float64]
+BoolArray = NDArray[np.bool_]
+
+#: The window never goes beyond this latitude (deg): hx = R cos(lat) dlon -> 0 at the poles.
+MAX_LAT_DEG = 85.0
+SIDES = ("south", "north", "west", "east")
+
+
+@dataclass(frozen=True)
+class Lattice:
+    """Node lattice (module docstring): origin (start), steps (deg), index bounds (inclusive;
+    jmin/jmax None when longitude is unbounded: a global or unbounded field)."""
+
+    lat0: float
+    lon0: float
+    dlat: float
+    dlon: float
+    imin: int
+    imax: int
+    jmin: int | None
+    jmax: int | None
+    spacing_m: float
+
+    @property
+    def n_circle(self) -> int:
+        return round(360.0 / self.dlon)
+
+    @property
+    def wraps(self) -> bool:
+        return self.jmin is None
+
+
+def build_lattice(fld: FlowField, start: tuple[float, float], goal_frame: tuple[float, float],
+                  spacing: float) -> Lattice:
+    """The lattice of spacing `spacing` (m) about `start`, bounded by the field (docstring)."""
+    lat_ref = min(0.5 * (abs(start[0]) + abs(goal_frame[0])), 80.0)
+    dlat = math.degrees(spacing / EARTH_RADIUS_M)
+    n = max(round(360.0 / (dlat / math.cos(math.radians(lat_ref)))), 8)
+    dlon = 360.0 / n
+    ext = fld.extent
+    lat_lo, lat_hi = -MAX_LAT_DEG, MAX_LAT_DEG
+    jmin: int | None = None
+    jmax: int | None = None
+    if ext is not None:
+        lat_lo, lat_hi = max(lat_lo, ext.lat_min), min(lat_hi, ext.lat_max)
+        if not ext.periodic:
+            lo_min = start[1] - float(np.mod(start[1] - ext.lon_min, 360.0))
+            lo_max = lo_min + (ext.lon_max - ext.lon_min)
+            jmin = math.ceil((lo_min - start[1]) / dlon - 1e-9)
+            jmax = math.floor((lo_max - start[1]) / dlon + 1e-9)
+    imin = math.ceil((lat_lo - start[0]) / dlat - 1e-9)
+    imax = math.floor((lat_hi - start[0]) / dlat + 1e-9)
+    return Lattice(float(start[0]), float(start[1]), dlat, dlon, imin, imax, jmin, jmax,
+                   float(spacing))
+
+
+#: Nodes beyond the field's edge (or +-85 deg) in a window that reaches it: obstacles, so the
+#: front's band never comes within the kernel's edge margin of a side that cannot grow.
+EDGE_PAD = 5
+
+
+@dataclass(frozen=True)
+class Window:
+    """Rows i0..i1-1 and columns j0..j1-1 of the lattice (periodic: the whole circle).
+
+    Where the window reaches a bound of the lattice it holds EDGE_PAD more nodes beyond it,
+    outside the field (`inside` False): obstacles, the field's edge as a wall."""
+
+    lattice: Lattice
+    i0: int
+    i1: int
+    j0: int
+    j1: int
+    periodic: bool = False
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return self.i1 - self.i0, self.j1 - self.j0
+
+    @property
+    def lat(self) -> FloatArray:
+        return self.lattice.lat0 + np.arange(self.i0, self.i1) * self.lattice.dlat
+
+    @property
+    def lon(self) -> FloatArray:
+        return self.lattice.lon0 + np.arange(self.j0, self.j1) * self.lattice.dlon
+
+    @property
+    def nodes(self) -> int:
+        return self.shape[0] * self.shape[1]
+
+    @property
+    def inside(self) -> BoolArray:
+        """Nodes inside the field's extent (and within +-85 deg)."""
+        L = self.lattice
+        i = np.arange(self.i0, self.i1)
+        rows = (i >= L.imin) & (i <= L.imax)
+        if self.periodic or L.jmin is None or L.jmax is None:
+            cols = np.ones(self.shape[1], dtype=bool)
+        else:
+            j = np.arange(self.j0, self.j1)
+            cols = (j >= L.jmin) & (j <= L.jmax)
+        return rows[:, None] & cols[None, :]
+
+    def grid(self) -> Any:
+        """The front kernel's `LatLonGrid` of this window."""
+        from glideplan.fronts.grid import LatLonGrid
+
+        return LatLonGrid(lat=self.lat, lon=self.lon, periodic=self.periodic,
+                          radius_m=EARTH_RADIUS_M)
+
+    def fixed_sides(self) -> set[str]:
+        """Sides on a bound of the lattice (the field's edge, or +-85 deg): they cannot grow."""
+        L = self.lattice
+        out = set()
+        if self.i0 <= L.imin:
+            out.add("south")
+        if self.i1 - 1 >= L.imax:
+            out.add("north")
+        if not self.periodic and L.jmin is not None and self.j0 <= L.jmin:
+            out.add("west")
+        if not self.periodic and L.jmax is not None and self.j1 - 1 >= L.jmax:
+            out.add("east")
+        return out
+
+    def _clip(self, i0: int, i1: int, j0: int, j1: int) -> tuple[int, int, int, int]:
+        L = self.lattice
+        lat_lim = 89.0 - 1e-6
+        if i0 <= L.imin:
+            i0 = max(L.imin - EDGE_PAD, math.ceil((-lat_lim - L.lat0) / L.dlat))
+        if i1 - 1 >= L.imax:
+            i1 = min(L.imax + EDGE_PAD, math.floor((lat_lim - L.lat0) / L.dlat)) + 1
+        if L.jmin is not None and j0 <= L.jmin:
+            j0 = L.jmin - EDGE_PAD
+        if L.jmax is not None and j1 - 1 >= L.jmax:
+            j1 = L.jmax + EDGE_PAD + 1
+        return i0, i1, j0, j1
+
+    def grown(self, sides: set[str], by: int | None = None) -> Window:
+        """The window grown on `sides` by `by` nodes (default half its size, >= 16), clipped
+        to the lattice (with the edge pad); a window of a wrapping lattice that reaches 360 deg
+        becomes periodic."""
+        L = self.lattice
+        ny, nx = self.shape
+        i0, i1, j0, j1 = self.i0, self.i1, self.j0, self.j1
+        if "south" in sides:
+            i0 -= by or max(ny // 2, 16)
+        if "north" in sides:
+            i1 += by or max(ny // 2, 16)
+        if not self.periodic:
+            if "west" in sides:
+                j0 -= by or max(nx // 2, 16)
+            if "east" in sides:
+                j1 += by or max(nx // 2, 16)
+        i0, i1, j0, j1 = self._clip(i0, i1, j0, j1)
+        periodic = self.periodic
+        if not periodic and L.wraps and j1 - j0 >= L.n_circle - 1:
+            periodic = True
+            mid = (self.j0 + self.j1) // 2
+            j0 = mid - L.n_circle // 2
+            j1 = j0 + L.n_circle
+        return replace(self, i0=i0, i1=i1, j0=j0, j1=j1, periodic=periodic)
+
+    def frac_index(self, lat: Any, lon: Any) -> tuple[FloatArray, FloatArray]:
+        """Fractional (row, column) in the window of points (deg; lon any representation)."""
+        L = self.lattice
+        fi = (np.asarray(lat, dtype=float) - L.lat0) / L.dlat - self.i0
+        centre = L.lon0 + 0.5 * (self.j0 + self.j1 - 1) * L.dlon
+        lo = unwrap_lon(lon, centre)
+        fj = (lo - L.lon0) / L.dlon - self.j0
+        if self.periodic:
+            fj = np.mod(fj, L.n_circle)
+        return fi, fj
+
+    def offset_in(self, big: Window) -> tuple[int, int]:
+        """(row, column) of this window's first node in the larger window `big`."""
+        return self.i0 - big.i0, self.j0 - big.j0
+
+
+def initial_window(lattice: Lattice, goal_frame: tuple[float, float], distance: float,
+                   margin: float, min_cells: int = 10) -> Window:
+    """The start-goal box grown by margin x distance + `min_cells` nodes each side, clipped
+    to the lattice (with the edge pad where it reaches a bound)."""
+    L = lattice
+    gi = (goal_frame[0] - L.lat0) / L.dlat
+    gj = (goal_frame[1] - L.lon0) / L.dlon
+    pad_m = margin * distance
+    pad_i = pad_m / L.spacing_m + min_cells
+    lat_ref = min(max(abs(L.lat0), abs(goal_frame[0])), MAX_LAT_DEG)
+    hx_ref = EARTH_RADIUS_M * math.cos(math.radians(lat_ref)) * math.radians(L.dlon)
+    pad_j = pad_m / hx_ref + min_cells
+    i0 = math.floor(min(0.0, gi) - pad_i)
+    i1 = math.ceil(max(0.0, gi) + pad_i) + 1
+    j0 = math.floor(min(0.0, gj) - pad_j)
+    j1 = math.ceil(max(0.0, gj) + pad_j) + 1
+    w = Window(L, i0, i1, j0, j1)
+    i0, i1, j0, j1 = w._clip(i0, i1, j0, j1)
+    w = Window(L, i0, i1, j0, j1)
+    if L.wraps and j1 - j0 >= L.n_circle - 1:
+        w = w.grown(set())
+    if min(w.shape) < 3:
+        raise InvalidParameterError("field", "extent", "too small for a routing grid here")
+    return w
+
+
+def _is_steady(fld: FlowField) -> bool:
+    return isinstance(fld, UniformField) or (isinstance(fld, GriddedField)
+                                             and fld.times.size == 1)
+
+
+@dataclass(eq=False)
+class WindowCurrents:
+    """The field on the window's nodes at time levels, linear in time (module docstring).
+
+    levels: the field's own time levels, [t0] for a steady field, or None for an analytic
+    unsteady one (then level k is at t0 + k sample_dt)."""
+
+    window: Window
+    field_: FlowField
+    t0: float
+    sample_dt: float
+    levels: FloatArray | None
+    _cache: dict[int, tuple[FloatArray, FloatArray]] = field(default_factory=dict)
+    evaluations: int = 0
+
+    @classmethod
+    def build(cls, window: Window, fld: FlowField, t0: float, sample_dt: float) -> WindowCurrents:
+        own = fld.time_levels
+        if _is_steady(fld):
+            levels: FloatArray | None = np.array([t0])
+        elif own is not None:
+            levels = np.asarray(own, dtype=float)
+        else:
+            levels = None
+        return cls(window, fld, t0, sample_dt, levels)
+
+    def regrown(self, window: Window) -> WindowCurrents:
+        """The same levels on a grown window: cached levels keep their values on the old
+        block; only the new nodes are sampled."""
+        new = WindowCurrents(window, self.field_, self.t0, self.sample_dt, self.levels)
+        new.evaluations = self.evaluations
+        old = self.window
+        r0, c0 = old.offset_in(window)
+        ny, nx = old.shape
+        known = np.zeros(window.shape, dtype=bool)
+        known[r0:r0 + ny, c0:c0 + nx] = old.inside
+        todo = window.inside & ~known
+        LA, LO = np.meshgrid(window.lat, window.lon, indexing="ij")
+        for k, (u_old, v_old) in self._cache.items():
+            u = np.full(window.shape, np.nan)
+            v = np.full(window.shape, np.nan)
+            u[r0:r0 + ny, c0:c0 + nx] = u_old
+            v[r0:r0 + ny, c0:c0 + nx] = v_old
+            if todo.any():
+                uu, vv = self.field_.velocity(self.level_time(k), LA[todo], LO[todo])
+                u[todo], v[todo] = uu, vv
+            u[~window.inside] = np.nan
+            v[~window.inside] = np.nan
+            new._cache[k] = (u, v)
+        return new
+
+    @property
+    def steady(self) -> bool:
+        return self.levels is not None and self.levels.size == 1
+
+    def level_time(self, k: int) -> float:
+        if self.levels is not None:
+            return float(self.levels[k])
+        return self.t0 + k * self.sample_dt
+
+    def bracket(self, t: float) -> tuple[int, float]:
+        """Level k and weight w in [0, 1] with t between levels k and k + 1."""
+        if self.levels is not None:
+            lv = self.levels
+            if lv.size == 1:
+                return 0, 0.0
+            k = int(np.clip(np.searchsorted(lv, t, side="right") - 1, 0, lv.size - 2))
+            return k, float(np.clip((t - lv[k]) / (lv[k + 1] - lv[k]), 0.0, 1.0))
+        f = max((t - self.t0) / self.sample_dt, 0.0)
+        k = int(math.floor(f))
+        return k, f - k
+
+    def level(self, k: int) -> tuple[FloatArray, FloatArray]:
+        """(u, v) east/north m/s on the window at level k; NaN on land."""
+        if k not in self._cache:
+            LA, LO = np.meshgrid(self.window.lat, self.window.lon, indexing="ij")
+            m = self.window.inside
+            u = np.full(m.shape, np.nan)
+            v = np.full(m.shape, np.nan)
+            uu, vv = self.field_.velocity(self.level_time(k), LA[m], LO[m])
+            u[m], v[m] = uu, vv
+            self._cache[k] = (u, v)
+            self.evaluations += 1
+            if len(self._cache) > 64:  # least recently used first
+                self._cache.pop(next(iter(self._cache)))
+        else:
+            self._cache[k] = self._cache.pop(k)
+        return self._cache[k]
+
+    def at(self, t: float) -> tuple[FloatArray, FloatArray]:
+        """(u, v) on the window at time t, linear between levels."""
+        k, w = self.bracket(t)
+        a = self.level(k)
+        if w == 0.0 or self.steady:
+            return a
+        b = self.level(k + 1)
+        return (1 - w) * a[0] + w * b[0], (1 - w) * a[1] + w * b[1]
+
+    def land(self) -> BoolArray:
+        """Nodes inside the field where it is NaN at the first level."""
+        u, v = self.level(0)
+        return ~(np.isfinite(u) & np.isfinite(v)) & self.window.inside
+
+    def points(self, t: float, lat: Any, lon: Any, gradient: bool = False) -> FloatArray:
+        """Bilinear (u, v) at points at time t -> (2, n); with `gradient` also du/dlat,
+        du/dlon, dv/dlat, dv/dlon (per radian) -> (6, n). NaN off the window or near land."""
+        k, w = self.bracket(t)
+        vals = self._interp(k, lat, lon, gradient)
+        if w > 0.0 and not self.steady:
+            vals = (1 - w) * vals + w * self._interp(k + 1, lat, lon, gradient)
+        return vals
+
+    def _interp(self, k: int, lat: Any, lon: Any, gradient: bool) -> FloatArray:
+        u, v = self.level(k)
+        fi, fj = self.window.frac_index(lat, lon)
+        fi, fj = np.atleast_1d(fi), np.atleast_1d(fj)
+        ny, nx = self.window.shape
+        periodic = self.window.periodic
+        inside = (fi >= 0) & (fi <= ny - 1) & (np.isfinite(fj))
+        if not periodic:
+            inside &= (fj >= 0) & (fj <= nx - 1)
+        fi_c = np.where(inside, fi, 0.0)
+        fj_c = np.where(inside, fj, 0.0)
+        i = np.minimum(np.floor(fi_c), ny - 2).astype(np.intp)
+        j = np.floor(fj_c).astype(np.intp)
+        if not periodic:
+            j = np.minimum(j, nx - 2)
+        wy, wx = fi_c - i, fj_c - j
+        j1 = np.mod(j + 1, nx) if periodic else j + 1
+        arrs = [u, v]
+        out = []
+        for a in arrs:
+            a00, a01, a10, a11 = a[i, j], a[i, j1], a[i + 1, j], a[i + 1, j1]
+            val = (1 - wy) * ((1 - wx) * a00 + wx * a01) + wy * ((1 - wx) * a10 + wx * a11)
+            out.append(val)
+            if gradient:
+                dlat = math.radians(self.window.lattice.dlat)
+                dlon = math.radians(self.window.lattice.dlon)
+                d_lat = ((1 - wx) * (a10 - a00) + wx * (a11 - a01)) / dlat
+                d_lon = ((1 - wy) * (a01 - a00) + wy * (a11 - a10)) / dlon
+                out += [d_lat, d_lon]
+        res = np.stack(out)
+        res[:, ~inside] = np.nan
+        return res
+
+
+def land_clearance_default(fld: FlowField, spacing: float, lat_ref: float) -> float:
+    """The default clearance (m): a gridded field with land: its cell's diagonal at lat_ref plus
+    one routing spacing (the NaN stencil reaches one cell from a land node; the grid places the
+    route within one spacing of its obstacles); otherwise one routing spacing."""
+    if isinstance(fld, GriddedField) and not np.all(np.isfinite(fld.u[0])):
+        dy = EARTH_RADIUS_M * math.radians(float(np.mean(np.diff(fld.lat))))
+        dx = EARTH_RADIUS_M * math.cos(math.radians(min(abs(lat_ref), 85.0))) * math.radians(
+            float(np.mean(np.diff(fld.lon))))
+        return math.hypot(dx, dy) + spacing
+    return spacing
+
+
+def _xyz(lat: FloatArray, lon: FloatArray) -> FloatArray:
+    p, lam = np.radians(lat), np.radians(lon)
+    return EARTH_RADIUS_M * np.stack([np.cos(p) * np.cos(lam), np.cos(p) * np.sin(lam),
+                                      np.sin(p)], axis=-1)
+
+
+def _coast(mask: BoolArray) -> BoolArray:
+    """Land nodes with a water node among their 8 neighbours (edges count as land)."""
+    from scipy.ndimage import binary_erosion
+
+    inner = binary_erosion(mask, structure=np.ones((3, 3), dtype=bool), border_value=1)
+    return mask & ~inner
+
+
+def land_points(fld: FlowField, window: Window, land: BoolArray, pad_m: float) -> FloatArray:
+    """3-D positions (m) of the coast points near the window: the field's coastal NaN nodes
+    (gridded fields) and the window's coastal NaN nodes."""
+    pts = []
+    if land.any():
+        LA, LO = np.meshgrid(window.lat, window.lon, indexing="ij")
+        c = _coast(land)
+        pts.append(_xyz(LA[c], LO[c]))
+    if isinstance(fld, GriddedField):
+        nan = ~(np.isfinite(fld.u[0]) & np.isfinite(fld.v[0]))
+        if nan.any():
+            pad_deg = math.degrees(pad_m / EARTH_RADIUS_M)
+            lat = fld.lat
+            rows = (lat >= window.lat[0] - pad_deg) & (lat <= window.lat[-1] + pad_deg)
+            centre = 0.5 * (window.lon[0] + window.lon[-1])
+            half = 0.5 * (window.lon[-1] - window.lon[0])
+            lat_max = min(max(abs(window.lat[0]), abs(window.lat[-1])) + pad_deg, 89.0)
+            pad_lon = pad_deg / math.cos(math.radians(lat_max))
+            lo = unwrap_lon(fld.lon, centre)
+            cols = np.abs(lo - centre) <= half + pad_lon if not window.periodic else \
+                np.ones(lo.size, dtype=bool)
+            if rows.any() and cols.any():
+                sub = nan[np.ix_(rows, cols)]
+                c = _coast(sub) if sub.any() else sub
+                if c.any():
+                    LA, LO = np.meshgrid(lat[rows], lo[cols], indexing="ij")
+                    pts.append(_xyz(LA[c], LO[c]))
+    return np.concatenate(pts) if pts else np.zeros((0, 3))
+
+
+def distance_to_land(points: FloatArray, lat: FloatArray, lon: FloatArray,
+                     upper: float) -> FloatArray:
+    """Great-circle distance (m) from each (lat, lon) to the nearest land point, inf beyond
+    `upper` (or with no land points)."""
+    out = np.full(np.shape(lat), np.inf)
+    if points.shape[0] == 0:
+        return out
+    from scipy.spatial import cKDTree
+
+    tree = cKDTree(points)
+    chord_max = 2 * EARTH_RADIUS_M * math.sin(min(upper / (2 * EARTH_RADIUS_M), math.pi / 2))
+    d, _ = tree.query(_xyz(np.ravel(lat), np.ravel(lon)), distance_upper_bound=chord_max * 1.0001)
+    d = np.asarray(d, dtype=float)
+    fin = np.isfinite(d)
+    d[fin] = 2 * EARTH_RADIUS_M * np.arcsin(np.clip(d[fin] / (2 * EARTH_RADIUS_M), 0, 1))
+    return d.reshape(np.shape(lat))
+
+
+def obstacles(fld: FlowField, window: Window, land: BoolArray, clearance: float,
+              keep_free: Sequence[tuple[float, float, float]] = (),
+              pts: FloatArray | None = None) -> tuple[BoolArray, FloatArray]:
+    """Obstacle nodes: land, or within `clearance` (m) of a land point; nodes within each
+    (lat, lon, radius m) of `keep_free` are freed unless they are land themselves.
+    Returns (mask, the coast points used: `pts`, or `land_points`)."""
+    if pts is None:
+        pts = land_points(fld, window, land, clearance + window.lattice.spacing_m)
+    LA, LO = np.meshgrid(window.lat, window.lon, indexing="ij")
+    mask = land.copy()
+    if clearance > 0 and pts.shape[0]:
+        mask |= distance_to_land(pts, LA, LO, clearance) < clearance
+    if keep_free:
+        from glideplan.routing.sphere import gc_distance
+
+        for la, lo, r in keep_free:
+            near = gc_distance(LA, LO, la, lo) <= r
+            mask &= ~(near & ~land)
+    return mask, pts

@@ -1,0 +1,144 @@
+"""Zermelo's navigation problem on the sphere, solved by shooting (the refinement phase).
+
+State (phi, lam) (latitude, longitude in radians), compass heading chi of the through-water
+velocity, current (u east, v north):
+
+    phi' = (V cos chi + v) / R,    lam' = (V sin chi + u) / (R cos phi).
+
+Minimum time (Pontryagin; costate p, H = 1 + p . f): with q = -p the optimal heading is
+chi = atan2(q_lam / cos phi, q_phi), and q obeys the costate equations (q is homogeneous, so
+its magnitude is free and only the initial heading chi0 is unknown):
+
+    q_phi' = -[q_phi v_phi / R + q_lam u_phi / (R cos phi)
+               + q_lam (V sin chi + u) sin phi / (R cos^2 phi)],
+    q_lam' = -[q_phi v_lam / R + q_lam u_lam / (R cos phi)]
+
+(subscripts: partial derivatives per radian). In still water q_lam is constant and |q| = R / V,
+so cos phi sin chi is constant: Clairaut's relation, the great circle. Shooting: Newton on
+(chi0, T) for position(T) = goal, two trajectories integrated together (RK4, fixed steps) for
+the derivative in chi0; d position / dT is the velocity at T. The current and its gradient
+come from the routing window (bilinear in space, linear in time).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from glideplan.routing.sphere import EARTH_RADIUS_M
+from glideplan.routing.window import WindowCurrents
+
+__all__ = ["Shot", "zermelo_shooting"]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True, eq=False)
+class Shot:
+    """A converged (or not) shooting: times (s since epoch), lat/lon (deg), compass headings
+    (rad) at the RK4 nodes; the arrival time T (s after departure)."""
+
+    converged: bool
+    t: FloatArray
+    lat: FloatArray
+    lon: FloatArray
+    chi: FloatArray
+    duration: float
+    iterations: int
+    message: str
+
+
+def _rhs(cur: WindowCurrents, speed: float, t: float, z: FloatArray) -> FloatArray:
+    """z = (phi, lam, q_phi, q_lam) rows, columns trajectories."""
+    R = EARTH_RADIUS_M
+    phi, lam, qp, ql = z
+    vals = cur.points(t, np.degrees(phi), np.degrees(lam), gradient=True)
+    u, u_phi, u_lam, v, v_phi, v_lam = vals
+    c = np.cos(phi)
+    chi = np.arctan2(ql / c, qp)
+    sc, cc = np.sin(chi), np.cos(chi)
+    dphi = (speed * cc + v) / R
+    dlam = (speed * sc + u) / (R * c)
+    dqp = -(qp * v_phi / R + ql * u_phi / (R * c) + ql * (speed * sc + u) * np.sin(phi)
+            / (R * c * c))
+    dql = -(qp * v_lam / R + ql * u_lam / (R * c))
+    return np.stack([dphi, dlam, dqp, dql])
+
+
+def _fly(cur: WindowCurrents, speed: float, t0: float, duration: float, phi0: float,
+         lam0: float, chi0: FloatArray, steps: int) -> FloatArray:
+    """RK4 states (steps + 1, 4, m) for each initial heading (shorter if it meets NaN)."""
+    z = np.stack([np.full(chi0.size, phi0), np.full(chi0.size, lam0), np.cos(chi0),
+                  np.sin(chi0) * math.cos(phi0)])
+    dt = duration / steps
+    out = [z]
+    for k in range(steps):
+        t = t0 + k * dt
+        k1 = _rhs(cur, speed, t, z)
+        k2 = _rhs(cur, speed, t + dt / 2, z + dt / 2 * k1)
+        k3 = _rhs(cur, speed, t + dt / 2, z + dt / 2 * k2)
+        k4 = _rhs(cur, speed, t + dt, z + dt * k3)
+        z = z + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        if not np.all(np.isfinite(z[:, 0])):
+            break
+        # keep |q| near 1 (homogeneous): no overflow over long routes
+        z[2:] /= np.hypot(z[2], z[3] / np.cos(z[0]))
+        out.append(z)
+    return np.stack(out)
+
+
+def zermelo_shooting(
+    cur: WindowCurrents,
+    speed: float,
+    t0: float,
+    start: tuple[float, float],
+    goal: tuple[float, float],
+    chi0: float,
+    duration: float,
+    steps: int = 240,
+    tol_m: float = 1.0,
+    max_iter: int = 25,
+) -> Shot:
+    """Newton shooting on (chi0, T) for position(T) = goal (module docstring); start, goal
+    (lat, lon deg; goal lon continuous with the start's), chi0 compass (rad), duration (s)."""
+    R = EARTH_RADIUS_M
+    phi0, lam0 = math.radians(start[0]), math.radians(start[1])
+    gphi, glam = math.radians(goal[0]), math.radians(goal[1])
+    ch, T = float(chi0), float(duration)
+    delta = 1e-6
+    empty = np.zeros(1)
+    msg = "not converged"
+    for it in range(1, max_iter + 1):
+        zz = _fly(cur, speed, t0, T, phi0, lam0, np.array([ch, ch + delta]), steps)
+        if zz.shape[0] < steps + 1:
+            return Shot(False, empty, empty, empty, empty, T, it,
+                        "trajectory reached land or left the routing window")
+        end = zz[-1]
+        # residual in local metres (north, east) at the goal
+        r = np.array([(end[0, 0] - gphi) * R, (end[1, 0] - glam) * R * math.cos(gphi)])
+        err = math.hypot(r[0], r[1])
+        if err <= tol_m:
+            tt = t0 + np.linspace(0.0, T, steps + 1)
+            phi, lam, qp, ql = zz[:, 0, 0], zz[:, 1, 0], zz[:, 2, 0], zz[:, 3, 0]
+            chi = np.arctan2(ql / np.cos(phi), qp)
+            return Shot(True, tt, np.degrees(phi), np.degrees(lam), chi, T, it, "converged")
+        d_end = np.array([(end[0, 1] - end[0, 0]) * R,
+                          (end[1, 1] - end[1, 0]) * R * math.cos(gphi)]) / delta
+        vel = _rhs(cur, speed, t0 + T, end[:, :1])[:2, 0]
+        vel = np.array([vel[0] * R, vel[1] * R * math.cos(gphi)])
+        jac = np.column_stack([d_end, vel])
+        try:
+            step = np.linalg.solve(jac, -r)
+        except np.linalg.LinAlgError:
+            msg = "singular Jacobian"
+            break
+        scale = min(1.0, 0.3 / max(abs(step[0]), 1e-12), 0.2 * T / max(abs(step[1]), 1e-12))
+        ch += scale * step[0]
+        T += scale * step[1]
+        if T <= 0 or not math.isfinite(T):
+            msg = "arrival time became non-positive"
+            break
+    return Shot(False, empty, empty, empty, empty, T, max_iter, msg)

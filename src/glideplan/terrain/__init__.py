@@ -1,0 +1,21 @@
+"""Terrain elevation: SRTM `.hgt` and GeoTIFF tiles merged onto one WGS84 lat/lon grid.
+
+`read_terrain(paths)` reads and merges; `Terrain.elevation(lat, lon)` is bilinear;
+`Terrain.pooled_max(f)` gives a coarser grid that never understates the terrain of a cell.
+"""
+
+from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
+from glideplan.terrain.hgt import read_hgt, write_hgt
+from glideplan.terrain.merge import merge_tiles, read_terrain
+from glideplan.terrain.voids import VOID_MODES, fill_voids
+
+__all__ = [
+    "EARTH_RADIUS_M",
+    "VOID_MODES",
+    "Terrain",
+    "fill_voids",
+    "merge_tiles",
+    "read_hgt",
+    "read_terrain",
+    "write_hgt",
+]

@@ -1,0 +1,96 @@
+"""`glideplan glide reach|turnback` end to end: files in, JSON and files out, one-line errors."""
+
+import json
+
+import numpy as np
+import pytest
+
+from glideplan.reach import Landable
+from glideplan.reach.landables import write_cup_landables
+from glideplan.terrain.geotiff import write_geotiff
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    d = tmp_path_factory.mktemp("reach_cli")
+    n = 81
+    lat = 46.0 + 0.3 * np.arange(n) / (n - 1)
+    lon = 7.0 + 0.4 * np.arange(n) / (n - 1)
+    z = np.full((n, n), 400.0)
+    tif = write_geotiff(d / "dem.tif", lat, lon, z)
+    cup = write_cup_landables(d / "fields.cup", [Landable("Near", 46.16, 7.2, 400.0, 4),
+                                                 Landable("Far", 46.28, 7.38, 400.0, 3)])
+    return d, tif, cup
+
+
+def test_reach_json_and_files(run_cli, files, polar_file):
+    d, tif, cup = files
+    code, out, err = run_cli(
+        "glide", "reach", "--polar", str(polar_file), "--from", "46.15", "7.2", "900",
+        "--terrain", str(tif), "--landables", str(cup), "--wind", "5", "270", "--json",
+        "--geojson", str(d / "r.geojson"), "--kml", str(d / "r.kml"), "--plot",
+        str(d / "r.png"))
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["status"] == "solved"
+    near, far = data["points"]
+    assert near["name"] == "Near" and near["reachable"] is True
+    assert near["arrival_altitude_m"] > 400 + 300
+    assert far["reachable"] is False
+    assert data["glide"]["wind_ms"] == pytest.approx([5.0, 0.0], abs=1e-12)  # from the west
+    for f in ("r.geojson", "r.kml", "r.png"):
+        assert (d / f).stat().st_size > 0
+    assert json.loads((d / "r.geojson").read_text())["type"] == "FeatureCollection"
+
+
+def test_reach_table(run_cli, files, polar_file):
+    _, tif, cup = files
+    code, out, _ = run_cli("glide", "reach", "--polar", str(polar_file), "--from", "46.15",
+                           "7.2", "900", "--terrain", str(tif), "--landables", str(cup))
+    assert code == 0
+    assert "Near" in out and "1 of 2 landable(s) reachable" in out
+
+
+@pytest.mark.parametrize("args,flag", [
+    (["--terrain", "missing.hgt"], "--terrain"),
+    (["--mc", "-1"], "--mc"),
+    (["--safety-height", "-5"], "--safety-height"),
+    (["--resolution", "0"], "--resolution"),
+])
+def test_reach_bad_input_one_line(cli_error, files, polar_file, args, flag):
+    _, tif, _ = files
+    base = ["glide", "reach", "--polar", str(polar_file), "--from", "46.15", "7.2", "900"]
+    if "--terrain" not in args:
+        base += ["--terrain", str(tif)]
+    line = cli_error(*base, *args)
+    assert flag in line
+
+
+def test_reach_start_outside_terrain(cli_error, files, polar_file):
+    _, tif, _ = files
+    line = cli_error("glide", "reach", "--polar", str(polar_file), "--from", "48", "7.2",
+                     "900", "--terrain", str(tif))
+    assert "--from" in line and "outside the terrain" in line
+
+
+def test_reach_foreign_terrain_file(cli_error, files, polar_file, tmp_path):
+    bad = tmp_path / "N46E007.hgt"
+    bad.write_text("not a tile")
+    line = cli_error("glide", "reach", "--polar", str(polar_file), "--from", "46.5", "7.2",
+                     "900", "--terrain", str(bad))
+    assert "--terrain" in line and "1201x1201" in line
+
+
+def test_turnback_json(run_cli, polar_file):
+    code, out, err = run_cli("glide", "turnback", "--polar", str(polar_file), "--from", "46.2",
+                             "7.2", "1500", "--course", "90", "--home", "46.2", "7.2", "200",
+                             "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["status"] == "solved" and data["turnback"]["distance_m"] > 10000
+
+
+def test_turnback_unreachable_exit_1(cli_error, polar_file):
+    line = cli_error("glide", "turnback", "--polar", str(polar_file), "--from", "46.2", "7.2",
+                     "600", "--course", "90", "--home", "46.6", "7.2", "200", code=1)
+    assert "unreachable" in line
