@@ -41,8 +41,6 @@ from glideplan.vehicles import DubinsCar, Vehicle
 from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
 from glideplan.vehicles.load_factor_glider import LoadFactorGlider
 from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider
-from glideplan.vehicles.sailplane import Sailplane
-from glideplan.vehicles.sailplane_polar import SailplanePolar
 from glideplan.vehicles.variable_speed_car import VariableSpeedCar
 from glideplan.verify import EndpointError, endpoint_error, integrate_path
 
@@ -55,6 +53,8 @@ if TYPE_CHECKING:
     )
     from glideplan.routing import route
     from glideplan.sailplane.request import final_glide
+    from glideplan.vehicles.sailplane import Sailplane
+    from glideplan.vehicles.sailplane_polar import SailplanePolar
 
 __version__ = "0.1.0"
 
@@ -67,11 +67,14 @@ _LAZY = {
     "turnback": "glideplan.reach",
     "FlowField": "glideplan.fields",
     "open_field": "glideplan.fields",
+    "Sailplane": "glideplan.vehicles.sailplane",
+    "SailplanePolar": "glideplan.vehicles.sailplane_polar",
 }
 
 
 def __getattr__(name: str) -> Any:
-    """Import a product (`route`, `plan_mission`, `final_glide`, ...) on first use."""
+    """Import a product (`route`, `plan_mission`, `final_glide`, `Sailplane`, ...) on first
+    use."""
     module = _LAZY.get(name)
     if module is None:
         raise AttributeError(f"module 'glideplan' has no attribute {name!r}")

@@ -195,7 +195,7 @@ PHYSICAL_RANGES: Mapping[str, PhysicalRange] = {
     "elevation": PhysicalRange(-500.0, 9_000.0, "m", "ground elevation: Dead Sea to Everest"),
     "height": PhysicalRange(0.0, 5_000.0, "m", "a safety or arrival height above the ground"),
     "heading": PhysicalRange(
-        -360.0, 360.0, "deg", "a heading or compass bearing, within one turn either way"
+        -3600.0, 3600.0, "deg", "a heading or compass bearing, up to ten turns either way"
     ),
     "depth": PhysicalRange(0.0, 11_000.0, "m", "sea surface to the deepest ocean trench"),
     # ---- speeds and rates ----------------------------------------------------------------

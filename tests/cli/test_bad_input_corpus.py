@@ -684,18 +684,18 @@ CASES: dict[str, Case] = {
     "glide final --arrival-heading 1e300 is bad input, not a planning failure": Case(
         (*GLIDE, "--arrival-heading", "1e300"),
         2,
-        "--arrival-heading=1e+300: must lie in [-360, 360] deg",
+        "--arrival-heading=1e+300: must lie in [-3600, 3600] deg",
     ),
     "glide final --start-heading 1e300": Case(
         (*GLIDE, "--arrival-heading", "90", "--start-heading", "1e300"),
         2,
-        "--start-heading=1e+300: must lie in [-360, 360] deg",
+        "--start-heading=1e+300: must lie in [-3600, 3600] deg",
     ),
     "glide final --wind speed 1e300": Case(
         (*GLIDE, "--wind", "1e300", "270"), 2, "--wind speed=1e+300: must lie in [0, 150] m/s"
     ),
     "glide final --wind direction 1e300": Case(
-        (*GLIDE, "--wind", "10", "1e300"), 2, "--wind direction=1e+300: must lie in [-360, 360]"
+        (*GLIDE, "--wind", "10", "1e300"), 2, "--wind direction=1e+300: must lie in [-3600, 3600]"
     ),
     "glide final --safety-height 1e9": Case(
         (*GLIDE, "--safety-height", "1e9"),
@@ -788,12 +788,21 @@ CASES: dict[str, Case] = {
     "plan dubins goal heading 1e300 is bad input, not a planning failure": Case(
         ("plan", "dubins", "--goal", "4", "3", "1e300", "--radius", "1"),
         2,
-        "--goal h=1e+300: must lie in [-360, 360] deg",
+        "--goal h=1e+300: must lie in [-3600, 3600] deg",
     ),
     "plan wind start heading -1e300": Case(
         (*WIND, "--goal", "4", "3", "0", "--start", "0", "0", "-1e300"),
         2,
-        "--start h=-1e+300: must lie in [-360, 360] deg",
+        "--start h=-1e+300: must lie in [-3600, 3600] deg",
+    ),
+    "design lbl --swaths 1e9": Case(
+        ("design", "lbl", "--swaths", "1000000000"), 2, "--swaths=1000000000: must lie in [1, 1000]"
+    ),
+    "design lbl --step-m 1e-6 (a billion pings)": Case(
+        ("design", "lbl", "--step-m", "1e-6"), 2, "--step-m=1e-06: gives about 2.52e+09 pings"
+    ),
+    "route --speed 1e9 (was '0.00 h')": Case(
+        (*ROUTE[:-4], "--speed", "1e9"), 2, "--speed=1000000000.0: must lie in (0, 343] m/s"
     ),
     # ---- issue 19: start = goal is solved with zero cost (as `plan` answers it) ------------
     "glide final start = goal": Case(

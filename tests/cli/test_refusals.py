@@ -9,6 +9,7 @@ Slocum writer itself would refuse them), and the progress reports of the long mi
 from __future__ import annotations
 
 import math
+import os
 import pathlib
 
 import numpy as np
@@ -202,3 +203,38 @@ def test_readme_documents_the_table() -> None:
         for k, r in PHYSICAL_RANGES.items()
     }
     assert documented == expected
+
+
+def test_export_directory_under_a_file_is_refused_before_planning(
+    run_cli, error_line, tmp_path, monkeypatch
+) -> None:
+    import glideplan.missions
+
+    def must_not_plan(*args, **kwargs):
+        raise AssertionError("planned although the export directory cannot be made")
+
+    monkeypatch.setattr(glideplan.missions, "plan_mission", must_not_plan)
+    blocker = tmp_path / "a_file"
+    blocker.write_text("x")
+    target = blocker / "mission"
+    code, _, err = run_cli(
+        "mission", "plan", str(GPX), "--speed", "0.3", "--radius", "150", "--export", str(target)
+    )
+    assert code == 2
+    assert error_line(err) == (
+        f"glideplan: error: --export='{target}': '{blocker}' is a file, not a directory"
+    )
+
+
+@pytest.mark.skipif(
+    not hasattr(os, "geteuid") or os.geteuid() == 0, reason="root may write into any directory"
+)
+def test_export_directory_not_writable(run_cli, error_line, tmp_path) -> None:
+    locked = tmp_path / "locked"
+    locked.mkdir(mode=0o500)
+    code, _, err = run_cli(
+        "mission", "plan", str(GPX), "--speed", "0.3", "--radius", "150",
+        "--export", str(locked / "m"),
+    )  # fmt: skip
+    assert code == 2
+    assert error_line(err).endswith(f"directory '{locked}' is not writable")

@@ -65,6 +65,19 @@ def test_final_glide_start_equal_goal_is_zero_loss():
     assert res.ok and res.altitude_loss_m == 0.0 and res.distance_m == 0.0
 
 
+def test_final_glide_to_an_arrival_heading_is_a_verified_plan():
+    """With an arrival heading the path is plan()'s (verified by integration through the
+    wind); it cannot lose less altitude than the unconstrained straight glide."""
+    polar = dg1001m_sailplane().polar
+    res = glideplan.final_glide(polar, START, GOAL, arrival_heading=190.0, wind=(3.0, -2.0))
+    d = _contract(res)
+    assert res.solution is not None and res.solution.ok
+    assert d["endpoint_error"]["position"] < 1e-3
+    assert res.altitude_loss_m >= d["straight"]["altitude_loss_m"] - 1e-6
+    assert res.track.t[-1] == pytest.approx(d["duration_s"], rel=1e-12)
+    assert res.track.alt[-1] == pytest.approx(START[2] - res.altitude_loss_m, rel=1e-9)
+
+
 def test_final_glide_errors_name_parameters_not_flags():
     polar = dg1001m_sailplane().polar
     with pytest.raises(glideplan.InvalidParameterError) as err:

@@ -427,3 +427,29 @@ def test_two_dimensional_coordinates_of_a_regular_grid_are_not_regridded():
         np.testing.assert_array_equal(f.lon, lon)
         u, v = f.velocity(0.0, 1.5, 11.25)
         assert (float(u), float(v)) == pytest.approx((0.1125, 0.15), abs=1e-12)
+
+
+def test_regrid_keeps_a_concave_grid_concave():
+    """A curved (polar) grid around three quarters of an annulus, r 20..60 km: nodes inside its
+    cells get the linear field exactly (linear on every triangle), nodes in the hole and in the
+    missing quarter stay NaN (a Delaunay triangulation of the points would bridge both)."""
+    from glideplan.fields.regrid import CurvilinearSource, regrid_curvilinear
+
+    r, th = np.meshgrid(np.linspace(20e3, 60e3, 21), np.radians(np.linspace(0, 270, 136)),
+                        indexing="ij")
+    k_lon = EARTH_RADIUS_M * math.cos(math.radians(30.0))
+    lat = 30.0 + np.degrees(r * np.sin(th) / EARTH_RADIUS_M)
+    lon = -40.0 + np.degrees(r * np.cos(th) / k_lon)
+    ue, ve = _linear_east_north(0.0, lat, lon)
+    g = regrid_curvilinear(CurvilinearSource(ue[None], lat, lon),
+                           CurvilinearSource(ve[None], lat, lon))
+    LA, LO = np.meshgrid(g.lat, g.lon, indexing="ij")
+    x, y = np.radians(LO + 40.0) * k_lon, np.radians(LA - 30.0) * EARTH_RADIUS_M
+    rr, tt = np.hypot(x, y), np.degrees(np.mod(np.arctan2(y, x), 2 * np.pi))
+    # Chords of the 2 deg arcs lie within r (1 - cos 1 deg) = 9 m of the circles: 0.5 km margins.
+    inside = (rr > 20.5e3) & (rr < 59.5e3) & (tt > 1.0) & (tt < 269.0)
+    hole = (rr < 19.5e3) | ((tt > 271.0) & (tt < 359.0))
+    assert inside.sum() > 1000 and hole.sum() > 500
+    np.testing.assert_allclose(g.u[0][inside], _linear_east_north(0.0, LA, LO)[0][inside],
+                               atol=1e-12)
+    assert np.isnan(g.u[0][hole]).all() and np.isnan(g.v[0][hole]).all()

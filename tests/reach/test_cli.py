@@ -94,3 +94,20 @@ def test_turnback_unreachable_exit_1(cli_error, polar_file):
     line = cli_error("glide", "turnback", "--polar", str(polar_file), "--from", "46.2", "7.2",
                      "600", "--course", "90", "--home", "46.6", "7.2", "200", code=1)
     assert "unreachable" in line
+
+
+def test_reach_hgt_voids_refused_then_filled(run_cli, cli_error, polar_file, tmp_path):
+    """An SRTM3 tile with a void: refused naming --terrain; --fill-voids fills it and warns."""
+    from glideplan.terrain import write_hgt
+
+    z = np.full((1201, 1201), 500.0)
+    z[700:705, 600:610] = np.nan
+    tile = write_hgt(tmp_path / "N46E007.hgt", z)
+    base = ["glide", "reach", "--polar", str(polar_file), "--from", "46.5", "7.5", "900",
+            "--terrain", str(tile)]
+    line = cli_error(*base)
+    assert "--terrain" in line and "voids" in line
+    code, out, err = run_cli(*base, "--fill-voids", "nearest", "--json")
+    assert code == 0, err
+    assert "filled 50 void sample(s)" in err
+    assert json.loads(out)["status"] == "solved"

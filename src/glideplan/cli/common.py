@@ -175,7 +175,9 @@ def check_writable(path: pathlib.Path, flag: str) -> pathlib.Path:
     here = path if path.is_dir() else path.parent
     while not here.exists() and here != here.parent:
         here = here.parent
-    if here.exists() and not (here.is_dir() and os.access(here, os.W_OK | os.X_OK)):
+    if here.exists() and not here.is_dir():
+        raise InvalidParameterError(flag, str(path), f"{str(here)!r} is a file, not a directory")
+    if here.exists() and not os.access(here, os.W_OK | os.X_OK):
         raise InvalidParameterError(flag, str(path), f"directory {str(here)!r} is not writable")
     return path
 

@@ -36,6 +36,8 @@ ParamsOpt = Annotated[
     ),
 ]
 MAX_STATIONS = 1001  # `design trim --steps`: a table, not a sweep
+MAX_SWATHS = 1000  # `design lbl --swaths`
+MAX_PINGS = 1e6  # `design lbl`: swaths x track length / --step-m
 
 JsonOpt = Annotated[bool, json_flag("Print JSON instead of a table.")]
 
@@ -429,6 +431,13 @@ def lbl(
         raise InvalidParameterError(flag.get(exc.name, exc.name), exc.value, exc.rule) from None
     b = np.asarray(cfg.beacons_m)
     pad = 0.1 * float(np.max(np.ptp(b, axis=0)))
+    if not 1 <= swaths <= MAX_SWATHS:
+        raise InvalidParameterError("--swaths", swaths, f"must lie in [1, {MAX_SWATHS}]")
+    pings = swaths * (float(np.ptp(b[:, 1])) + 2 * pad) / step_m
+    if pings > MAX_PINGS:
+        raise InvalidParameterError(
+            "--step-m", step_m, f"gives about {pings:.3g} pings; at most {MAX_PINGS:g} "
+            "(a survey simulation, not a sweep): give a larger step")
     with flag_names(swaths="--swaths", step_m="--step-m"):
         track = lawnmower_track(
             (float(b[:, 0].min() - pad), float(b[:, 0].max() + pad)),

@@ -101,8 +101,21 @@ def route_command(
     ] = None,
     resolution: Annotated[
         float | None,
-        typer.Option("--resolution", help="Grid spacing (m; default ~200 cells across).",
+        typer.Option("--resolution", help="Grid spacing (m; default: the distance over ~250).",
                      show_default=False),
+    ] = None,
+    land_clearance: Annotated[
+        float | None,
+        typer.Option("--land-clearance", metavar="METRES",
+                     help="Keep this far from land (m; default: one field cell's diagonal plus "
+                     "one grid spacing with a gridded field, else one grid spacing).",
+                     show_default=False),
+    ] = None,
+    max_duration: Annotated[
+        float | None,
+        typer.Option("--max-duration", metavar="HOURS",
+                     help="Give up after this long (h; default: the field's time span, or 10 "
+                     "still-water times for a steady field).", show_default=False),
     ] = None,
     radius: Annotated[
         float | None,
@@ -117,11 +130,23 @@ def route_command(
         pathlib.Path | None,
         typer.Option("--plot", metavar="FILE", help="Draw the route to FILE (.png/.pdf/.svg)."),
     ] = None,
+    geojson: Annotated[
+        pathlib.Path | None,
+        typer.Option("--geojson", metavar="FILE",
+                     help="Write the route as GeoJSON (split at 180 deg, RFC 7946)."),
+    ] = None,
+    kml: Annotated[
+        pathlib.Path | None,
+        typer.Option("--kml", metavar="FILE", help="Write the route as KML."),
+    ] = None,
 ) -> None:
-    """Time-optimal route through a current or wind field (front propagation, refined, verified).
+    """Time-optimal route through a current or wind field, on the sphere (front propagation
+    on a lat/lon grid that grows with the front, refined, verified through the field).
 
-    Exit 0 solved, 1 unreachable or unverified (the flown controls miss the goal by more
-    than endpoint_tolerance_m, one grid spacing), 2 bad input, 3 internal error.
+    Exit 0 solved, 1 unreachable (`unreachable_reason` in --json: front_stopped,
+    field_extent, time_span, max_duration, window_limit) or not_verified (the flown
+    controls miss the goal by more than endpoint_tolerance_m, one grid spacing), 2 bad
+    input, 3 internal error.
     """
     from glideplan.cli.common import (
         announce,
@@ -146,8 +171,20 @@ def route_command(
         raise InvalidParameterError("--resolution", resolution, "must be finite and > 0 (m)")
     if radius is not None and not (math.isfinite(radius) and radius > 0):
         raise InvalidParameterError("--radius", radius, "must be finite and > 0 (m)")
+    if land_clearance is not None and not (math.isfinite(land_clearance)
+                                           and land_clearance >= 0):
+        raise InvalidParameterError("--land-clearance", land_clearance,
+                                    "must be finite and >= 0 (m)")
+    if max_duration is not None and not (math.isfinite(max_duration) and max_duration > 0):
+        raise InvalidParameterError("--max-duration", max_duration, "must be finite and > 0 (h)")
+    from glideplan.validation import check_physical
+
+    check_physical("--speed", speed, "speed")
     check_depth_range(depth_range)
     plot = check_figure_file(plot)
+    for flag, out_file in (("--geojson", geojson), ("--kml", kml)):
+        if out_file is not None and out_file.parent and not out_file.parent.is_dir():
+            raise InvalidParameterError(flag, str(out_file), "its folder does not exist")
     if field is None and example is None:
         usage_error("give --field FILE or --example NAME (double-gyre)")
     if field is not None and example is not None:
@@ -173,14 +210,24 @@ def route_command(
 
     check_depart(flow, when)
 
+    import sys
+
     from glideplan.cli.common import solving
-    from glideplan.routing import route
+    from glideplan.routing import RouteSettings, route
 
     names = {"from": "--from", "to": "--to", "speed": "--speed", "resolution": "--resolution",
-             "field": "--field", "depth_range": "--depth-range", "radius": "--radius"}
+             "field": "--field", "depth_range": "--depth-range", "radius": "--radius",
+             "land_clearance_m": "--land-clearance", "max_duration": "--max-duration"}
     with flag_names(**names):
-        result = solving("routing", lambda: route(flow, from_, to, speed, depart=when,
-                                                  resolution=resolution))
+        settings = RouteSettings(
+            resolution=resolution, land_clearance_m=land_clearance,
+            max_duration=None if max_duration is None else max_duration * 3600.0,
+            progress=sys.stderr.isatty())
+        # Progress: the front draws its own bar on a terminal (after ~2 s).
+        result = route(flow, from_, to, speed, depart=when, settings=settings)
+    for warning in result.warnings:
+        if not json_out:
+            typer.echo(f"glideplan: warning: {warning}", err=True)
     out = result.to_dict()
     out["field"] = {**source, **out["field"]}
     glider = None
@@ -203,9 +250,22 @@ def route_command(
 
         plot_route(result, flow, plot, speed=speed, start=from_, goal=to, glider=glider)
         announce(f"wrote {plot}", json_out)
+    if (geojson is not None or kml is not None) and result.track.size:
+        from glideplan.formats.tracks import write_track_geojson, write_track_kml
+
+        props = {"kind": "route", "status": result.status.value,
+                 "duration_s": result.duration_s, "distance_m": result.distance_m,
+                 "method": result.method}
+        if geojson is not None:
+            write_track_geojson(geojson, result.lat, result.lon, props)
+            announce(f"wrote {geojson}", json_out)
+        if kml is not None:
+            write_track_kml(kml, result.lat, result.lon, name="glideplan route",
+                            description=f"{result.status.value}, {result.duration_s or 0:.0f} s")
+            announce(f"wrote {kml}", json_out)
     if not result.ok:
         if not json_out:
-            typer.echo(f"glideplan: {result.status}: {result.message}", err=True)
+            typer.echo(f"glideplan: {result.status.value}: {result.message}", err=True)
         raise typer.Exit(1)
 
 
@@ -219,6 +279,7 @@ def _print_summary(out: dict[str, Any]) -> None:
         typer.echo(f"duration: {hours(out['duration_s'])}  distance: "
                    f"{out['distance_m'] / 1000:.2f} km  method: {out['method']}")
         typer.echo(f"straight line with crab angle: {hours(out['straight_line_duration_s'])}")
+        typer.echo(f"land clearance: {out['land_clearance_m']:.0f} m")
         typer.echo(f"endpoint error (controls flown through the field): "
                    f"{out['endpoint_error_m']:.2f} m (tolerance "
                    f"{out['endpoint_tolerance_m']:.0f} m)")
@@ -236,9 +297,11 @@ def _print_summary(out: dict[str, Any]) -> None:
                            f"{tc['feasible_radius_m']:.1f} m for the residual eps' = "
                            f"{tc['residual_ratio']:.3f}, {hours(tc['duration_s'])}, open-loop "
                            f"miss through the field {tc['field_endpoint_error_m']:.1f} m")
-    elif out["status"] == "unverified":
-        typer.echo(f"endpoint error (controls flown through the field): "
-                   f"{out['endpoint_error_m']:.2f} m > tolerance "
-                   f"{out['endpoint_tolerance_m']:.2f} m")
+    elif out["status"] == "not_verified":
+        err = out["endpoint_error_m"]
+        typer.echo("endpoint error (controls flown through the field): " + (
+            "n/a" if err is None else f"{err:.2f} m") + f", tolerance "
+            f"{out['endpoint_tolerance_m']:.2f} m")
     else:
-        typer.echo(f"best reachable distance to the goal: {out['best_distance_m']:.0f} m")
+        typer.echo(f"unreachable ({out['unreachable_reason']}): best reachable distance to "
+                   f"the goal {out['best_distance_m']:.0f} m")

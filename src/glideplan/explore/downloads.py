@@ -59,7 +59,8 @@ def solution_png(solution: Any) -> bytes:
         plot_solution(solution, ax, candidates=True)
     else:
         ax.text(0.5, 0.5, "no solution", ha="center", va="center", transform=ax.transAxes)
+    from glideplan.plotting import save_figure
+
     buf = io.BytesIO()
-    fig.tight_layout()
-    fig.savefig(buf, format="png", dpi=130)
+    save_figure(fig, buf, crop=False)  # the library's one saver (its dpi and layout)
     return buf.getvalue()

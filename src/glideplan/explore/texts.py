@@ -152,6 +152,8 @@ class FastHtml:
     def object(self, text: str) -> None:
         if text != self._text:
             self._text = text
+            if self.model.document is None:  # not shown yet: the page is built with it
+                self.model.text = text
             self.src.data = {"html": [text]}
 
 

@@ -1,12 +1,11 @@
-"""Regrid a curvilinear ocean-model grid (ROMS, NEMO) to a regular lat/lon grid (SciPy).
+"""Regrid a curvilinear ocean-model grid (ROMS, NEMO) to a regular lat/lon grid (NumPy).
 
 Each component is interpolated linearly on its own source points (staggered grids: u on
-`lat_u/lon_u`, v on `lat_v/lon_v`) over triangles of the source grid's own cells: the points
-are triangulated (`scipy.spatial.Delaunay`, in the plane x = lon cos(lat_c), y = lat) and only
-the triangles whose three corners are neighbours in the grid (index offsets <= 1) are kept, so
-a concave or curved grid boundary is not bridged. A target node gets
+`lat_u/lon_u`, v on `lat_v/lon_v`) over the source grid's own cells, each split into two
+triangles (so a concave or curved grid boundary is never bridged, unlike a Delaunay
+triangulation of the points). A target node inside a triangle (P_1, P_2, P_3) gets
 
-    f(P) = sum_k w_k f(P_k),   w = barycentric weights of P in its triangle (P_1, P_2, P_3),
+    f(P) = sum_k w_k f(P_k),   w = barycentric weights of P (in the lat/lon plane),
 
 NaN outside the source grid, and NaN when a corner is NaN (land stays land, as on regular
 grids). The target spacing is the median distance between neighbouring source nodes, d
@@ -89,47 +88,74 @@ def _native_spacing(src: CurvilinearSource, lon: FloatArray) -> float:
 
 
 class _Triangles:
-    """Barycentric weights of target points in the source grid's own triangles."""
+    """Barycentric weights of the target nodes in the source grid's own triangles.
 
-    def __init__(self, src: CurvilinearSource, lon: FloatArray, scale_x: float,
-                 tlat: FloatArray, tlon: FloatArray) -> None:
-        from scipy.spatial import Delaunay, QhullError
+    Each cell (j, i)-(j, i+1)-(j+1, i+1)-(j+1, i) is split into two triangles. Work happens in
+    target index space (row = (lat - lat_0) / dlat, column = (lon - lon_0) / dlon), an affine
+    image of the lat/lon plane, so barycentric weights are those of the plane; each triangle
+    tests the target nodes of its bounding box.
+    """
 
-        ok = np.isfinite(src.lat) & np.isfinite(lon)
-        jj, ii = np.nonzero(ok)
-        if jj.size < 3:
-            raise _refuse(src, f"{jj.size} nodes with finite coordinates, need >= 3")
-        pts = np.column_stack([lon[ok] * scale_x, src.lat[ok]])
-        try:
-            tri = Delaunay(pts)
-        except (QhullError, ValueError) as exc:
-            raise _refuse(src, "the nodes are collinear or coincide: "
-                          + " ".join(str(exc).split())[:80]) from None
-        simp = tri.simplices
-        # Keep triangles of neighbouring grid nodes only (|di|, |dj| <= 1 between corners).
-        span_i = np.ptp(ii[simp], axis=1)
-        span_j = np.ptp(jj[simp], axis=1)
-        good = (span_i <= 1) & (span_j <= 1)
-        if not np.any(good):
-            raise _refuse(src, "no grid cell has an area (degenerate coordinates)")
-        xi = np.column_stack([tlon.ravel() * scale_x, tlat.ravel()])
-        node = np.ravel_multi_index((jj, ii), src.lat.shape)
-        self.weights = np.empty((xi.shape[0], 3))
-        self.flat_index = np.empty((xi.shape[0], 3), dtype=np.intp)
-        self.inside = np.empty(xi.shape[0], dtype=bool)
-        block = 500_000  # bounds the (m, 3, 2) transforms in memory
-        for k0 in range(0, xi.shape[0], block):
-            x = xi[k0:k0 + block]
-            s = tri.find_simplex(x)
-            inside = s >= 0
-            inside[inside] = good[s[inside]]
-            s = np.where(inside, s, 0)
-            trans = tri.transform[s]
-            b = np.einsum("ijk,ik->ij", trans[:, :2], x - trans[:, 2])
-            self.weights[k0:k0 + block] = np.column_stack([b, 1.0 - b.sum(axis=1)])
-            self.flat_index[k0:k0 + block] = node[simp[s]]
-            self.inside[k0:k0 + block] = inside
-        self.shape = tlat.shape
+    def __init__(self, src: CurvilinearSource, lon: FloatArray, tlat: FloatArray,
+                 tlon: FloatArray) -> None:
+        ny, nx = src.lat.shape
+        nlat, nlon = tlat.size, tlon.size
+        row = (src.lat - tlat[0]) / (tlat[1] - tlat[0])
+        col = (lon - tlon[0]) / (tlon[1] - tlon[0])
+        jj, ii = np.meshgrid(np.arange(ny - 1), np.arange(nx - 1), indexing="ij")
+        c00 = (jj * nx + ii).ravel()
+        corners = np.concatenate([np.column_stack([c00, c00 + 1, c00 + nx + 1]),
+                                  np.column_stack([c00, c00 + nx + 1, c00 + nx])])
+        r, c = row.ravel()[corners], col.ravel()[corners]  # (ntri, 3)
+        area2 = (r[:, 1] - r[:, 0]) * (c[:, 2] - c[:, 0]) - (r[:, 2] - r[:, 0]) * (
+            c[:, 1] - c[:, 0])
+        with np.errstate(invalid="ignore"):
+            ok = np.isfinite(area2) & (np.abs(area2) > 1e-12)
+        if not np.any(ok):
+            raise _refuse(src, "no grid cell has an area (collinear or coincident nodes)")
+        corners, r, c, area2 = corners[ok], r[ok], c[ok], area2[ok]
+        r0 = np.maximum(np.ceil(r.min(axis=1) - 1e-9), 0).astype(np.intp)
+        r1 = np.minimum(np.floor(r.max(axis=1) + 1e-9), nlat - 1).astype(np.intp)
+        c0 = np.maximum(np.ceil(c.min(axis=1) - 1e-9), 0).astype(np.intp)
+        c1 = np.minimum(np.floor(c.max(axis=1) + 1e-9), nlon - 1).astype(np.intp)
+        nr, nc = np.maximum(r1 - r0 + 1, 0), np.maximum(c1 - c0 + 1, 0)
+        count = nr * nc
+        self.weights = np.zeros((nlat * nlon, 3))
+        self.flat_index = np.zeros((nlat * nlon, 3), dtype=np.intp)
+        self.inside = np.zeros(nlat * nlon, dtype=bool)
+        self.shape = (nlat, nlon)
+        ends = np.cumsum(count)
+        budget = 2_000_000  # candidate (triangle, node) pairs per block
+        start = 0
+        while start < count.size:
+            stop = int(np.searchsorted(ends, (ends[start] - count[start]) + budget, "right"))
+            stop = max(stop, start + 1)
+            self._block(np.arange(start, stop), corners, r, c, area2, r0, c0, nc, count, nlon)
+            start = stop
+
+    def _block(self, t: NDArray[np.intp], corners: NDArray[np.intp], r: FloatArray,
+               c: FloatArray, area2: FloatArray, r0: NDArray[np.intp], c0: NDArray[np.intp],
+               nc: NDArray[np.intp], count: NDArray[np.intp], nlon: int) -> None:
+        """Test the bounding-box nodes of triangles t; keep those inside (weights >= -1e-9)."""
+        k = count[t]
+        tid = np.repeat(t, k)
+        if tid.size == 0:
+            return
+        local = np.arange(tid.size) - np.repeat(np.cumsum(k) - k, k)
+        qr = r0[tid] + local // nc[tid]
+        qc = c0[tid] + local % nc[tid]
+        rr, cc = r[tid], c[tid]
+        # Barycentric weights of (qr, qc) in the triangle (rr_m, cc_m), m = 0, 1, 2.
+        w1 = ((qr - rr[:, 0]) * (cc[:, 2] - cc[:, 0]) - (rr[:, 2] - rr[:, 0]) * (
+            qc - cc[:, 0])) / area2[tid]
+        w2 = ((rr[:, 1] - rr[:, 0]) * (qc - cc[:, 0]) - (qr - rr[:, 0]) * (
+            cc[:, 1] - cc[:, 0])) / area2[tid]
+        w0 = 1.0 - w1 - w2
+        hit = (w0 >= -1e-9) & (w1 >= -1e-9) & (w2 >= -1e-9)
+        node = qr[hit] * nlon + qc[hit]
+        self.weights[node] = np.column_stack([w0[hit], w1[hit], w2[hit]])
+        self.flat_index[node] = corners[tid[hit]]
+        self.inside[node] = True
 
     def __call__(self, values: FloatArray) -> FloatArray:
         """values (nt, ny, nx) -> (nt, nlat, nlon); NaN outside or next to a NaN corner."""
@@ -210,13 +236,11 @@ def regrid_curvilinear(
                       f"degrees, less than two nodes at its spacing {d:.3g} degrees")
     tlat: FloatArray = lat_min + dlat * np.arange(nlat, dtype=float)
     tlon: FloatArray = lon_min + dlon * np.arange(nlon, dtype=float)
-    glat, glon = np.meshgrid(tlat, tlon, indexing="ij")
-    scale_x = coslat
-    tri_e = _Triangles(east, lons[0], scale_x, glat, glon)
+    tri_e = _Triangles(east, lons[0], tlat, tlon)
     u = tri_e(east.values)
     tri_n = tri_e if (north.lat.shape == east.lat.shape and np.array_equal(
         north.lat, east.lat, equal_nan=True) and np.array_equal(
-        lons[1], lons[0], equal_nan=True)) else _Triangles(north, lons[1], scale_x, glat, glon)
+        lons[1], lons[0], equal_nan=True)) else _Triangles(north, lons[1], tlat, tlon)
     v = tri_n(north.values)
     if grid_relative:
         if angle is None:
@@ -224,7 +248,7 @@ def regrid_curvilinear(
             tri_a, src_label = tri_e, f"its coordinates {east.label}"
         else:
             alpha = angle.values[:1]
-            tri_a = _Triangles(angle, _unwrap_lon(angle.lon, lon0), scale_x, glat, glon)
+            tri_a = _Triangles(angle, _unwrap_lon(angle.lon, lon0), tlat, tlon)
             src_label = "the file's `angle`"
         c = tri_a(np.cos(alpha))[0]
         s = tri_a(np.sin(alpha))[0]
@@ -242,7 +266,7 @@ def regrid_curvilinear(
     ny, nx = east.lat.shape
     text = (f"regridded the curvilinear {ny}x{nx} grid ({east.label}) to a regular {nlat}x{nlon} "
             f"lat/lon grid, {dlat:.4g} deg latitude x {dlon:.4g} deg longitude (linear in the "
-            f"grid's own cells, SciPy); NaN outside the source grid and next to land")
+            f"grid's own cells); NaN outside the source grid and next to land")
     if notes:
         text += "; " + "; ".join(notes)
     return RegularGrid(lat=tlat, lon=_lon_frame(tlon), u=u, v=v, warnings=(text,))

@@ -30,7 +30,7 @@ from glideplan.missions.route import Route
 from glideplan.path import Path
 from glideplan.solution import Solution, Status
 from glideplan.track import Track
-from glideplan.validation import check_positive
+from glideplan.validation import check_physical
 
 __all__ = ["MissionLeg", "MissionPlan", "Track", "plan_mission"]
 
@@ -237,8 +237,8 @@ def plan_mission(
     from glideplan.vehicles.dubins_car import DubinsCar
     from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
 
-    speed = check_positive("speed", speed)
-    radius = check_positive("radius", radius)
+    speed = check_physical("speed", speed, "speed")  # validation.PHYSICAL_RANGES
+    radius = check_physical("radius", radius, "turn_radius")
     if objective not in OBJECTIVES:
         raise InvalidParameterError("objective", objective, "must be length or time")
     k = headings if headings is not None else (36 if wind else 360)

@@ -30,13 +30,6 @@ from glideplan.pose import TWO_PI
 __all__ = ["convected_times"]
 
 
-def _f(
-    s: NDArray[np.float64], g: NDArray[np.float64], w: NDArray[np.float64], tau: NDArray[np.float64]
-) -> NDArray[np.float64]:
-    """F_W(tau) for all six words: `(m, 6)` (NaN where a word does not exist)."""
-    return word_residuals(s, g, w, tau)
-
-
 def convected_times(
     start: ArrayLike,
     goal: ArrayLike,
@@ -68,7 +61,7 @@ def convected_times(
     lo *= 1.0 - 1e-12
     hi = (dist + 2.0 + 2.0 * TWO_PI) / (1.0 - wm)
     out = np.full(m, np.inf)
-    f_lo = _f(s, g, w, lo)
+    f_lo = word_residuals(s, g, w, lo)
     done0 = np.any(f_lo <= 1e-12, axis=1)  # arrival at the lower bound (straight downwind)
     out[done0] = lo[done0]
     active = np.nonzero(~done0)[0]
@@ -104,7 +97,7 @@ def _scan(
     out_rows, out_a, out_b, out_fa, out_x, out_fb = [], [], [], [], [], []
     while active.size:
         t_next = np.minimum(tau + step, hi)
-        f_next = _f(s[active], g[active], w, t_next)
+        f_next = word_residuals(s[active], g[active], w, t_next)
         cross = crossing_cells(f_prev, f_next)
         hit = np.any(cross, axis=1)
         out_rows.append(active[hit])
@@ -155,14 +148,14 @@ def _roots(
     pick = np.arange(rows.size)
     for _ in range(iterations):
         mid = 0.5 * (lo + hi)
-        f = _f(sr, gr, w, mid)[pick, ks]
+        f = word_residuals(sr, gr, w, mid)[pick, ks]
         with np.errstate(invalid="ignore"):
             branch = np.where(unwrap, f - TWO_PI * np.round((f - f0) / TWO_PI), f)
             missing = ~np.isfinite(f)
             right = np.where(nan_left, (branch <= 0.0) & ~missing, (branch <= 0.0) | missing)
         hi = np.where(right, mid, hi)
         lo = np.where(right, lo, mid)
-    f_end = _f(sr, gr, w, hi)[pick, ks]
+    f_end = word_residuals(sr, gr, w, hi)[pick, ks]
     with np.errstate(invalid="ignore"):
         valid = np.abs(f_end) <= 1e-7 * np.maximum(1.0, hi)
     best = np.full(s.shape[0], np.inf)

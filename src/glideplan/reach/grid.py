@@ -38,8 +38,9 @@ __all__ = ["DEFAULT_MAX_NODES", "ReachGrid", "reach_grid"]
 
 FloatArray = NDArray[np.float64]
 
-#: Default front grid: at most this many nodes along the longer side of the domain.
-DEFAULT_MAX_NODES = 400
+#: Default front grid: at most this many nodes along the longer side of the domain (an SRTM3
+#: tile: 241 x 241 nodes 460 m apart at 46 N; the front's cost grows with the square).
+DEFAULT_MAX_NODES = 300
 
 
 @dataclass(frozen=True, eq=False)
@@ -92,6 +93,13 @@ def reach_grid(problem: ReachProblem, max_ratio: float) -> ReachGrid:
                          f"({fine.spacing_m[1]:.0f} m): the terrain's own grid is used")
     factor = min(factor, max(1, (min(ny, nx) - 1) // 3))  # at least 4 nodes a side
     lat, lon, z = fine.pooled_max(factor, reach=factor)
+    if not (lat[0] <= lat0 <= lat[-1] and lon[0] <= lon0 <= lon[-1]):
+        from glideplan.errors import InvalidParameterError
+
+        raise InvalidParameterError(
+            "start", (lat0, lon0), f"lies within one front cell ({factor} terrain samples) of "
+            "the terrain's edge, outside the front's grid; use a finer --resolution or more "
+            "terrain")
     block = alt - z - problem.safety_height
     block = np.where(np.isfinite(block), block, -np.inf)
     special = [(lat0, lon0)] + [(p.lat, p.lon) for p in problem.landables]

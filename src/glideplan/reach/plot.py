@@ -31,7 +31,8 @@ def _hillshade(ax: Any, terrain: Terrain) -> None:
     ls = LightSource(azdeg=315, altdeg=45)
     shade = ls.hillshade(z[::-1], vert_exag=1.0, dx=dx * step, dy=dy * step)
     s, n, w, e = terrain.extent
-    ax.imshow(shade, cmap="gray", extent=(w, e, s, n), origin="upper", alpha=0.8,
+    ax.imshow(shade, cmap="gray", vmin=0.0, vmax=1.0, extent=(w, e, s, n), origin="upper",
+              alpha=0.8,
               interpolation="bilinear", zorder=0)
 
 
@@ -139,7 +140,7 @@ def plot_turnback(result: TurnbackResult, ax: Any = None) -> Any:
     ax_map.set_ylabel("latitude (deg)")
     _wind_arrow(ax_map, result.glide.wind, lat0)
     ax_map.legend(fontsize=7, loc="lower right")
-    ax_map.set_title(result.message, fontsize=8)
+    ax_map.get_figure().suptitle(result.message, fontsize=9)
     if ax_prof is not None:
         s0 = 0.0
         for f, colour, label in pieces:
@@ -153,6 +154,19 @@ def plot_turnback(result: TurnbackResult, ax: Any = None) -> Any:
             ax_prof.plot(s / 1000, f.ground + result.safety_height, color="0.3", lw=0.8,
                          ls="--")
             s0 = float(s[-1])
+        # the altitude a straight glide home needs from each point of the course (terrain
+        # ignored): the outbound line meets it at the turn-back point when no terrain binds
+        from glideplan.reach.turnback import destination
+
+        lat0_, lon0_, _ = result.start
+        chi = math.radians(90.0 - result.course_deg)
+        ss = np.linspace(0.0, 1.3 * max(result.distance_m, 1.0), 200)
+        pla, plo = destination(lat0_, lon0_, chi, ss)
+        n = ss.size
+        dd, cc = rhumb(pla, plo, np.full(n, home.lat), np.full(n, home.lon))
+        need = home.elevation_m + result.safety_height + dd / result.glide.ratio(cc)
+        ax_prof.plot(ss / 1000, need, color="purple", lw=1, ls="-.",
+                     label="needed to glide home straight (terrain ignored)")
         ax_prof.axvline(result.distance_m / 1000, color="r", ls=":", label="turn back")
         ax_prof.axhline(home.elevation_m + result.safety_height, color="g", ls=":",
                         label="home + safety height")

@@ -42,12 +42,10 @@ FloatArray = NDArray[np.float64]
 START_CELLS = (6.0, 4.0, 2.0, 1.0)
 
 
-def _terms(glide: Glide, reverse: bool = False) -> tuple[FloatArray, FloatArray]:
+def _terms(glide: Glide) -> tuple[FloatArray, FloatArray]:
     """The front's terms; when all are points (a = 0; MC > 0 in wind) one disk inscribed in
     their hull is added (it changes no support value, and the solver needs one a > 0)."""
     a, b = glide.front_terms()
-    if reverse:
-        b = -b
     if np.any(a > 0):
         return a, b
     c = b.mean(axis=0)
@@ -60,12 +58,13 @@ def _terms(glide: Glide, reverse: bool = False) -> tuple[FloatArray, FloatArray]
     return np.append(a, rho * (1 - 1e-9)), np.vstack([b, c])
 
 
-def front_problem(grid: ReachGrid, glide: Glide, *, reverse: bool = False,
-                  block_time: FloatArray | None = None) -> Any:
-    """The `glideplan.fronts.FrontProblem` of a reach grid (reverse: drifts negated)."""
+def front_problem(grid: ReachGrid, glide: Glide, *, block_time: FloatArray | None = None
+                  ) -> Any:
+    """The `glideplan.fronts.FrontProblem` of a reach grid (block_time: the grid's own by
+    default)."""
     from glideplan.fronts import FrontProblem, LatLonGrid
 
-    a, b = _terms(glide, reverse)
+    a, b = _terms(glide)
     lg = LatLonGrid(lat=grid.lat, lon=grid.lon)
     tb = grid.block_time if block_time is None else block_time
     return FrontProblem(lg, speeds=a, drifts=b, block_time=tb)

@@ -419,13 +419,29 @@ def front(problem: RouteProblem, rg: RouteGrid,
             why = "window_limit"
         elif res.reason == "t_max":
             why = problem.limit_reason
-        elif _touches_edge(arrival, rg.window):
+        elif _goal_connected(arrival, rg, problem.goal) and _touches_edge(arrival, rg.window):
             why = "field_extent"
-        else:
+        else:  # stalled inside the field, or land (and its clearance) cut the goal off
             why = "front_stopped"
     goal_time = float(res.goal_time) if res.reason == "goal" else None
     return FrontOutcome(arrival, goal_time, res.reason, why, closest, kp, int(res.steps),
                         growths, res.state), rg
+
+
+def _goal_connected(arrival: FloatArray, rg: RouteGrid, goal: tuple[float, float]) -> bool:
+    """Whether free water connects the goal's node to the reached nodes (8-neighbours)."""
+    from scipy.ndimage import label
+
+    labels, _ = label(~rg.obstacle, structure=np.ones((3, 3), dtype=bool))
+    fi, fj = rg.window.frac_index(goal[0], goal[1])
+    i, j = int(np.rint(fi)), int(np.rint(fj))
+    ny, nx = labels.shape
+    if not (0 <= i < ny and 0 <= j < nx):
+        return True
+    near = labels[max(i - 1, 0):i + 2, max(j - 1, 0):j + 2]
+    ids = set(np.unique(near[near > 0]).tolist())
+    reached = np.unique(labels[np.isfinite(arrival) & (labels > 0)])
+    return bool(ids & set(reached.tolist()))
 
 
 def _touches_edge(arrival: FloatArray, window: Window) -> bool:
@@ -476,7 +492,8 @@ def backtrack(problem: RouteProblem, rg: RouteGrid, fo: FrontOutcome) -> Candida
         # Next to obstacles: the taut polyline (clearance kept) when it is not slower.
         la2, lo2 = taut(lat, lon, rg.coast_xyz, rg.clearance_m)
         t2, c2, ok2 = crab_controls(current, problem.speed, problem.t0, la2, lo2)
-        if ok2 and t2[-1] < times[-1]:
+        wet = np.all(np.isfinite(rg.currents.points(problem.t0, la2, lo2)))
+        if ok2 and wet and t2[-1] < times[-1]:
             lat, lon, times, chi = la2, lo2, t2, c2
     # Controls: each leg's heading at its middle time, linear in time between (one smooth
     # control the verification integrates in one pass; the ends hold the first/last leg's).

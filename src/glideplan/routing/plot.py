@@ -100,7 +100,7 @@ def _time_text(field_: FlowField, t: float) -> str:
 
 def route_title(
     result: RouteResult,
-    field_: FlowField,
+    field_: FlowField | None,
     start: tuple[float, float] | None,
     goal: tuple[float, float] | None,
     speed: float | None,
@@ -119,7 +119,8 @@ def route_title(
         d, _ = geodesic_distance_bearing(start[0], start[1], goal[0], goal[1])
         where = (f"from {_latlon_text(*start)} to {_latlon_text(*goal)} "
                  f"({float(d) / 1000:.4g} km apart), ")
-    problem = f"{where}departing {_time_text(field_, result.depart_s)}"
+    when = (f"t={result.depart_s:g}s" if field_ is None else _time_text(field_, result.depart_s))
+    problem = f"{where}departing {when}"
     straight = result.straight_line_duration_s
     if result.ok and result.duration_s is not None:
         hours = result.duration_s / 3600.0
@@ -137,7 +138,8 @@ def route_title(
         if result.message:
             answer += f". Note: {result.message}"
     else:
-        answer = f"{result.status}: " + (result.message or (
+        reason = f" ({result.unreachable_reason})" if result.unreachable_reason else ""
+        answer = f"{result.status}{reason}: " + (result.message or (
             f"the reachable set came within {result.best_distance_m / 1000:.3g} km of the goal"))
     lines = [head, problem, answer]
     if glider is not None:
@@ -150,6 +152,40 @@ def route_title(
             g += f" ({glider.message})"
         lines.append(g)
     return "\n".join(textwrap.fill(s, _TITLE_WIDTH, break_long_words=False) for s in lines)
+
+
+def _front_layers(ax: Any, result: RouteResult, frame: Any) -> list[Any]:
+    """Isochrones of the front (arrival time, a few round hours) and, when unreachable, the
+    front's furthest reach (the boundary of the reached nodes); legend handles."""
+    from matplotlib.lines import Line2D
+
+    fm = result.front
+    if fm is None or fm.arrival.size == 0:
+        return []
+    arr = np.asarray(fm.arrival, dtype=float)
+    reached = np.isfinite(arr)
+    if not reached.any():
+        return []
+    lon = np.asarray(frame(fm.lon), dtype=float)
+    order = np.argsort(lon)
+    lon, arr, reached = lon[order], arr[:, order], reached[:, order]
+    handles: list[Any] = []
+    t_end = result.duration_s if result.duration_s else float(np.max(arr[reached]))
+    if t_end > 0:
+        step_h = _nice(t_end / 3600.0 / 6.0)
+        levels = np.arange(step_h, t_end / 3600.0, step_h)
+        if levels.size:
+            hours = np.where(reached, arr / 3600.0, np.nan)
+            ax.contour(lon, fm.lat, hours, levels=levels, colors="tab:blue", linewidths=0.6,
+                       alpha=0.6, zorder=3)
+            handles.append(Line2D([], [], color="tab:blue", lw=0.6, alpha=0.6,
+                                  label=f"isochrones every {step_h:g} h (front)"))
+    if not result.ok and result.duration_s is None:
+        ax.contour(lon, fm.lat, reached.astype(float), levels=[0.5], colors="tab:purple",
+                   linewidths=1.6, zorder=4)
+        handles.append(Line2D([], [], color="tab:purple", lw=1.6,
+                              label="furthest reach of the front"))
+    return handles
 
 
 def _nice(value: float) -> float:
@@ -192,39 +228,51 @@ def plot_route(
 
 def route_figure(
     result: RouteResult,
-    field_: FlowField,
+    field_: FlowField | None = None,
     arrows: int = 25,
     *,
+    ax: Any = None,
     speed: float | None = None,
     start: tuple[float, float] | None = None,
     goal: tuple[float, float] | None = None,
     glider: GliderFollow | None = None,
 ) -> Any:
     """The Matplotlib figure of a route: track (lon, lat) over the field's current at
-    departure (`arrows` across the longer side).
+    departure (`arrows` across the longer side), land, the front's isochrones, and when the
+    goal is unreachable the front's furthest reach.
 
-    speed: the water speed (m/s) for the title (default: recovered from the track,
-    `water_speed_from_track`); start, goal: (lat, lon) (default: the track's ends);
-    glider: the followed flyable path (`routing.glider.follow_route`), drawn when given.
+    The frame is centred on the route (longitudes unwrapped about it: no wrap-around at
+    180 deg). field_: the FlowField (None: no land or current); ax: draw into these axes;
+    speed: the water speed (m/s) for the title (default: the result's); start, goal:
+    (lat, lon) (default: the result's); glider: the followed flyable path
+    (`routing.glider.follow_route`), drawn when given.
     """
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
+    from glideplan.routing.sphere import unwrap_lon
+
     has_track = result.lat.size > 0
-    if start is None and has_track:
-        start = (float(result.lat[0]), float(result.lon[0]))
-    if goal is None and has_track:
-        goal = (float(result.lat[-1]), float(result.lon[-1]))
-    inferred = speed is None
+    if start is None:
+        start = (float(result.start[0]), float(result.start[1])) if result.speed > 0 else (
+            (float(result.lat[0]), float(result.lon[0])) if has_track else None)
+    if goal is None:
+        goal = (float(result.goal[0]), float(result.goal[1])) if result.speed > 0 else (
+            (float(result.lat[-1]), float(result.lon[-1])) if has_track else None)
+    inferred = speed is None and result.speed <= 0
     if speed is None:
-        speed = water_speed_from_track(result, field_)
+        speed = result.speed if result.speed > 0 else (
+            None if field_ is None else water_speed_from_track(result, field_))
 
-    ext = field_.extent
-    centre = 0.0 if ext is None else 0.5 * (ext.lon_min + ext.lon_max)
+    ext = None if field_ is None else field_.extent
+    ref_lon = start[1] if start is not None else (
+        float(result.lon[0]) if has_track else (0.0 if ext is None else ext.lon_min))
+    if start is not None and goal is not None:
+        ref_lon = float(start[1] + 0.5 * float(unwrap_lon(goal[1], start[1]) - start[1]))
 
-    def frame(lon_deg: Any) -> Any:  # the field's longitude frame (0..360 or -180..180)
-        return centre + np.mod(np.asarray(lon_deg, dtype=float) - centre + 180.0, 360.0) - 180.0
+    def frame(lon_deg: Any) -> Any:  # longitudes unwrapped about the route's middle
+        return unwrap_lon(lon_deg, ref_lon)
 
     lats = [p[0] for p in (start, goal) if p is not None]
     lons = [float(frame(p[1])) for p in (start, goal) if p is not None]
@@ -233,7 +281,7 @@ def route_figure(
         lons += [float(np.min(frame(result.lon))), float(np.max(frame(result.lon)))]
     if not lats:  # nothing to centre on: the whole field (or a 2-degree box)
         lats, lons = ([ext.lat_min, ext.lat_max], [ext.lon_min, ext.lon_max]) if ext else (
-            [-1.0, 1.0], [centre - 1.0, centre + 1.0])
+            [-1.0, 1.0], [ref_lon - 1.0, ref_lon + 1.0])
     la_mid, lo_mid = 0.5 * (min(lats) + max(lats)), 0.5 * (min(lons) + max(lons))
     m_lat, m_lon = frame_scales(max(min(la_mid, 89.0), -89.0), (lo_mid + 180) % 360 - 180)
     span_m = max((max(lats) - min(lats)) * m_lat, (max(lons) - min(lons)) * m_lon, 1000.0)
@@ -241,23 +289,32 @@ def route_figure(
     # thin strip along a straight route hides the field around it), cut to the field.
     half_la = max(0.5 * (max(lats) - min(lats)) * m_lat + 0.15 * span_m, 0.3 * span_m) / m_lat
     half_lo = max(0.5 * (max(lons) - min(lons)) * m_lon + 0.15 * span_m, 0.3 * span_m) / m_lon
-    la0, la1 = la_mid - half_la, la_mid + half_la
+    half_lo = min(half_lo, 180.0)
+    la0, la1 = max(la_mid - half_la, -89.9), min(la_mid + half_la, 89.9)
     lo0, lo1 = lo_mid - half_lo, lo_mid + half_lo
     if ext is not None:
         la0, la1 = max(la0, ext.lat_min), min(la1, ext.lat_max)
-        lo0, lo1 = max(lo0, ext.lon_min), min(lo1, ext.lon_max)
+        if not ext.periodic:  # the field's extent in the route's frame
+            e0 = float(frame(0.5 * (ext.lon_min + ext.lon_max))) - 0.5 * (
+                ext.lon_max - ext.lon_min)
+            lo0, lo1 = max(lo0, e0), min(lo1, e0 + ext.lon_max - ext.lon_min)
     # The aspect: equal ground distances at the frame's mean latitude.
     m_lat, m_lon = frame_scales(0.5 * (la0 + la1), ((lo0 + lo1) / 2 + 180) % 360 - 180)
 
-    fig, ax = plt.subplots(figsize=(10.5, 6.2))
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(10.5, 6.2))
+    else:
+        fig = ax.figure
     handles: list[Any] = []
     quiver_key: tuple[Any, float] | None = None
     # Current arrows on a grid square in ground distance; land on a finer grid.
     w_m, h_m = (lo1 - lo0) * m_lon, (la1 - la0) * m_lat
     n_lo = arrows if w_m >= h_m else max(5, round(arrows * w_m / h_m))
     n_la = arrows if h_m > w_m else max(5, round(arrows * h_m / w_m))
-    snapshot = _time_text(field_, result.depart_s)
+    snapshot = "" if field_ is None else _time_text(field_, result.depart_s)
     try:
+        if field_ is None:
+            raise ValueError("no field")
         LA, LO = np.meshgrid(np.linspace(la0, la1, 4 * n_la), np.linspace(lo0, lo1, 4 * n_lo),
                              indexing="ij")
         uf, _ = field_.velocity(result.depart_s, LA, LO)
@@ -270,17 +327,19 @@ def route_figure(
                              indexing="ij")
         u, v = field_.velocity(result.depart_s, LA, LO)
         water = np.isfinite(u) & np.isfinite(v)
-        if np.any(water):
+        c_max = float(np.max(np.hypot(u[water], v[water]))) if np.any(water) else 0.0
+        if c_max > 0.0:
             q = ax.quiver(LO[water], LA[water], u[water], v[water], color="0.55", zorder=2,
                           width=0.0022)
-            c_max = float(np.max(np.hypot(u[water], v[water])))
-            if c_max > 0.0:
-                quiver_key = (q, _nice(c_max))
+            quiver_key = (q, _nice(c_max))
             handles.append(Line2D([], [], ls="none", marker=r"$\rightarrow$", ms=12,
                                   color="0.55", label=f"current at departure, {snapshot}"))
+        elif np.any(water):
+            handles.append(Line2D([], [], ls="none", label="still water (no current)"))
     except ValueError:  # a field that cannot be drawn here: draw the track alone
         pass
 
+    handles += _front_layers(ax, result, frame)
     if start is not None and goal is not None:
         (line,) = ax.plot([frame(start[1]), frame(goal[1])], [start[0], goal[0]], ":",
                           color="0.25", lw=1.2, zorder=3)

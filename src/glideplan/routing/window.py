@@ -419,33 +419,36 @@ def _coast(mask: BoolArray) -> BoolArray:
 
 
 def land_points(fld: FlowField, window: Window, land: BoolArray, pad_m: float) -> FloatArray:
-    """3-D positions (m) of the coast points near the window: the field's coastal NaN nodes
-    (gridded fields) and the window's coastal NaN nodes."""
-    pts = []
-    if land.any():
+    """3-D positions (m) of the coast points near the window: a gridded field's coastal NaN
+    nodes (its linear interpolation is NaN within a cell of them: the window's NaN nodes there
+    are that stencil band, obstacles of their own), else the window's coastal NaN nodes."""
+    if not isinstance(fld, GriddedField):
+        if not land.any():
+            return np.zeros((0, 3))
         LA, LO = np.meshgrid(window.lat, window.lon, indexing="ij")
         c = _coast(land)
-        pts.append(_xyz(LA[c], LO[c]))
-    if isinstance(fld, GriddedField):
-        nan = ~(np.isfinite(fld.u[0]) & np.isfinite(fld.v[0]))
-        if nan.any():
-            pad_deg = math.degrees(pad_m / EARTH_RADIUS_M)
-            lat = fld.lat
-            rows = (lat >= window.lat[0] - pad_deg) & (lat <= window.lat[-1] + pad_deg)
-            centre = 0.5 * (window.lon[0] + window.lon[-1])
-            half = 0.5 * (window.lon[-1] - window.lon[0])
-            lat_max = min(max(abs(window.lat[0]), abs(window.lat[-1])) + pad_deg, 89.0)
-            pad_lon = pad_deg / math.cos(math.radians(lat_max))
-            lo = unwrap_lon(fld.lon, centre)
-            cols = np.abs(lo - centre) <= half + pad_lon if not window.periodic else \
-                np.ones(lo.size, dtype=bool)
-            if rows.any() and cols.any():
-                sub = nan[np.ix_(rows, cols)]
-                c = _coast(sub) if sub.any() else sub
-                if c.any():
-                    LA, LO = np.meshgrid(lat[rows], lo[cols], indexing="ij")
-                    pts.append(_xyz(LA[c], LO[c]))
-    return np.concatenate(pts) if pts else np.zeros((0, 3))
+        return _xyz(LA[c], LO[c])
+    nan = ~(np.isfinite(fld.u[0]) & np.isfinite(fld.v[0]))
+    if not nan.any():
+        return np.zeros((0, 3))
+    pad_deg = math.degrees(pad_m / EARTH_RADIUS_M)
+    lat = fld.lat
+    rows = (lat >= window.lat[0] - pad_deg) & (lat <= window.lat[-1] + pad_deg)
+    centre = 0.5 * (window.lon[0] + window.lon[-1])
+    half = 0.5 * (window.lon[-1] - window.lon[0])
+    lat_max = min(max(abs(window.lat[0]), abs(window.lat[-1])) + pad_deg, 89.0)
+    pad_lon = pad_deg / math.cos(math.radians(lat_max))
+    lo = unwrap_lon(fld.lon, centre)
+    cols = (np.abs(lo - centre) <= half + pad_lon) if not window.periodic else np.ones(
+        lo.size, dtype=bool)
+    if not (rows.any() and cols.any()):
+        return np.zeros((0, 3))
+    sub = nan[np.ix_(rows, cols)]
+    c = _coast(sub) if sub.any() else sub
+    if not c.any():
+        return np.zeros((0, 3))
+    LA, LO = np.meshgrid(lat[rows], lo[cols], indexing="ij")
+    return _xyz(LA[c], LO[c])
 
 
 def distance_to_land(points: FloatArray, lat: FloatArray, lon: FloatArray,

@@ -14,6 +14,7 @@ here and by `sailplane.polar`); the final glide to an arrival heading is the pla
 from glideplan.sailplane.ardusoar import ArduSoarFit, ardusoar_sink, fit_ardusoar, write_parm
 from glideplan.sailplane.maccready import ground_speed, maccready_table, speed_to_fly
 from glideplan.sailplane.plr import PolarFile, PolarFileError, parse_plr, read_plr
+from glideplan.sailplane.request import FinalGlide, final_glide
 from glideplan.sailplane.straight import StraightGlide, straight_final_glide
 from glideplan.sailplane.tasks import TaskPoint, write_cup_task, write_tsk_task
 from glideplan.vehicles.sailplane_polar import (
@@ -28,12 +29,14 @@ __all__ = [
     "GRAVITY",
     "STALL_FRACTION",
     "ArduSoarFit",
+    "FinalGlide",
     "PolarFile",
     "PolarFileError",
     "SailplanePolar",
     "StraightGlide",
     "TaskPoint",
     "ardusoar_sink",
+    "final_glide",
     "fit_ardusoar",
     "fit_three_points",
     "ground_speed",

@@ -4,22 +4,6 @@
 working.
 """
 
-from glideplan.vehicles.sailplane_polar import (
-    GRAVITY,
-    KMH,
-    MAX_BUGS_PCT,
-    STALL_FRACTION,
-    SailplanePolar,
-    fit_three_points,
-    polar_from_file,
-)
-
-__all__ = [
-    "GRAVITY",
-    "KMH",
-    "MAX_BUGS_PCT",
-    "STALL_FRACTION",
-    "SailplanePolar",
-    "fit_three_points",
-    "polar_from_file",
-]
+from glideplan.vehicles.sailplane_polar import *  # noqa: F403
+from glideplan.vehicles.sailplane_polar import KMH as KMH
+from glideplan.vehicles.sailplane_polar import __all__ as __all__

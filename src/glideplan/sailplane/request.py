@@ -59,8 +59,9 @@ class FinalGlide:
     """The outcome of `final_glide()`: an `Outcome` (`glideplan.results`).
 
     status SOLVED / BELOW_GLIDE / UNREACHABLE (module docstring); altitudes in m (None when
-    unreachable); `wind` (east, north) m/s; `track` the ground track with altitude (geographic;
-    with an arrival heading the planned path, else the straight line); `solution` the verified
+    unreachable); `wind` (east, north) m/s; `track` the ground track with altitude and the
+    air heading (geographic; with an arrival heading the planned path, else the straight
+    line); `solution` the verified
     `Solution` of `plan()` with an arrival heading; `details` the rest of the `--json` object
     (speeds to fly, the straight glide, the path's word, endpoint error, ...).
     """
@@ -273,12 +274,15 @@ def final_glide(
                    + f" the goal elevation + safety height ({floor:.0f} m)")
     drawing = replace(drawing, wind_speed=wind_speed, wind_from_deg=wind_from)
     lat_t, lon_t = proj.to_geographic(drawing.x, drawing.y)
-    dx, dy = np.diff(drawing.x), np.diff(drawing.y)
-    course = np.arctan2(np.r_[dy, dy[-1:]], np.r_[dx, dx[-1:]]) if dx.size else np.zeros(1)
-    t_end = data.get("duration_s") or 0.0
-    times = drawing.distance / drawing.distance[-1] * t_end if drawing.distance[-1] > 0 \
-        else np.zeros(drawing.distance.size)
-    ground_track = Track(times, drawing.x, drawing.y, course, lat=lat_t, lon=lon_t,
+    if sol is not None:  # the planned path: its sample times and air headings
+        times = np.asarray(data.pop("_times"), dtype=float)
+        heading = np.asarray(data.pop("_headings"), dtype=float)
+    else:  # a straight glide at constant ground speed, crabbing (no time when unreachable)
+        t_end = data.get("duration_s") or 0.0
+        times = drawing.distance / max(float(drawing.distance[-1]), 1e-300) * t_end
+        crab = row["crab"] if math.isfinite(row["crab"]) else 0.0
+        heading = np.full(times.size, track + crab)
+    ground_track = Track(times, drawing.x, drawing.y, heading, lat=lat_t, lon=lon_t,
                          alt=drawing.altitude)
     return FinalGlide(
         status=status,
@@ -400,6 +404,8 @@ def _arrival(
     loss = float(sol.cost)
     data = {
         "_loss": loss,
+        "_times": smp.t,
+        "_headings": smp.heading,
         "altitude_loss_m": loss,
         "speed_to_fly_kmh": float(smp.speed[0] * 3.6),
         "duration_s": path.duration,
