@@ -277,9 +277,12 @@ def start_state(problem: FrontProblem, t0: float, lat0: float, lon0: float,
     y = g.radius_m * np.radians(g.lat[ii] - lat0)
     T = _gauge_times(x.ravel(), y.ravel(), a, d).reshape(x.shape)
     dist = np.hypot(x, y)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        scale = np.where(T > 0, dist / np.where(T > 0, T, 1.0), float(np.max(a)))
-    local = np.where(np.isfinite(T), (T - tau0) * scale, band)
+    fin = np.isfinite(T)
+    pos = fin & (T > 0)
+    scale = np.full(T.shape, float(np.max(a)))
+    scale[pos] = dist[pos] / T[pos]
+    local = np.full(T.shape, band)
+    local[fin] = (T[fin] - tau0) * scale[fin]
     phi = np.full((ny, nx), band)
     phi[ii, jj] = np.clip(local, -band, band)
     arrival = np.full((ny, nx), np.inf)
