@@ -25,7 +25,6 @@ from glideplan.path import Path, PathSamples
 from glideplan.planners.dubins import dubins_path, dubins_shortest, feasible_radius
 from glideplan.planning import PlannerOutput, Problem, plan, register_planner, registered_planners
 from glideplan.pose import Pose, mod_2pi, wrap_to_pi
-from glideplan.results import Outcome
 from glideplan.segments import (
     Arc,
     DriftingStraight,
@@ -36,7 +35,6 @@ from glideplan.segments import (
     TrochoidArc,
 )
 from glideplan.solution import Candidate, Solution, Status
-from glideplan.track import Track
 from glideplan.vehicles import DubinsCar, Vehicle
 from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
 from glideplan.vehicles.load_factor_glider import LoadFactorGlider
@@ -47,12 +45,11 @@ from glideplan.verify import EndpointError, endpoint_error, integrate_path
 if TYPE_CHECKING:
     from glideplan.fields import FlowField, open_field
     from glideplan.missions import plan_mission
-    from glideplan.reach import (  # type: ignore[attr-defined,unused-ignore]  # until it lands
-        glide_reach,
-        turnback,
-    )
+    from glideplan.reach import glide_reach, turnback
+    from glideplan.results import Outcome
     from glideplan.routing import route
     from glideplan.sailplane.request import final_glide
+    from glideplan.track import Track
     from glideplan.vehicles.sailplane import Sailplane
     from glideplan.vehicles.sailplane_polar import SailplanePolar
 
@@ -69,6 +66,8 @@ _LAZY = {
     "open_field": "glideplan.fields",
     "Sailplane": "glideplan.vehicles.sailplane",
     "SailplanePolar": "glideplan.vehicles.sailplane_polar",
+    "Track": "glideplan.track",
+    "Outcome": "glideplan.results",
 }
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import os
 import pathlib
+from typing import Any
 
 import numpy as np
 import pytest
@@ -238,3 +239,39 @@ def test_export_directory_not_writable(run_cli, error_line, tmp_path) -> None:
     )  # fmt: skip
     assert code == 2
     assert error_line(err).endswith(f"directory '{locked}' is not writable")
+
+
+def test_phase_progress_draws_a_bar_on_a_terminal(monkeypatch) -> None:
+    """On a terminal: a Rich bar (`glideplan.progress.start_progress_bar`) once a phase has
+    run `delay` seconds, updated to each step's count, stopped when the phase ends."""
+    import glideplan.progress
+    from glideplan.cli.common import _PhaseProgress
+
+    events: list[tuple[Any, ...]] = []
+
+    class Bar:
+        def update(self, task: int, completed: int) -> None:
+            events.append(("update", completed))
+
+        def stop(self) -> None:
+            events.append(("stop",))
+
+    def start(description: str, total: float) -> tuple[Bar, int]:
+        events.append(("start", description, total))
+        return Bar(), 0
+
+    monkeypatch.setattr(glideplan.progress, "start_progress_bar", start)
+    now = [0.0]
+    progress = _PhaseProgress({"legs": "verifying the legs"}, delay=2.0)
+    progress.clock = lambda: now[0]
+    progress.last = progress.start = 0.0
+    progress.terminal = True
+    for i in range(1, 7):  # 1 s per step
+        now[0] += 1.0
+        progress("legs", i, 6)
+    progress.close()
+    assert events == [
+        ("start", "verifying the legs", 6),
+        *(("update", i) for i in range(2, 7)),
+        ("stop",),
+    ]

@@ -40,14 +40,19 @@ def test_public_names_are_listed():
     assert set(PUBLIC) <= set(dir(glideplan))
 
 
-@pytest.mark.parametrize("name", ["route", "plan_mission", "final_glide", "FlowField",
-                                  "open_field"])
+LAZY = {"route": "glideplan.routing", "plan_mission": "glideplan.missions",
+        "final_glide": "glideplan.sailplane.request", "glide_reach": "glideplan.reach",
+        "turnback": "glideplan.reach", "FlowField": "glideplan.fields",
+        "open_field": "glideplan.fields", "Sailplane": "glideplan.vehicles.sailplane",
+        "SailplanePolar": "glideplan.vehicles.sailplane_polar", "Track": "glideplan.track",
+        "Outcome": "glideplan.results"}
+
+
+@pytest.mark.parametrize("name", sorted(LAZY))
 def test_lazy_products_resolve_to_their_modules(name):
     import importlib
 
-    module = {"route": "glideplan.routing", "plan_mission": "glideplan.missions",
-              "final_glide": "glideplan.sailplane.request", "FlowField": "glideplan.fields",
-              "open_field": "glideplan.fields"}[name]
+    module = LAZY[name]
     assert getattr(glideplan, name) is getattr(importlib.import_module(module), name)
 
 

@@ -117,6 +117,15 @@ def test_flat_uniform_wind_arrivals_follow_the_ground_glide_per_bearing(polar, m
         assert p.reachable == (ref - SAFETY >= 0)
         n_reach += p.reachable
     assert 0 < n_reach < len(pts)  # the wind splits them: a real test of the anisotropy
+    # the footprint: along every bearing the (ALT - safety) x the ground glide ratio of that
+    # bearing (brute force), within one grid spacing (the grid's stated accuracy)
+    assert len(result.footprint) == 1
+    ring = result.footprint[0][0][:-1]
+    x = R_EARTH * math.cos(math.radians(START[0])) * np.radians(ring[::7, 0] - START[1])
+    y = R_EARTH * np.radians(ring[::7, 1] - START[0])
+    for xi, yi in zip(x, y, strict=True):
+        ref = (600.0 - SAFETY) * brute(polar, wind, math.atan2(yi, xi), mc, n=20001)
+        assert abs(math.hypot(xi, yi) - ref) <= result.resolution_m
 
 
 def _wall_case():
@@ -227,3 +236,32 @@ def test_safety_glide_ratio_on_flat_ground(polar):
     d = haversine(46.15, 7.2, lnd.lat, lnd.lon)
     assert r.points[0].arrival_altitude_m == pytest.approx(1200.0 - d / R, abs=1e-3)
     assert r.to_dict()["glide"]["still_air_glide_ratio"] == pytest.approx(R)
+
+
+def test_smooth_ridge_landable_behind_is_reached_round_it(polar):
+    """A smooth ridge (3100 m crest, 1.5 km flanks) higher than any glide over it, oblique to
+    the way: the straight glide meets it, the front goes round its end; the path flown keeps
+    the safety height next to the steep flank (the string pulling's margin, flight.py)."""
+    n = 161
+    lat = 46.4 + 0.4 * np.arange(n) / (n - 1)
+    lon = 7.3 + 0.5 * np.arange(n) / (n - 1)
+    la, lo = np.meshgrid(lat, lon, indexing="ij")
+    c = math.cos(math.radians(46.6))
+    (a_la, a_lo), (b_la, b_lo) = (46.56, 7.60), (46.70, 7.48)
+    bx, by = (b_lo - a_lo) * 111.2 * c, (b_la - a_la) * 111.2
+    px, py = (lo - a_lo) * 111.2 * c, (la - a_la) * 111.2
+    s = np.clip((px * bx + py * by) / (bx * bx + by * by), 0, 1)
+    d = np.hypot(px - s * bx, py - s * by)
+    z = np.maximum(500.0, 3100.0 * np.clip(1.5 - d, 0, 1.5) / 1.5).astype(np.float32)
+    t = Terrain(lat, lon, z)
+    lnd = Landable("behind", 46.68, 7.62, 500.0)
+    r = glide_reach(t, (46.5, 7.5, 2400.0), polar, landables=[lnd], safety_height=SAFETY,
+                    wind=(5.0, -3.0))
+    p = r.points[0]
+    assert p.reachable and p.verified and p.detour
+    assert p.min_clearance_m >= SAFETY - 1e-6
+    from glideplan.reach.flight import fly
+
+    straight = fly(r.glide, t, SAFETY, np.array([46.5, lnd.lat]), np.array([7.5, lnd.lon]),
+                   2400.0)
+    assert straight.min_clearance_m < 0

@@ -82,3 +82,10 @@ def test_home_out_of_reach_is_unreachable(polar):
                  safety_height=SAFETY)
     assert r.status is Status.UNREACHABLE and not r.ok
     assert r.to_dict()["status"] == "unreachable"
+
+
+def test_home_beyond_any_glide_over_terrain_is_unreachable(polar):
+    t = flat_terrain(121, span_lat=0.6, span_lon=0.8, elevation=ELEV)
+    r = turnback((46.05, 7.05, ELEV + 400.0), 0.0, (46.55, 7.75, ELEV), polar, terrain=t,
+                 safety_height=SAFETY)
+    assert r.status is Status.UNREACHABLE

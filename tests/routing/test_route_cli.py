@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import math
 
 import numpy as np
 import pytest
@@ -118,3 +117,114 @@ def test_bad_files_exit_2(files, tmp_path, cli_error):
                                                               *common)
     assert "--field" in cli_error("route", *common)
     assert "--example" in cli_error("route", "--example", "gyre", *common)
+
+
+# ----- issue 18: routes on the real ocean, from the CLI as a new user runs them ------------
+
+
+def test_era5_file_across_greenwich_from_the_cli(tmp_path, run_cli):
+    """ERA5-style global file (0..359.5 E, descending latitude, valid_time): 50 N 3 W -> 3 E
+    at 25 m/s in still air was `unreachable`; now solved, duration = great-circle distance / V
+    (the router's sphere; refined to 1e-5, the grid's own time within 1 %)."""
+    from glideplan.fields.synthetic import era5_dataset
+    from glideplan.routing.sphere import gc_distance
+
+    path = tmp_path / "era5.nc"
+    era5_dataset(step_deg=0.5, times=[T0, T0 + np.timedelta64(2, "D")]).to_netcdf(path)
+    code, out, err = run_cli("route", "--field", str(path), "--from", "50", "-3", "--to", "50",
+                             "3", "--speed", "25", "--resolution", "8000", "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    d = float(gc_distance(50.0, -3.0, 50.0, 3.0))
+    assert data["status"] == "solved" and data["unreachable_reason"] is None
+    assert data["duration_s"] == pytest.approx(d / 25.0, rel=1e-2)
+    assert data["land_clearance_m"] == pytest.approx(8000.0)  # one spacing: no land
+    assert min(data["track"]["lon"]) < 0.0 < max(data["track"]["lon"])
+
+
+def test_route_across_180_plots_and_exports_split_lines(tmp_path, run_cli):
+    """A -180..180 global file, 10 N 175 E -> 12 N 170 W (was `unreachable`, `--plot`
+    crashed near 180): solved; the figure reads back; the GeoJSON line is split at 180
+    (RFC 7946 3.1.9: parts meeting at +-180, checked by pygeoif) and fastkml reads the KML."""
+    import sys
+
+    sys.path.insert(0, str(__import__("pathlib").Path(__file__).parents[1] / "formats"))
+    from geojson_checks import check_geometry
+
+    from glideplan.fields.synthetic import global_dataset
+
+    path = tmp_path / "global.nc"
+    global_dataset(step_deg=1.0, lon_convention="-180..180",
+                   times=[T0, T0 + np.timedelta64(2, "D")]).to_netcdf(path)
+    png, gj, kml_file = tmp_path / "r.png", tmp_path / "r.geojson", tmp_path / "r.kml"
+    code, out, err = run_cli("route", "--field", str(path), "--from", "10", "175", "--to",
+                             "12", "-170", "--speed", "25", "--resolution", "15000", "--json",
+                             "--plot", str(png), "--geojson", str(gj), "--kml", str(kml_file))
+    assert code == 0, err
+    assert json.loads(out)["status"] == "solved"
+    import matplotlib.image
+
+    assert matplotlib.image.imread(png).ndim == 3
+    geom = json.loads(gj.read_text())["features"][0]["geometry"]
+    check_geometry(geom)
+    assert geom["type"] == "MultiLineString"
+    a, b = geom["coordinates"][0][-1], geom["coordinates"][1][0]
+    assert abs(a[0]) == 180.0 and abs(b[0]) == 180.0 and a[1] == pytest.approx(b[1])
+    from fastkml import kml
+
+    doc = kml.KML.from_string(kml_file.read_bytes())
+    assert type(doc.features[0].features[0].geometry).__name__ == "MultiLineString"
+
+
+def test_headland_in_a_copernicus_file_with_the_readme_depth_range(tmp_path, run_cli):
+    """A Copernicus-like file (levels from 0.494 m) with a rectangular headland between start
+    and goal, `--depth-range 0 500` (the README's example): solved round the cape (was
+    `unverified` at every resolution), the land clearance reported, no track point on land,
+    and the depth warning printed."""
+    from glideplan.fields import open_field
+    from glideplan.fields.synthetic import COPERNICUS_DEPTHS, copernicus_headland_dataset
+
+    path = tmp_path / "cape.nc"
+    copernicus_headland_dataset(depths=COPERNICUS_DEPTHS, u=0.05).to_netcdf(path)
+    args = ("route", "--field", str(path), "--from", "30.2", "-40.8", "--to", "30.2",
+            "-39.7", "--speed", "0.5", "--depth-range", "0", "500", "--resolution", "1500")
+    code, out, err = run_cli(*args, "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["status"] == "solved", data["message"]
+    assert data["land_clearance_m"] > 1500.0
+    fld = open_field(path, depth_range=(0.0, 500.0))
+    u, _ = fld.velocity(fld.time_span[0], data["track"]["lat"], data["track"]["lon"])
+    assert np.all(np.isfinite(u))
+    assert max(data["track"]["lat"]) > 30.6  # round the cape's north end
+    code, out, err = run_cli(*args)
+    assert code == 0 and "warning" in err and "0.494" in err
+
+
+def test_absurd_speed_is_refused_and_start_equal_goal_is_solved(files, run_cli, cli_error):
+    path, _ = files
+    line = cli_error("route", "--field", str(path), "--from", "44.5", "-8.9", "--to", "44.5",
+                     "-8.5", "--speed", "1e9")
+    assert "--speed" in line and "343" in line
+    code, out, err = run_cli("route", "--field", str(path), "--from", "44.5", "-8.9", "--to",
+                             "44.5", "-8.9", "--speed", "0.4", "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["status"] == "solved" and data["duration_s"] == 0.0
+
+
+def test_unreachable_states_its_reason_and_draws_the_furthest_reach(files, run_cli, tmp_path):
+    """0.05 m/s upstream against the 0.1 m/s current: never reachable, and the field's 48 h
+    end first: exit 1, reason "time_span", the figure drawn with the front's furthest reach."""
+    path, _ = files
+    png = tmp_path / "u.png"
+    code, out, err = run_cli("route", "--field", str(path), "--from", "44.5", "-8.5", "--to",
+                             "44.5", "-8.9", "--speed", "0.05", "--resolution", "2000",
+                             "--json", "--plot", str(png))
+    assert code == 1, err
+    data = json.loads(out)
+    assert data["status"] == "unreachable" and data["unreachable_reason"] == "time_span"
+    assert data["best_distance_m"] > 0
+    import matplotlib.image
+
+    assert matplotlib.image.imread(png).ndim == 3

@@ -317,7 +317,10 @@ class Explorer:
         self._move_pose("goal", x, y, heading_deg)
 
     def push_url(self) -> None:
-        """The state's query into the browser's address."""
+        """The state's query into the browser's address (once the page is shown), and the
+        texts that changed while the browser built the page."""
+        self.strip.sync()
+        self.table.sync()
         self._push_url()
 
     def _push_url(self) -> None:

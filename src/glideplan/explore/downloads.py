@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -14,22 +15,39 @@ __all__ = ["path_csv", "solution_json", "solution_png"]
 _CSV_SAMPLES = 400
 
 
-def solution_json(solution: Any) -> str:
+def _message(errors: Mapping[str, str] | None) -> str:
+    """The page's messages as one line ('; '-joined, each as shown under its input)."""
+    return "; ".join(v for v in (errors or {}).values() if v)
+
+
+def solution_json(solution: Any, errors: Mapping[str, str] | None = None) -> str:
     """`Solution.to_dict()` written by the library's JSON encoder (`glideplan.jsonio`): the
-    object `plan --json` prints; without a solution, status `no_path` and why."""
+    object `plan --json` prints; without a solution, status `no_path` and why: "message"
+    (the page's messages, one line) and "errors" (by input name; "" for the page's own)."""
     from glideplan.jsonio import to_json
     from glideplan.solution import Status
 
     if solution is None:
-        return to_json({"status": Status.NO_PATH.value, "message": "no solution"}) + "\n"
+        out = {
+            "status": Status.NO_PATH.value,
+            "message": _message(errors) or "no solution",
+            "errors": dict(errors or {}),
+        }
+        return to_json(out) + "\n"
     return to_json(solution.to_dict()) + "\n"
 
 
-def path_csv(solution: Any) -> str:
+def path_csv(solution: Any, errors: Mapping[str, str] | None = None) -> str:
     """The optimal path sampled at 400 even times plus every switch: t (s), s (m), x, y (m),
-    heading_deg, speed (m/s), turn_rate (rad/s) and the cumulative cost of the objective."""
+    heading_deg, speed (m/s), turn_rate (rad/s) and the cumulative cost of the objective.
+
+    Without a path: one column `error` with the page's message (a CSV reader reads it)."""
     out = io.StringIO()
     writer = csv.writer(out, lineterminator="\n")
+    if getattr(solution, "path", None) is None:
+        writer.writerow(["error"])
+        writer.writerow([_message(errors) or "no solution"])
+        return out.getvalue()
     cols = ["t", "s", "x", "y", "heading_deg", "speed", "turn_rate", "cost"]
     writer.writerow(cols)
     path = getattr(solution, "path", None)
@@ -47,8 +65,9 @@ def path_csv(solution: Any) -> str:
     return out.getvalue()
 
 
-def solution_png(solution: Any) -> bytes:
-    """The solution drawn by `glideplan.plotting.plot_solution` (with its candidates), as PNG."""
+def solution_png(solution: Any, errors: Mapping[str, str] | None = None) -> bytes:
+    """The solution drawn by `glideplan.plotting.plot_solution` (with its candidates), as PNG;
+    without one, the page's message."""
     from matplotlib.figure import Figure  # no pyplot: thread-safe, no GUI backend
 
     fig = Figure(figsize=(7, 6))
@@ -58,7 +77,11 @@ def solution_png(solution: Any) -> bytes:
 
         plot_solution(solution, ax, candidates=True)
     else:
-        ax.text(0.5, 0.5, "no solution", ha="center", va="center", transform=ax.transAxes)
+        import textwrap
+
+        text = "no solution\n" + textwrap.fill(_message(errors), 60)
+        ax.text(0.5, 0.5, text, ha="center", va="center", transform=ax.transAxes, wrap=True)
+        ax.set_axis_off()
     from glideplan.plotting import save_figure
 
     buf = io.BytesIO()

@@ -23,7 +23,7 @@ from bokeh.plotting import figure
 
 from glideplan.explore.solve import View
 
-__all__ = ["ASPECT_JS", "PlanFigures"]
+__all__ = ["ASPECT_JS", "PlanFigures", "equal_scales", "follow_url"]
 
 BLUE = "#1f5fa8"
 START = "#2e8540"
@@ -34,9 +34,10 @@ POINT_COLUMNS = ("x", "y", "name", "role", "c", "fill", "size")
 # The partition map's words and colours (as `solve._WORD_COLOURS`), for its legend.
 PARTITION_WORDS = ("LSL", "LSR", "RSL", "RSR", "RLR", "LRL")
 
-# Equal scales (data units per pixel) in x and y whatever the frame's shape: after a layout
-# or a range change, the range with the larger scale grows about its centre until both
-# match, so that everything in view stays in view (turn circles stay circles). The view
+# Equal scales (metres per pixel) in x and y whatever the frame's shape: after a layout or a
+# range change, the range with the larger scale grows about its centre until both match, so
+# that everything in view stays in view (turn circles stay circles). `k` is the metres per x
+# unit over the metres per y unit (1 on the plane; cos(latitude) on a lon/lat map). The view
 # then goes into the address as `view=x0,y0,x1,y1` (a link restores the zoom).
 ASPECT_JS = """
 const w = fig.inner_width, h = fig.inner_height;
@@ -44,10 +45,10 @@ if (!(w > 0 && h > 0)) return;
 const x0 = xr.start, x1 = xr.end, y0 = yr.start, y1 = yr.end;
 const dx = x1 - x0, dy = y1 - y0;
 if (!(dx > 0 && dy > 0)) return;
-const sx = w / dx, sy = h / dy;
+const sx = w / (dx * k), sy = h / dy;
 if (Math.abs(sx - sy) > 1e-9 * Math.max(sx, sy)) {
   const s = Math.min(sx, sy), cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
-  const hx = 0.5 * w / s, hy = 0.5 * h / s;
+  const hx = 0.5 * w / (s * k), hy = 0.5 * h / s;
   xr.setv({start: cx - hx, end: cx + hx});
   yr.setv({start: cy - hy, end: cy + hy});
   return;  // the change calls this again, which writes the address
@@ -65,6 +66,30 @@ next.set('view', view);
 window.history.replaceState(null, '', window.location.pathname + '?' +
   next.toString().replace(/%2C/g, ','));
 """
+
+
+def equal_scales(fig: Any, x_range: Any, y_range: Any, k: float = 1.0) -> None:
+    """Keep `fig`'s scales equal in the browser (`ASPECT_JS`; `k` metres per x unit over
+    metres per y unit) and its view in the address."""
+    aspect = CustomJS(args={"fig": fig, "xr": x_range, "yr": y_range, "k": k}, code=ASPECT_JS)
+    for model in (x_range, y_range):
+        model.js_on_change("start", aspect)
+        model.js_on_change("end", aspect)
+    fig.js_on_change("inner_width", aspect)
+    fig.js_on_change("inner_height", aspect)
+
+
+URL_JS = """const q = cb_obj.tags[0]; if (!q) return; const p = new URLSearchParams(q);
+const v = new URLSearchParams(window.location.search).get('view');
+if (v) p.set('view', v); const s = '?' + p.toString().replace(/%2C/g, ',');
+if (window.location.search !== s) {
+  window.history.replaceState(null, '', window.location.pathname + s); }"""
+
+
+def follow_url(fig: Any) -> None:
+    """The browser's address follows `fig.tags[0]` (a query the server sets), keeping the view
+    (history.replaceState: Panel's Location would push a history entry per drag)."""
+    fig.js_on_change("tags", CustomJS(code=URL_JS))
 
 
 def empty_points() -> dict[str, list[Any]]:
@@ -225,26 +250,10 @@ class PlanFigures:
         )
         fig.add_layout(self.part_legend)
         self.fig = fig
-        aspect = CustomJS(args={"fig": fig, "xr": self.x_range, "yr": self.y_range},
-                          code=ASPECT_JS)
-        for model in (self.x_range, self.y_range):
-            model.js_on_change("start", aspect)
-            model.js_on_change("end", aspect)
-        fig.js_on_change("inner_width", aspect)
-        fig.js_on_change("inner_height", aspect)
+        equal_scales(fig, self.x_range, self.y_range)
         # The page's URL follows the state: the server sets the figure's tag, the browser
         # replaces the address (Panel's Location pushes history entries on every drag).
-        fig.js_on_change(
-            "tags",
-            CustomJS(
-                args={"xr": self.x_range, "yr": self.y_range},
-                code="const q = cb_obj.tags[0]; if (!q) return; const p = new URLSearchParams(q);"
-                " const v = new URLSearchParams(window.location.search).get('view');"
-                " if (v) p.set('view', v); const s = '?' + p.toString().replace(/%2C/g, ',');"
-                " if (window.location.search !== s) "
-                "{ window.history.replaceState(null, '', window.location.pathname + s); }",
-            ),
-        )
+        follow_url(fig)
         self.prof_src = ColumnDataSource({"t": [], "speed": [], "second": [], "third": []})
         self.speed_fig = self._profile_figure("speed", "speed (m/s)", BLUE)
         x_range = self.speed_fig.x_range

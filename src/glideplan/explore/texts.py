@@ -148,6 +148,12 @@ class FastHtml:
     def object(self) -> str:
         return self._text
 
+    def sync(self) -> None:
+        """Put the latest text into the Div itself (once the page is shown: a result that
+        arrived while the browser was still building the page never reached it)."""
+        if self.model.text != self._text:
+            self.model.text = self._text
+
     @object.setter
     def object(self, text: str) -> None:
         if text != self._text:

@@ -240,7 +240,7 @@ def depth_average(profile: np.ndarray, depths: np.ndarray, z0: float, z1: float)
     if z1 > z[-1] + 1e-9:
         raise InvalidParameterError(
             "depth_range", (z0, z1),
-            f"below the file's deepest level {z[-1]:g} m (levels {z[0]:g}..{z[-1]:g} m)",
+            f"below the file's deepest level {z[-1]:g} m (depth levels {z[0]:g}..{z[-1]:g} m)",
         )
     if z0 < z[0]:  # constant extrapolation to the surface only
         z = np.concatenate([[z0], z])

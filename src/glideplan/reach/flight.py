@@ -18,7 +18,12 @@ String pulling: from each waypoint the farthest later waypoint whose straight le
 terrain + safety all along (altitude carried from the start) is taken next. In a uniform
 wind the cost of a leg is |leg| / r(chi) with r the gauge of a convex set, so a straight leg
 never costs more than the sub-path it replaces (triangle inequality): the pulled path is
-never worse than the front's and is the taut string past the terrain it must avoid.
+never worse than the front's. Each corner then slides towards the chord of its neighbours
+and by a pattern search (8 directions, halving steps to 1 m) while its two legs stay clear
+and lose less altitude: the taut string past the terrain it must avoid. Legs are checked on
+straight lat/lon chords, the flight on the exact rhumb lines; next to steep terrain these
+differ by a fraction of a metre, so the pulling asks for a small extra margin
+(PULL_MARGINS_M, tried in turn until the flown path keeps the safety height).
 """
 
 from __future__ import annotations
@@ -32,11 +37,16 @@ from numpy.typing import NDArray
 from glideplan.reach.model import Glide
 from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
 
-__all__ = ["FlownPath", "fly", "pull_string", "rhumb"]
+__all__ = ["PULL_MARGINS_M", "FlownPath", "fly", "front_candidates", "pull_string", "rhumb"]
 
 FloatArray = NDArray[np.float64]
 R = EARTH_RADIUS_M
 _TOL = 1e-6  # m: clearance round-off allowed
+#: Extra clearance (m) the string pulling asks of its legs, tried in turn until the pulled
+#: path, flown, keeps the safety height: the pulling samples straight lat/lon chords, the
+#: flight the exact rhumb lines, and next to steep terrain they can differ by a fraction of
+#: a metre.
+PULL_MARGINS_M = (1.0, 10.0, 50.0)
 
 
 def _psi(lat_rad: FloatArray) -> FloatArray:
@@ -122,7 +132,8 @@ def leg_clear(glide: Glide, terrain: Terrain, safety: float, lat1: float, lon1: 
 
 def pull_string(glide: Glide, terrain: Terrain, safety: float, lat: FloatArray,
                 lon: FloatArray, h0: float, max_points: int = 300) -> tuple[FloatArray, FloatArray]:
-    """Waypoints of the pulled path (module docstring); the first and last are kept."""
+    """Waypoints of the pulled path (module docstring); the first and last are kept. Legs
+    must keep `safety` (pass the safety height plus a margin, `front_candidates`)."""
     la, lo = np.asarray(lat, float), np.asarray(lon, float)
     if la.size > max_points:
         keep = np.unique(np.linspace(0, la.size - 1, max_points).round().astype(int))
@@ -175,8 +186,59 @@ def _tighten(glide: Glide, terrain: Terrain, safety: float, la: FloatArray, lo: 
             if lo_lam > 0:
                 la[k] = py + lo_lam * (ty - py)
                 lo[k] = (px + lo_lam * (tx - px)) / c
+            la[k], lo[k] = _pattern_search(glide, terrain, safety, la, lo, k, h)
             h = leg_clear(glide, terrain, safety, la[k - 1], lo[k - 1], h, la[k], lo[k])[1]
     return la, lo
+
+
+def _pattern_search(glide: Glide, terrain: Terrain, safety: float, la: FloatArray,
+                    lo: FloatArray, k: int, h: float, min_step_m: float = 1.0
+                    ) -> tuple[float, float]:
+    """Move waypoint k (8 directions, steps halving from a terrain spacing x 4 to
+    `min_step_m`) while the altitude lost on its two legs drops and both stay clear: the
+    corner slides along the terrain it goes round to where the taut string touches it."""
+    ex, ey = terrain.spacing_m
+    step = 4.0 * max(ex, ey)
+    c = math.cos(math.radians(la[k]))
+    dirs = [(math.cos(a), math.sin(a)) for a in np.linspace(0, 2 * np.pi, 8, endpoint=False)]
+
+    def loss(y: float, x: float) -> float:
+        ok1, h1, _ = leg_clear(glide, terrain, safety, la[k - 1], lo[k - 1], h, y, x)
+        if not ok1:
+            return math.inf
+        ok2, h2, _ = leg_clear(glide, terrain, safety, y, x, h1, la[k + 1], lo[k + 1])
+        return h - h2 if ok2 else math.inf
+
+    y0, x0 = float(la[k]), float(lo[k])
+    best = loss(y0, x0)
+    if not math.isfinite(best):
+        return y0, x0
+    while step >= min_step_m:
+        moved = False
+        for ux, uy in dirs:
+            y = y0 + math.degrees(uy * step / EARTH_RADIUS_M)
+            x = x0 + math.degrees(ux * step / (EARTH_RADIUS_M * c))
+            f = loss(y, x)
+            if f < best - 1e-9:
+                best, y0, x0, moved = f, y, x, True
+                break
+        if not moved:
+            step *= 0.5
+    return y0, x0
+
+
+def front_candidates(glide: Glide, terrain: Terrain, safety: float, lat: FloatArray,
+                     lon: FloatArray, h0: float) -> list[FlownPath]:
+    """The front's path flown as it is, then string-pulled (with the margins of
+    PULL_MARGINS_M until one keeps the safety height) and flown."""
+    out = [fly(glide, terrain, safety, lat, lon, h0)]
+    for margin in PULL_MARGINS_M:
+        wla, wlo = pull_string(glide, terrain, safety + margin, lat, lon, h0)
+        flown = fly(glide, terrain, safety, wla, wlo, h0)
+        out.append(flown)
+        if flown.clear:
+            break
+    return out
 
 
 def fly(glide: Glide, terrain: Terrain, safety: float, lat: FloatArray, lon: FloatArray,

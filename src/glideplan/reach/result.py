@@ -109,6 +109,7 @@ class ReachResult:
     resolution_m: float
     pooling: int
     stop_reason: str
+    front_steps: int = 0
     timings: dict[str, float] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
 
@@ -131,7 +132,8 @@ class ReachResult:
             "glide": self.glide.to_dict(),
             "polar": self.glide.polar.name,
             "grid": {"resolution_m": self.resolution_m, "pooling": self.pooling,
-                     "shape": list(self.arrival.shape), "stop_reason": self.stop_reason},
+                     "shape": list(self.arrival.shape), "stop_reason": self.stop_reason,
+                     "front_steps": self.front_steps},
             "footprint": {"polygons": len(self.footprint), "clipped": list(self.clipped),
                           "area_km2": self.footprint_area_km2()},
             "points": [p.to_dict() for p in self.points],

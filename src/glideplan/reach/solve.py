@@ -3,11 +3,13 @@
 Pipeline: `ReachProblem` -> front grid (`reach.grid`: terrain cropped to the reach and
 max-pooled, block times = the state constraint) -> the front in altitude (`glideplan.fronts`,
 H(p) = max_k a_k |p| + b_k . p from `Glide.front_terms`) -> per landable: the path
-backtracked along the characteristics (`fronts.backtrack`), string-pulled against the true
-terrain, and flown through the wind with the polar (`reach.flight`): the arrival altitude
-reported is the flown one. The straight glide is flown too and kept when it is better (a
-landable the grid's first-order error would call out of reach by a few metres is still
-found). Footprint: the clearance margin's contour (`reach.footprint`).
+backtracked along the characteristics (`fronts.backtrack`), its points kept within a cell of
+reached nodes (`snap_to_reached`), string-pulled against the true terrain, and flown through
+the wind with the polar (`reach.flight`): the arrival altitude reported is the flown one,
+and a landable is reachable only when a flown path keeps the safety height all along. The
+straight glide is flown too and kept when it is better (a landable the grid's first-order
+error would call out of reach by a few metres is still found). Footprint: the clearance
+margin's contour (`reach.footprint`).
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
-from glideplan.reach.flight import FlownPath, fly, pull_string
+from glideplan.reach.flight import FlownPath, fly, front_candidates
 from glideplan.reach.footprint import clearance_margin, footprint_polygons
 from glideplan.reach.grid import ReachGrid, reach_grid
 from glideplan.reach.model import Glide
@@ -32,7 +34,7 @@ from glideplan.sailplane.polar import SailplanePolar
 from glideplan.solution import Status
 from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
 
-__all__ = ["front_problem", "glide_reach", "interp_arrival", "solve_front"]
+__all__ = ["front_problem", "glide_reach", "interp_arrival", "snap_to_reached", "solve_front"]
 
 FloatArray = NDArray[np.float64]
 
@@ -124,6 +126,39 @@ def interp_arrival(arrival: FloatArray, lat: FloatArray, lon: FloatArray, la: fl
     return acc / wsum if wsum > 0 else math.inf
 
 
+def snap_to_reached(lat: FloatArray, lon: FloatArray, arrival: FloatArray, glat: FloatArray,
+                    glon: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """The backtracked path with every point whose nearest node the front never reached
+    moved onto the nearest reached node of its 5 x 5 neighbourhood (metric: the grid's
+    degrees scaled by cos(lat) in longitude).
+
+    Why: a node's pooled terrain bounds the terrain within a whole cell of it, so a point
+    within a cell of a reached node is as high above the terrain as that node (to a cell's
+    glide); near the tip of an obstacle a characteristic integrated backwards in half-cell
+    steps can cut into blocked cells, where nothing bounds the terrain.
+    """
+    la, lo = np.array(lat, dtype=float), np.array(lon, dtype=float)
+    dla, dlo = glat[1] - glat[0], glon[1] - glon[0]
+    ny, nx = arrival.shape
+    reached = np.isfinite(arrival)
+    fi, fj = (la - glat[0]) / dla, (lo - glon[0]) / dlo
+    ii = np.clip(np.round(fi).astype(int), 0, ny - 1)
+    jj = np.clip(np.round(fj).astype(int), 0, nx - 1)
+    c = math.cos(math.radians(float(np.mean(la))))
+    for k in np.flatnonzero(~reached[ii, jj]):
+        best, where = math.inf, None
+        for di in range(-2, 3):
+            for dj in range(-2, 3):
+                i, j = ii[k] + di, jj[k] + dj
+                if 0 <= i < ny and 0 <= j < nx and reached[i, j]:
+                    d = math.hypot((i - fi[k]) * dla, (j - fj[k]) * dlo * c)
+                    if d < best:
+                        best, where = d, (i, j)
+        if where is not None:
+            la[k], lo[k] = glat[where[0]], glon[where[1]]
+    return la, lo
+
+
 def _offset_m(path: FlownPath, lat0: float, lon0: float, lat1: float, lon1: float) -> float:
     """Largest distance (m) of the path's waypoints from the straight line start -> goal."""
     c = math.cos(math.radians(lat0))
@@ -160,9 +195,11 @@ def _point(problem: ReachProblem, grid: ReachGrid, fp: Any, res: Any, state: Any
         ch = backtrack(fp, res.arrival, (lnd.lat, lnd.lon), T, 0.0, (lat0, lon0),
                        state.start_radius_m)
         if ch.complete:
-            wla, wlo = pull_string(glide, terrain, safety, ch.lat, ch.lon, alt)
-            front_path = fly(glide, terrain, safety, wla, wlo, alt)
-            candidates.append(front_path)
+            sla, slo = snap_to_reached(ch.lat, ch.lon, res.arrival, grid.lat, grid.lon)
+            sla[0], slo[0], sla[-1], slo[-1] = lat0, lon0, lnd.lat, lnd.lon
+            found = front_candidates(glide, terrain, safety, sla, slo, alt)
+            candidates += found
+            front_path = found[-1]  # the last pulled path: what is reported if none is clear
     straight = fly(glide, terrain, safety, np.array([lat0, lnd.lat]),
                    np.array([lon0, lnd.lon]), alt)
     candidates.append(straight)
@@ -171,24 +208,29 @@ def _point(problem: ReachProblem, grid: ReachGrid, fp: Any, res: Any, state: Any
     if clear:
         best = max(clear, key=lambda c: c.arrival_altitude)
         verified = True
-    elif front_path is not None and front_path.min_clearance_m < safety - 1.0 and (
-            front_path.arrival_altitude - lnd.elevation_m - safety >= 0):
-        best, verified = front_path, False
-        warning = (f"{lnd.name}: the front's path does not keep the safety height when flown "
-                   f"(clearance {front_path.min_clearance_m:.0f} m < {safety:g} m): "
-                   "reported unreachable")
-    elif straight.min_clearance_m >= 0.0 and math.isfinite(straight.arrival_altitude):
-        # out of reach over open ground: the straight glide says by how much
-        best, verified = straight, False
     else:
-        why = "beyond reach" if front_alt is None else "no verified path"
-        return empty(why + " (the straight glide meets the terrain)", front_alt), None
+        # none keeps the safety height all along: report the best that at least stays above
+        # the terrain (out of reach over open ground: it says by how much), else the front's
+        above = [c for c in candidates if c.min_clearance_m >= 0.0
+                 and math.isfinite(c.arrival_altitude)]
+        if above:
+            best = max(above, key=lambda c: c.arrival_altitude)
+        elif front_path is not None and math.isfinite(front_path.arrival_altitude):
+            best = front_path
+        else:
+            why = "beyond reach" if front_alt is None else "no verified path"
+            return empty(why + " (the straight glide meets the terrain)", front_alt), None
+        verified = False
+        if front_alt is not None and front_alt >= lnd.elevation_m + safety:
+            warning = (f"{lnd.name}: the front reaches it but no path flown keeps the safety "
+                       f"height (best clearance {best.min_clearance_m:.1f} m < {safety:g} m): "
+                       "reported unreachable")
     margin = best.arrival_altitude - lnd.elevation_m - safety
     reachable = verified and margin >= -1e-6
     offset = _offset_m(best, lat0, lon0, lnd.lat, lnd.lon)
-    below = best.clear or best is not front_path
     note = "" if reachable else (
-        "arrives below the safety height" if below else "path not verified")
+        "arrives below the safety height" if margin < 0 else
+        "no path found keeps the safety height over the terrain")
     return ReachPoint(lnd, reachable, best.arrival_altitude, margin, best.distance_m,
                       offset > grid.spacing_m, best, verified, front_alt, best.min_clearance_m,
                       best.endpoint_error_m, offset, note,
@@ -272,7 +314,7 @@ def glide_reach(
         safety_height=safety_height, glide=glide, points=tuple(points), footprint=polys,
         lat=grid.lat, lon=grid.lon, arrival=res.arrival, margin=margin, z=grid.z,
         terrain=grid.terrain, clipped=clipped, resolution_m=grid.spacing_m,
-        pooling=grid.factor, stop_reason=res.reason, timings=timings,
+        pooling=grid.factor, stop_reason=res.reason, front_steps=int(res.steps), timings=timings,
         warnings=tuple(warnings))
 
 

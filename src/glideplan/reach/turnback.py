@@ -36,11 +36,11 @@ from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
 from glideplan.geodesy import check_latlon
-from glideplan.reach.flight import FlownPath, fly, pull_string, rhumb
+from glideplan.reach.flight import FlownPath, fly, front_candidates, rhumb
 from glideplan.reach.grid import ReachGrid, reach_grid
 from glideplan.reach.model import Glide
 from glideplan.reach.problem import Landable, ReachProblem
-from glideplan.reach.solve import front_problem, interp_arrival, solve_front
+from glideplan.reach.solve import front_problem, interp_arrival, snap_to_reached, solve_front
 from glideplan.sailplane.polar import SailplanePolar
 from glideplan.solution import Status
 from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
@@ -259,7 +259,7 @@ def turnback(
         cands = [fly(glide, fine, safety_height, np.array([la, home.lat]),
                      np.array([lo, home.lon]), a)]
         t_max = a - home.elevation_m - safety_height
-        if t_max > 0 and use_front:
+        if t_max > 0 and use_front and home_in:
             from glideplan.fronts import backtrack
 
             state, res = solve_front(fp, la, lo, t_max + 1.0, grid.spacing_m, min_ratio,
@@ -269,8 +269,10 @@ def turnback(
                 ch = backtrack(fp, res.arrival, (home.lat, home.lon), T, 0.0, (la, lo),
                                state.start_radius_m)
                 if ch.complete:
-                    wla, wlo = pull_string(glide, fine, safety_height, ch.lat, ch.lon, a)
-                    cands.append(fly(glide, fine, safety_height, wla, wlo, a))
+                    sla, slo = snap_to_reached(ch.lat, ch.lon, res.arrival, grid.lat,
+                                               grid.lon)
+                    sla[0], slo[0], sla[-1], slo[-1] = la, lo, home.lat, home.lon
+                    cands += front_candidates(glide, fine, safety_height, sla, slo, a)
         good = [c for c in cands if c.clear and
                 c.arrival_altitude - home.elevation_m - safety_height >= -1e-6]
         best = max(good, key=lambda c: c.arrival_altitude) if good else None
@@ -278,7 +280,8 @@ def turnback(
         return best is not None, best
 
     t = time.perf_counter()
-    ok0, path0 = probe(0.0)
+    home_in = bool(grid_contains(grid, np.array(home.lat), np.array(home.lon)))
+    ok0, path0 = probe(0.0) if home_in else (False, None)
     if not ok0:
         return _result(Status.UNREACHABLE, "home is out of reach already: turn back is not "
                        "enough", problem, home, course, glide, 0.0, P(0.0), None, "glide home",

@@ -320,7 +320,7 @@ def level_times(cur: WindowCurrents, t_max: float) -> FloatArray:
     if cur.levels is not None:
         return cur.levels
     n = max(math.ceil((t_max - cur.t0) / cur.sample_dt), 1) + 1
-    return cur.t0 + np.arange(n + 1) * cur.sample_dt
+    return np.asarray(cur.t0 + np.arange(n + 1) * cur.sample_dt, dtype=float)
 
 
 def _closest(arrival: FloatArray, window: Window, goal: tuple[float, float],
@@ -423,7 +423,8 @@ def front(problem: RouteProblem, rg: RouteGrid,
             why = "field_extent"
         else:  # stalled inside the field, or land (and its clearance) cut the goal off
             why = "front_stopped"
-    goal_time = float(res.goal_time) if res.reason == "goal" else None
+    goal_time = float(res.goal_time) if (res.reason == "goal" and res.goal_time is not None) \
+        else None
     return FrontOutcome(arrival, goal_time, res.reason, why, closest, kp, int(res.steps),
                         growths, res.state), rg
 
@@ -587,7 +588,7 @@ def refine(problem: RouteProblem, rg: RouteGrid, grid_route: Candidate) -> tuple
     k = min(max(1, grid_route.chi.size // 20), grid_route.chi.size - 1)
     chi0 = float(np.arctan2(np.mean(np.sin(grid_route.chi[:k])),
                             np.mean(np.cos(grid_route.chi[:k]))))
-    tol = max(1e-3 * rg.spacing_m, 0.01)
+    tol = max(1e-2 * rg.spacing_m, 0.01)  # 1 % of a cell, through the grid's current
     shot = zermelo_shooting(rg.currents, problem.speed, problem.t0, problem.start,
                             problem.goal, chi0, grid_route.duration, tol_m=tol)
     if not shot.converged:

@@ -29,7 +29,7 @@ from numpy.typing import NDArray
 from glideplan.solution import Status
 from glideplan.track import Track
 
-__all__ = ["FrontMap", "RouteResult", "UNREACHABLE_REASONS"]
+__all__ = ["UNREACHABLE_REASONS", "FrontMap", "RouteResult"]
 
 FloatArray = NDArray[np.float64]
 

@@ -99,7 +99,7 @@ def route(
         depart_s=problem.t0, field_info=info)
     if problem.distance_m <= 1e-6:  # start = goal
         track = Track(np.zeros(1), np.zeros(1), np.zeros(1), np.zeros(1),
-                      lat=[problem.start[0]], lon=[problem.start[1]])
+                      lat=np.array([problem.start[0]]), lon=np.array([problem.start[1]]))
         return RouteResult(status=Status.SOLVED, message="start and goal coincide",
                            warnings=tuple(warnings), duration_s=0.0, distance_m=0.0,
                            track=track, endpoint_error_m=0.0, endpoint_tolerance_m=0.0,

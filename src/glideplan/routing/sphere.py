@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -53,10 +54,11 @@ EARTH_RADIUS_M = 6_371_008.8
 Fill = Callable[[float, float, float], tuple[float, float]]
 
 
-def unwrap_lon(lon: ArrayLike, ref: float) -> FloatArray:
+def unwrap_lon(lon: ArrayLike, ref: ArrayLike) -> FloatArray:
     """The representative of each longitude (deg) within (-180, 180] of `ref`."""
     lo = np.asarray(lon, dtype=float)
-    return ref - np.mod(ref - lo + 180.0, 360.0) + 180.0
+    r = np.asarray(ref, dtype=float)
+    return np.asarray(r - np.mod(r - lo + 180.0, 360.0) + 180.0, dtype=float)
 
 
 def gc_distance(lat1: ArrayLike, lon1: ArrayLike, lat2: ArrayLike, lon2: ArrayLike) -> FloatArray:
@@ -142,7 +144,7 @@ def fly_headings(
     tt = np.asarray(t, dtype=float)
     hd = np.unwrap(np.asarray(chi, dtype=float))
     R = EARTH_RADIUS_M
-    state = {"land": False, "filled": 0}
+    state: dict[str, Any] = {"land": False, "filled": 0}
     lon_ref = float(start[1])
 
     def make_rhs(h_const: float | None) -> Callable[[float, FloatArray], FloatArray]:
@@ -179,24 +181,23 @@ def fly_headings(
                             atol=1e-3 / R, t_eval=np.linspace(a, b, n_eval),
                             max_step=max(min(duration / 100.0, b - a), 1e-6))
         except _OffField as exc:
-            return FlownRoute(tt, np.zeros(1), np.zeros(1), state["land"], str(exc), math.inf,
-                              state["filled"])
+            return FlownRoute(tt, np.zeros(1), np.zeros(1), bool(state["land"]), str(exc),
+                              math.inf, int(state["filled"]))
         if not sol.success:
-            return FlownRoute(tt, np.zeros(1), np.zeros(1), state["land"], sol.message,
-                              math.inf, state["filled"])
+            return FlownRoute(tt, np.zeros(1), np.zeros(1), bool(state["land"]), sol.message,
+                              math.inf, int(state["filled"]))
         z = sol.y[:, -1]
         ts_out.append(sol.t[1:])
         la_out.append(np.degrees(sol.y[0, 1:]))
         lo_out.append(np.degrees(sol.y[1, 1:]))
     lat, lon = np.concatenate(la_out), np.concatenate(lo_out)
     err = float(gc_distance(lat[-1], lon[-1], goal[0], goal[1]))
-    return FlownRoute(np.concatenate(ts_out), lat, lon, state["land"], None, err,
-                      state["filled"])
+    return FlownRoute(np.concatenate(ts_out), lat, lon, bool(state["land"]), None, err,
+                      int(state["filled"]))
 
 
 def crab_controls(
-    field_: FlowField | Callable[[FloatArray, FloatArray, FloatArray], tuple[FloatArray,
-                                                                              FloatArray]],
+    field_: FlowField | Callable[[FloatArray, FloatArray, FloatArray], Any],
     speed: float,
     t0: float,
     lat: FloatArray,

@@ -117,11 +117,13 @@ class Window:
 
     @property
     def lat(self) -> FloatArray:
-        return self.lattice.lat0 + np.arange(self.i0, self.i1) * self.lattice.dlat
+        return np.asarray(self.lattice.lat0 + np.arange(self.i0, self.i1) * self.lattice.dlat,
+                          dtype=float)
 
     @property
     def lon(self) -> FloatArray:
-        return self.lattice.lon0 + np.arange(self.j0, self.j1) * self.lattice.dlon
+        return np.asarray(self.lattice.lon0 + np.arange(self.j0, self.j1) * self.lattice.dlon,
+                          dtype=float)
 
     @property
     def nodes(self) -> int:
@@ -260,6 +262,7 @@ class WindowCurrents:
     levels: FloatArray | None
     _cache: dict[int, tuple[FloatArray, FloatArray]] = field(default_factory=dict)
     evaluations: int = 0
+    _flat_cache: dict[int, tuple[FloatArray, FloatArray]] = field(default_factory=dict)
 
     @classmethod
     def build(cls, window: Window, fld: FlowField, t0: float, sample_dt: float) -> WindowCurrents:
@@ -315,7 +318,7 @@ class WindowCurrents:
             k = int(np.clip(np.searchsorted(lv, t, side="right") - 1, 0, lv.size - 2))
             return k, float(np.clip((t - lv[k]) / (lv[k + 1] - lv[k]), 0.0, 1.0))
         f = max((t - self.t0) / self.sample_dt, 0.0)
-        k = int(math.floor(f))
+        k = math.floor(f)
         return k, f - k
 
     def level(self, k: int) -> tuple[FloatArray, FloatArray]:
@@ -351,45 +354,57 @@ class WindowCurrents:
 
     def points(self, t: float, lat: Any, lon: Any, gradient: bool = False) -> FloatArray:
         """Bilinear (u, v) at points at time t -> (2, n); with `gradient` also du/dlat,
-        du/dlon, dv/dlat, dv/dlon (per radian) -> (6, n). NaN off the window or near land."""
+        du/dlon, dv/dlat, dv/dlon (per radian, the cell's differences) -> rows u, du/dlat,
+        du/dlon, v, dv/dlat, dv/dlon (6, n). NaN off the window or near land."""
         k, w = self.bracket(t)
-        vals = self._interp(k, lat, lon, gradient)
-        if w > 0.0 and not self.steady:
-            vals = (1 - w) * vals + w * self._interp(k + 1, lat, lon, gradient)
-        return vals
-
-    def _interp(self, k: int, lat: Any, lon: Any, gradient: bool) -> FloatArray:
-        u, v = self.level(k)
-        fi, fj = self.window.frac_index(lat, lon)
-        fi, fj = np.atleast_1d(fi), np.atleast_1d(fj)
-        ny, nx = self.window.shape
-        periodic = self.window.periodic
-        inside = (fi >= 0) & (fi <= ny - 1) & (np.isfinite(fj))
-        if not periodic:
-            inside &= (fj >= 0) & (fj <= nx - 1)
-        fi_c = np.where(inside, fi, 0.0)
-        fj_c = np.where(inside, fj, 0.0)
-        i = np.minimum(np.floor(fi_c), ny - 2).astype(np.intp)
-        j = np.floor(fj_c).astype(np.intp)
+        win = self.window
+        L = win.lattice
+        lat_a = np.atleast_1d(np.asarray(lat, dtype=float))
+        fi = (lat_a - L.lat0) / L.dlat - win.i0
+        centre = L.lon0 + 0.5 * (win.j0 + win.j1 - 1) * L.dlon
+        lo = np.atleast_1d(np.asarray(lon, dtype=float))
+        lo = centre - np.mod(centre - lo + 180.0, 360.0) + 180.0
+        fj = (lo - L.lon0) / L.dlon - win.j0
+        ny, nx = win.shape
+        periodic = win.periodic
+        if periodic:
+            fj = np.mod(fj, nx)
+        inside = (fi >= 0) & (fi <= ny - 1) & (fj >= 0) & (fj <= nx - 1 + (1 if periodic else 0))
+        fi = np.where(inside, fi, 0.0)
+        fj = np.where(inside, fj, 0.0)
+        i = np.minimum(fi.astype(np.intp), ny - 2)
+        j = fj.astype(np.intp)
         if not periodic:
             j = np.minimum(j, nx - 2)
-        wy, wx = fi_c - i, fj_c - j
+        wy, wx = fi - i, fj - j
         j1 = np.mod(j + 1, nx) if periodic else j + 1
-        arrs = [u, v]
-        out = []
-        for a in arrs:
-            a00, a01, a10, a11 = a[i, j], a[i, j1], a[i + 1, j], a[i + 1, j1]
-            val = (1 - wy) * ((1 - wx) * a00 + wx * a01) + wy * ((1 - wx) * a10 + wx * a11)
-            out.append(val)
-            if gradient:
-                dlat = math.radians(self.window.lattice.dlat)
-                dlon = math.radians(self.window.lattice.dlon)
-                d_lat = ((1 - wx) * (a10 - a00) + wx * (a11 - a01)) / dlat
-                d_lon = ((1 - wy) * (a01 - a00) + wy * (a11 - a10)) / dlon
-                out += [d_lat, d_lon]
-        res = np.stack(out)
-        res[:, ~inside] = np.nan
+        idx = np.stack([i * nx + j, i * nx + j1, (i + 1) * nx + j, (i + 1) * nx + j1])
+        c = self._flat(k)[:, idx]  # (2, 4, n)
+        if w > 0.0 and not self.steady:
+            c = (1 - w) * c + w * self._flat(k + 1)[:, idx]
+        c00, c01, c10, c11 = c[:, 0], c[:, 1], c[:, 2], c[:, 3]
+        val = (1 - wy) * ((1 - wx) * c00 + wx * c01) + wy * ((1 - wx) * c10 + wx * c11)
+        if gradient:
+            d_lat = ((1 - wx) * (c10 - c00) + wx * (c11 - c01)) / math.radians(L.dlat)
+            d_lon = ((1 - wy) * (c01 - c00) + wy * (c11 - c10)) / math.radians(L.dlon)
+            res = np.stack([val[0], d_lat[0], d_lon[0], val[1], d_lat[1], d_lon[1]])
+        else:
+            res = val
+        if not inside.all():
+            res[:, ~inside] = np.nan
         return res
+
+    def _flat(self, k: int) -> FloatArray:
+        """(2, ny * nx): u and v at level k, flattened."""
+        u, v = self.level(k)
+        key = -k - 1
+        got = self._flat_cache.get(key)
+        if got is None or got[0] is not u:
+            got = (u, np.stack([u.ravel(), v.ravel()]))
+            self._flat_cache[key] = got
+            if len(self._flat_cache) > 8:
+                self._flat_cache.pop(next(iter(self._flat_cache)))
+        return got[1]
 
 
 def land_clearance_default(fld: FlowField, spacing: float, lat_ref: float) -> float:

@@ -284,6 +284,8 @@ def final_glide(
         heading = np.full(times.size, track + crab)
     ground_track = Track(times, drawing.x, drawing.y, heading, lat=lat_t, lon=lon_t,
                          alt=drawing.altitude)
+    if sol is not None:  # the planned path's samples: t, lat, lon, heading_deg, alt
+        data["track"] = ground_track.to_dict()
     return FinalGlide(
         status=status,
         message=message,
@@ -396,7 +398,6 @@ def _arrival(
     )
     smp = path.sample(times=times, objective="altitude")
     assert smp.cost is not None
-    lat, lon = proj.to_geographic(smp.x, smp.y)
     alt = alt0 - smp.cost
     ground = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(smp.x), np.diff(smp.y)))])
     gsx = smp.speed[-1] * math.cos(smp.heading[-1]) + wind[0]
@@ -416,7 +417,7 @@ def _arrival(
         "arrival_track_deg": float(heading_to_compass(math.atan2(gsy, gsx))),
         "bank_max_deg": bank,
         "path_ground_length_m": float(ground[-1]),
-        "track": {"lat": lat.tolist(), "lon": lon.tolist(), "alt": alt.tolist()},
+        "track": {},  # `final_glide` puts the `Track` here
         "endpoint_error": sol.endpoint_error.to_dict(),
         "planner": sol.planner,
         "approach_warm_starts": sol.extras.get("warm_starts", []),

@@ -1,0 +1,682 @@
+"""The explorer's route map: drag the start and goal of a route through a current or wind field.
+
+A lon/lat map (equal metres per pixel in x and y at the field's middle latitude, no map tiles:
+the page works offline) of the field: land where its currents are NaN, arrows of the current
+at the departure time plus the time slider's offset, the route of `glideplan.routing.route`,
+its isochrones (contours of the front's arrival-time map, at round intervals) and the start
+and goal, which drag. The result strip's cost (`gp-cost`) is the route's `duration_s` with 10
+significant digits, as `glideplan route --json` prints it for the same field, points, speed
+and departure. The field is a file given to `glideplan explore --field FILE` (read on the
+server) or a built-in example (`example=double-gyre`, no file needed).
+
+URL: `?planner=route&example=double-gyre&from=LAT,LON&to=LAT,LON&speed=V[&depart=ISO]`.
+Routes take seconds: they are computed on a worker thread, the shown one marked stale.
+"""
+
+from __future__ import annotations
+
+import html
+import io
+import json
+import math
+import threading
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, replace
+from typing import Any
+from urllib.parse import quote, urlencode
+
+import numpy as np
+import panel as pn
+from bokeh.models import ColumnDataSource, PointDrawTool, Range1d
+from bokeh.plotting import figure
+from panel.io.document import hold
+from panel.io.state import set_curdoc
+
+from glideplan.errors import InvalidParameterError
+from glideplan.explore.figures import GOAL, START, WIND, equal_scales, follow_url
+from glideplan.explore.state import one_line
+from glideplan.explore.texts import FastHtml, error_html, html_pane
+
+__all__ = ["EXAMPLES", "RoutePage", "RouteState", "load_field", "route_view"]
+
+EXAMPLES: tuple[str, ...] = ("double-gyre",)
+_ARROWS_X = 22  # current arrows across the field's width
+_LAND_CELLS = 200  # land mask samples across the field's width
+_ISOCHRONES = 8  # about this many isochrones up to the arrival
+
+
+@dataclass(frozen=True)
+class RouteState:
+    """The route map's inputs as entered (text): field source, points, speed, departure."""
+
+    example: str | None
+    start: str
+    goal: str
+    speed: str
+    depart: str = ""
+    hours: float = 0.0  # the slider: current arrows at depart + hours
+
+    def query(self) -> str:
+        items = [("planner", "route")]
+        if self.example:
+            items.append(("example", self.example))
+        items += [("from", self.start), ("to", self.goal), ("speed", self.speed)]
+        if self.depart:
+            items.append(("depart", self.depart))
+        return urlencode(items, safe=",:", quote_via=quote)
+
+
+def load_field(example: str | None, path: str | None) -> Any:
+    """The flow field: the example `example` (no file), else the server's file `path`."""
+    from glideplan.fields import double_gyre, open_field
+
+    if example is not None:
+        if example not in EXAMPLES:
+            raise InvalidParameterError("example", example, f"must be one of {EXAMPLES}")
+        return double_gyre()
+    if path is None:
+        return double_gyre()
+    return open_field(path)
+
+
+def _latlon(text: str, name: str) -> tuple[float, float]:
+    items = text.replace(",", " ").split()
+    if len(items) != 2:
+        raise InvalidParameterError(name, text, "needs two numbers: LAT LON (degrees)")
+    try:
+        lat, lon = (float(v) for v in items)
+    except ValueError:
+        raise InvalidParameterError(name, text, "needs two numbers: LAT LON (degrees)") from None
+    if not (math.isfinite(lat) and math.isfinite(lon)):
+        raise InvalidParameterError(name, text, "latitude/longitude must be finite")
+    return lat, lon
+
+
+@dataclass(frozen=True, eq=False)
+class RouteView:
+    """One computed route for one state: the result, or the messages by input name."""
+
+    state: RouteState
+    result: Any = None
+    errors: Mapping[str, str] | None = None
+
+    @property
+    def cost_text(self) -> str:
+        r = self.result
+        if r is None or r.duration_s is None:
+            return "n/a"
+        return f"{r.duration_s:.10g}"
+
+
+def route_view(flow: Any, state: RouteState) -> RouteView:
+    """`glideplan.routing.route` for the state's points, speed and departure (the call of
+    `glideplan route`), or the one-line message of each bad input."""
+    from glideplan.cli.route import parse_depart
+    from glideplan.routing import route
+
+    errors: dict[str, str] = {}
+    pts: dict[str, tuple[float, float]] = {}
+    for name, text in (("from", state.start), ("to", state.goal)):
+        try:
+            pts[name] = _latlon(text, f"--{name}")
+        except InvalidParameterError as err:
+            errors[name] = one_line(err)
+    try:
+        speed = float(state.speed)
+        if not (math.isfinite(speed) and speed > 0):
+            raise ValueError
+    except ValueError:
+        errors["speed"] = one_line(
+            InvalidParameterError("--speed", state.speed, "must be finite and > 0 (m/s)")
+        )
+    when = None
+    try:
+        when = parse_depart(state.depart or None)
+    except InvalidParameterError as err:
+        errors["depart"] = one_line(err)
+    if errors:
+        return RouteView(state, None, errors)
+    try:
+        result = route(flow, pts["from"], pts["to"], speed, depart=when)
+    except InvalidParameterError as err:
+        name = {"start": "from", "goal": "to"}.get(err.name.lstrip("-"), err.name.lstrip("-"))
+        key = name if name in ("from", "to", "speed", "depart") else ""
+        return RouteView(state, None, {key: one_line(err)})
+    return RouteView(state, result, {})
+
+
+def _nice_step(span: float, count: int) -> float:
+    """A round step (1, 2, 5 x 10^k) giving about `count` steps over `span`."""
+    raw = max(span / max(count, 1), 1e-9)
+    p = 10.0 ** math.floor(math.log10(raw))
+    return min((m * p for m in (1.0, 2.0, 5.0, 10.0)), key=lambda v: abs(v - raw))
+
+
+def isochrones(front: Any, until_s: float) -> tuple[dict[str, list[Any]], float]:
+    """Contours of the front's arrival-time map (s after departure) at round multiples of
+    an hour up to `until_s`: lines (lon, lat lists), their labels, and the step (h)."""
+    from contourpy import contour_generator
+
+    out: dict[str, list[Any]] = {"xs": [], "ys": [], "label": []}
+    arrival = np.asarray(front.arrival, dtype=float)
+    if not np.isfinite(arrival).any() or until_s <= 0:
+        return out, 0.0
+    step_h = _nice_step(until_s / 3600.0, _ISOCHRONES)
+    z = np.where(np.isfinite(arrival), arrival, np.nanmax(arrival[np.isfinite(arrival)]) * 10)
+    gen = contour_generator(np.asarray(front.lon), np.asarray(front.lat), z / 3600.0)
+    level = step_h
+    while level < until_s / 3600.0:
+        for line in gen.lines(level):
+            out["xs"].append(line[:, 0])
+            out["ys"].append(line[:, 1])
+            out["label"].append(f"{level:g} h")
+        level += step_h
+    return out, step_h
+
+
+class RoutePage:
+    """The route map of one session (module docstring); `layout` is its Panel view."""
+
+    def __init__(
+        self, query: Mapping[str, str] | None = None, field_path: str | None = None
+    ) -> None:
+        query = dict(query or {})
+        self.field_path = field_path
+        example = query.get("example") or (None if field_path else "double-gyre")
+        self.on_mode: Callable[[str], None] | None = None
+        self._doc = pn.state.curdoc
+        self._lock = threading.Lock()
+        self._pending: RouteState | None = None
+        self._running = False
+        self._closed = False
+        self.view: RouteView | None = None
+        self.field_error = ""
+        try:
+            self.flow = load_field(example, field_path)
+        except (InvalidParameterError, OSError, ValueError) as err:
+            self.field_error = one_line(err)
+            example = "double-gyre"
+            self.flow = load_field(example, None)
+        ext = self.flow.extent
+        lat_c = 0.5 * (ext.lat_min + ext.lat_max)
+        self.k = math.cos(math.radians(lat_c))
+        default_from, default_to = self._defaults(ext)
+        self.state = RouteState(
+            example=example,
+            start=query.get("from", default_from),
+            goal=query.get("to", default_to),
+            speed=query.get("speed", "0.5"),
+            depart=query.get("depart", ""),
+        )
+        self._build()
+        if self._doc is not None:
+            self._doc.on_session_destroyed(self._on_closed)
+        self.solve()
+
+    @staticmethod
+    def _defaults(ext: Any) -> tuple[str, str]:
+        lat = 0.5 * (ext.lat_min + ext.lat_max)
+        w = ext.lon_max - ext.lon_min
+        a, b = ext.lon_min + 0.1 * w, ext.lon_min + 0.9 * w
+        return f"{lat:.4f},{a:.4f}", f"{lat:.4f},{b:.4f}"
+
+    def _on_closed(self, _context: Any) -> None:
+        self._closed = True
+
+    # ----- widgets and figure -----------------------------------------------------------------
+    def _build(self) -> None:
+        from glideplan.explore.app import (
+            BODY_CSS,
+            LAYOUT_CSS,
+            MAIN_CSS,
+            MAP_MODES,
+            PLOT_CSS,
+            ROOT_CSS,
+            SIDEBAR_CSS,
+            _TextInput,
+        )
+        from glideplan.explore.catalog import build_catalog
+
+        options = {e.label: e.key for e in build_catalog().entries}
+        options.update(MAP_MODES)
+        self.mode_select = pn.widgets.Select(
+            label="Planner", options=options, value="route", sizing_mode="stretch_width"
+        )
+        self.mode_select.param.watch(self._on_mode, "value")
+        info = self.flow.describe()
+        source = (
+            f"built-in example <b>{html.escape(self.state.example)}</b>"
+            if self.state.example
+            else f"file <code>{html.escape(str(self.field_path))}</code>"
+        )
+        self.field_help = html_pane(
+            f'<div class="gp-help">Field: {source} ({html.escape(str(info.get("name", "")))})'
+            ". Drag the start and goal; the route is the fastest at the speed through the "
+            "water (air) below.</div>" + error_html(self.field_error),
+            sizing_mode="stretch_width",
+        )
+        self.inputs: dict[str, Any] = {}
+        self.error_panes: dict[str, Any] = {}
+        labels = {
+            "from": ("start", "from: lat (deg), lon (deg)"),
+            "to": ("goal", "to: lat (deg), lon (deg)"),
+            "speed": ("speed", "speed through the water (m/s)"),
+            "depart": ("depart", "depart (ISO 8601 UTC; empty: the field's first time)"),
+        }
+        for name, (attr, label) in labels.items():
+            w = _TextInput(
+                label=label,
+                value=getattr(self.state, attr),
+                sizing_mode="stretch_width",
+                css_classes=[f"gp-input-{name}"],
+            )
+            w.param.watch(self._make_watcher(attr), "value")
+            self.inputs[name] = w
+            self.error_panes[name] = html_pane(sizing_mode="stretch_width")
+        self.general_error = html_pane(sizing_mode="stretch_width")
+        self.slider = pn.widgets.FloatSlider(
+            name="currents at (h after departure)",
+            start=0.0,
+            end=1.0,
+            step=0.1,
+            value=0.0,
+            sizing_mode="stretch_width",
+        )
+        self.slider.param.watch(self._on_slider, "value")
+        self.downloads = pn.Row(
+            pn.widgets.FileDownload(
+                callback=self._json_file, filename="glideplan-route.json", label="JSON",
+                color="primary", width=92, embed=False,
+            ),
+            pn.widgets.FileDownload(
+                callback=self._csv_file, filename="glideplan-route.csv", label="CSV",
+                color="primary", width=92, embed=False,
+            ),
+            margin=(5, 0),
+        )
+        self.strip = FastHtml()
+        self._figure()
+        sidebar = pn.Column(
+            self.mode_select,
+            self.field_help,
+            *[x for n in ("from", "to", "speed", "depart")
+              for x in (self.inputs[n], self.error_panes[n])],
+            self.slider,
+            self.general_error,
+            html_pane(
+                '<div class="gp-help">Download the route (as <code>route --json</code>) '
+                "and its track (CSV)</div>"
+            ),
+            self.downloads,
+            stylesheets=[SIDEBAR_CSS],
+        )
+        self.fig.stylesheets = [PLOT_CSS]
+        body = pn.FlexBox(pn.pane.Bokeh(self.fig), flex_wrap="wrap", stylesheets=[BODY_CSS])
+        main = pn.Column(self.strip.pane, body, stylesheets=[MAIN_CSS])
+        header = pn.Row(
+            html_pane(
+                '<div class="gp-title">glideplan explore: route</div>'
+                '<div class="gp-sub">The fastest route through currents or winds (front '
+                "propagation, refined, verified through the field)</div>"
+            ),
+            styles={"background": "#1f3b5c", "border-radius": "6px"},
+            sizing_mode="stretch_width",
+            margin=(5, 5, 10, 5),
+        )
+        page = pn.FlexBox(sidebar, main, flex_wrap="wrap", stylesheets=[LAYOUT_CSS])
+        self.layout = pn.Column(header, page, sizing_mode="stretch_width",
+                                stylesheets=[ROOT_CSS])
+
+    def _figure(self) -> None:
+        ext = self.flow.extent
+        pad_x, pad_y = 0.03 * (ext.lon_max - ext.lon_min), 0.03 * (ext.lat_max - ext.lat_min)
+        self.x_range = Range1d(ext.lon_min - pad_x, ext.lon_max + pad_x)
+        self.y_range = Range1d(ext.lat_min - pad_y, ext.lat_max + pad_y)
+        fig = figure(
+            sizing_mode="stretch_both",
+            min_width=240,
+            min_height=240,
+            x_range=self.x_range,
+            y_range=self.y_range,
+            tools="pan,wheel_zoom,box_zoom,reset,save",
+            toolbar_location="above",
+            x_axis_label="longitude (deg E)",
+            y_axis_label="latitude (deg N)",
+            output_backend="canvas",
+        )
+        fig.background_fill_color = "#eef5fb"
+        fig.grid.grid_line_color = "#d9e3ee"
+        self.land_src = ColumnDataSource({"image": [], "x": [], "y": [], "dw": [], "dh": []})
+        fig.image_rgba("image", x="x", y="y", dw="dw", dh="dh", source=self.land_src)
+        self.arrow_src = ColumnDataSource({"x0": [], "y0": [], "x1": [], "y1": [], "angle": []})
+        fig.segment("x0", "y0", "x1", "y1", source=self.arrow_src, line_color=WIND,
+                    line_alpha=0.6, line_width=1.5, legend_label="current")
+        fig.scatter("x1", "y1", source=self.arrow_src, marker="triangle", size=6,
+                    angle="angle", fill_color=WIND, line_color=WIND, fill_alpha=0.6,
+                    line_alpha=0.6)
+        self.iso_src = ColumnDataSource({"xs": [], "ys": [], "label": []})
+        fig.multi_line("xs", "ys", source=self.iso_src, line_color="#8e44ad", line_alpha=0.55,
+                       line_width=1.3, line_dash="dashed", legend_label="isochrones")
+        self.iso_label_src = ColumnDataSource({"x": [], "y": [], "text": []})
+        fig.text("x", "y", "text", source=self.iso_label_src, text_font_size="10px",
+                 text_color="#6c3483", text_baseline="middle")
+        self.route_src = ColumnDataSource({"x": [], "y": []})
+        fig.line("x", "y", source=self.route_src, line_color="#1f5fa8", line_width=3.5,
+                 legend_label="route")
+        self.points_src = ColumnDataSource({"x": [], "y": [], "name": [], "c": []})
+        pts = fig.scatter("x", "y", source=self.points_src, size=15, fill_color="c",
+                          line_color="white", line_width=2)
+        fig.text("x", "y", "name", source=self.points_src, x_offset=10, y_offset=-8,
+                 text_font_size="12px", text_color="c")
+        draw = PointDrawTool(renderers=[pts], add=False, drag=True)  # type: ignore[list-item]
+        fig.add_tools(draw)
+        fig.toolbar.active_drag = draw
+        legend = fig.legend[0]
+        legend.location = "top_left"
+        legend.background_fill_alpha = 0.8
+        legend.label_text_font_size = "11px"
+        legend.click_policy = "hide"
+        equal_scales(fig, self.x_range, self.y_range, self.k)
+        follow_url(fig)
+        self.fig = fig
+        self.points_src.on_change("data", self._on_points)
+        self._draw_land()
+        self._draw_points()
+        self._draw_arrows()
+
+    # ----- drawing ----------------------------------------------------------------------------
+    def _t0(self) -> float:
+        """The departure (s since the field's epoch), as `route` takes it."""
+        from glideplan.cli.route import parse_depart
+        from glideplan.fields import to_seconds
+
+        try:
+            when = parse_depart(self.state.depart or None)
+        except InvalidParameterError:
+            when = None
+        if when is None:
+            span = self.flow.time_span
+            return float(span[0]) if span is not None else 0.0
+        return float(to_seconds(when, self.flow.epoch))
+
+    def _grid(self, nx: int) -> tuple[np.ndarray, np.ndarray]:
+        ext = self.flow.extent
+        w, h = ext.lon_max - ext.lon_min, ext.lat_max - ext.lat_min
+        ny = max(2, round(nx * h / (w * self.k)))
+        lon = ext.lon_min + (np.arange(nx) + 0.5) * w / nx
+        lat = ext.lat_min + (np.arange(ny) + 0.5) * h / ny
+        return np.meshgrid(lon, lat)
+
+    def _velocity(self, t: float, lat: np.ndarray, lon: np.ndarray) -> tuple[Any, Any]:
+        try:
+            if self.flow.time_span is not None:
+                lo, hi = self.flow.time_span
+                t = min(max(t, lo), hi)
+            return self.flow.velocity(t, lat, lon)
+        except InvalidParameterError:
+            nan = np.full(lat.shape, np.nan)
+            return nan, nan
+
+    def _draw_land(self) -> None:
+        """Grey where the field's currents are NaN at the departure (land, missing data)."""
+        lon, lat = self._grid(_LAND_CELLS)
+        u, v = self._velocity(self._t0(), lat, lon)
+        land = ~(np.isfinite(u) & np.isfinite(v))
+        if not land.any():
+            self.land_src.data = {"image": [], "x": [], "y": [], "dw": [], "dh": []}
+            return
+        rgba = np.zeros((*land.shape, 4), dtype=np.uint8)
+        rgba[land] = (196, 190, 172, 255)
+        ext = self.flow.extent
+        self.land_src.data = {
+            "image": [rgba.view(np.uint32).reshape(land.shape)],
+            "x": [ext.lon_min],
+            "y": [ext.lat_min],
+            "dw": [ext.lon_max - ext.lon_min],
+            "dh": [ext.lat_max - ext.lat_min],
+        }
+
+    def _draw_arrows(self) -> None:
+        """Current arrows at departure + the slider's hours (longest: 0.8 of a cell)."""
+        lon, lat = self._grid(_ARROWS_X)
+        u, v = self._velocity(self._t0() + 3600.0 * self.slider.value, lat, lon)
+        u, v = np.nan_to_num(u), np.nan_to_num(v)
+        speed = np.hypot(u, v)
+        top = float(speed.max()) if speed.size else 0.0
+        cell = (lon[0, 1] - lon[0, 0]) if lon.shape[1] > 1 else 1.0
+        scale = 0.8 * cell / top if top > 0 else 0.0  # degrees of longitude per m/s
+        x1 = lon + scale * u
+        y1 = lat + scale * v * self.k  # north metres -> degrees of latitude
+        keep = speed > 0.02 * top
+        self.arrow_src.data = {
+            "x0": lon[keep], "y0": lat[keep], "x1": x1[keep], "y1": y1[keep],
+            "angle": np.arctan2(v, u)[keep] - 0.5 * math.pi,
+        }
+
+    def _draw_points(self) -> None:
+        data: dict[str, list[Any]] = {"x": [], "y": [], "name": [], "c": []}
+        for name, text, colour in (("start", self.state.start, START),
+                                   ("goal", self.state.goal, GOAL)):
+            try:
+                lat, lon = _latlon(text, name)
+            except InvalidParameterError:
+                continue
+            for k, val in zip(("x", "y", "name", "c"), (lon, lat, name, colour), strict=True):
+                data[k].append(val)
+        self._drawn = data
+        self._syncing = True
+        try:
+            self.points_src.data = data
+        finally:
+            self._syncing = False
+
+    def _on_points(self, attr: str, old: Any, new: Any) -> None:
+        """A dragged start or goal: its new lat, lon (4 decimals, about 10 m)."""
+        if getattr(self, "_syncing", False):
+            return
+        names = list(new.get("name", []))
+        moved = dict(self.__dict__.get("_moved", {}))
+        for x, y, name in zip(new.get("x", []), new.get("y", []), names, strict=False):
+            moved[name] = f"{float(y):.4f},{float(x):.4f}"
+        state = self.state
+        if "start" in moved:
+            state = replace(state, start=moved["start"])
+        if "goal" in moved:
+            state = replace(state, goal=moved["goal"])
+        if state != self.state:
+            self._set_inputs(state)
+            self._locked(lambda: self.set_state(state))
+
+    def _set_inputs(self, state: RouteState) -> None:
+        self._syncing = True
+        try:
+            self.inputs["from"].value = state.start
+            self.inputs["to"].value = state.goal
+        finally:
+            self._syncing = False
+
+    # ----- state ------------------------------------------------------------------------------
+    def _make_watcher(self, attr: str) -> Callable[[Any], None]:
+        def watch(event: Any) -> None:
+            if not getattr(self, "_syncing", False):
+                state = replace(self.state, **{attr: event.new})
+                self._locked(lambda: self.set_state(state))
+
+        return watch
+
+    def _on_mode(self, event: Any) -> None:
+        if event.new != "route" and self.on_mode is not None:
+            self._locked(lambda: self.on_mode(event.new) if self.on_mode else None)
+
+    def _on_slider(self, event: Any) -> None:
+        self._locked(self._draw_arrows)
+
+    def _locked(self, fn: Callable[[], None]) -> None:
+        if self._doc is None:
+            fn()
+        else:
+            self._doc.add_next_tick_callback(lambda: self._held(fn))
+
+    def _held(self, fn: Callable[[], None]) -> None:
+        if self._closed or self._doc is None:
+            return
+        with set_curdoc(self._doc), hold(self._doc):
+            fn()
+
+    def push_url(self) -> None:
+        self.strip.sync()
+        self.fig.tags = ["?" + self.state.query()]
+
+    def set_state(self, state: RouteState) -> None:
+        depart_changed = state.depart != self.state.depart
+        self.state = state
+        self._draw_points()
+        if depart_changed:
+            self._draw_land()
+            self._draw_arrows()
+        self.push_url()
+        self.solve()
+
+    # ----- solving ----------------------------------------------------------------------------
+    def solve(self) -> None:
+        """Route the current state on the worker thread (latest state wins)."""
+        if self._doc is None:
+            self._apply(route_view(self.flow, self.state))
+            return
+        with self._lock:
+            self._pending = self.state
+            start = not self._running
+            self._running = True
+        self._show_stale()
+        if start:
+            threading.Thread(target=self._work, daemon=True, name="glideplan-route").start()
+
+    def _work(self) -> None:
+        while True:
+            with self._lock:
+                state, self._pending = self._pending, None
+                if state is None:
+                    self._running = False
+                    return
+            try:
+                view = route_view(self.flow, state)
+            except Exception as exc:  # a bug: show it rather than lose the thread
+                view = RouteView(state, None, {"": f"internal error: {exc!r}"})
+            with self._lock:
+                latest = self._pending is None
+            if latest and not self._closed and self._doc is not None:
+                try:
+                    self._doc.add_next_tick_callback(
+                        lambda v=view: self._held(lambda: self._apply(v))  # type: ignore[misc]
+                    )
+                except Exception:  # the session went away meanwhile
+                    self._closed = True
+
+    def _show_stale(self) -> None:
+        self.strip.object = self._strip_html(self.view, stale=True)
+
+    def _apply(self, view: RouteView) -> None:
+        if view.state != self.state:
+            return
+        self.view = view
+        errors = dict(view.errors or {})
+        for name, pane in self.error_panes.items():
+            pane.object = error_html(errors.get(name, ""))
+        self.general_error.object = error_html(errors.get("", ""))
+        self.strip.object = self._strip_html(view)
+        r = view.result
+        if r is not None and r.lat.size:
+            self.route_src.data = {"x": np.asarray(r.lon), "y": np.asarray(r.lat)}
+        else:
+            self.route_src.data = {"x": [], "y": []}
+        front = getattr(r, "front", None)
+        if r is not None and front is not None:
+            until = r.duration_s if r.duration_s else float(np.nanmax(
+                np.where(np.isfinite(front.arrival), front.arrival, np.nan)))
+            lines, _ = isochrones(front, until)
+            self.iso_src.data = lines
+            self.iso_label_src.data = {
+                "x": [xs[len(xs) // 2] for xs in lines["xs"]],
+                "y": [ys[len(ys) // 2] for ys in lines["ys"]],
+                "text": lines["label"],
+            }
+        else:
+            self.iso_src.data = {"xs": [], "ys": [], "label": []}
+            self.iso_label_src.data = {"x": [], "y": [], "text": []}
+        if r is not None and r.duration_s:
+            hours = r.duration_s / 3600.0
+            end = max(1.0, math.ceil(hours))
+            self.slider.param.update(end=end, step=_nice_step(end, 50))
+
+    def _strip_html(self, view: RouteView | None, stale: bool = False) -> str:
+        def item(k: str, v: str, cls: str = "") -> str:
+            return (f'<div class="gp-item"><span class="gp-k">{k}</span>'
+                    f'<span class="gp-v {cls}">{v}</span></div>')
+
+        r = view.result if view is not None else None
+        cost = view.cost_text if view is not None else "n/a"
+        if view is not None and view.errors:
+            status = "bad input"
+        elif r is not None:
+            status = str(getattr(r.status, "value", r.status))
+            if not r.ok and r.message:
+                status += f": {r.message}"
+        else:
+            status = ""
+        ok = r is not None and r.ok
+        hours = f"{r.duration_s / 3600.0:.2f} h" if r is not None and r.duration_s else "&ndash;"
+        dist = f"{r.distance_m / 1000.0:.1f} km" if r is not None and r.distance_m else "&ndash;"
+        err = (f"{r.endpoint_error_m:.2f} m" if r is not None and r.endpoint_error_m is not None
+               else "n/a")
+        straight = (f"{r.straight_line_duration_s / 3600.0:.2f} h"
+                    if r is not None and r.straight_line_duration_s else "n/a")
+        busy = ('<div class="gp-item gp-computing"><span class="gp-busy">computing&hellip;'
+                "</span></div>") if stale else ""
+        return (
+            f'<div class="gp-strip{" gp-stale" if stale else ""}">'
+            + item("duration (s)", html.escape(cost), "gp-cost")
+            + item("duration", hours, "gp-word")
+            + item("distance", dist, "gp-small")
+            + item("status", html.escape(status),
+                   "gp-small gp-status" + ("" if ok else " gp-status-bad"))
+            + item("endpoint error", err, "gp-small gp-endpoint")
+            + item("straight line", straight, "gp-small")
+            + busy
+            + "</div>"
+        )
+
+    # ----- downloads --------------------------------------------------------------------------
+    def _messages(self) -> str:
+        errors = dict(self.view.errors or {}) if self.view is not None else {"": "no answer yet"}
+        return "; ".join(v for v in errors.values() if v)
+
+    def _json_file(self) -> io.StringIO:
+        from glideplan.jsonio import to_json
+
+        r = self.view.result if self.view is not None else None
+        if r is None:
+            out: dict[str, Any] = {"status": "no_path", "message": self._messages() or "no route"}
+        else:
+            out = r.to_dict()
+            source: dict[str, Any] = (
+                {"file": None, "example": self.state.example} if self.state.example
+                else {"file": [str(self.field_path)]}
+            )
+            out["field"] = {**source, **out.get("field", {})}
+        return io.StringIO(to_json(json.loads(json.dumps(out, default=str))) + "\n")
+
+    def _csv_file(self) -> io.StringIO:
+        import csv
+
+        buf = io.StringIO()
+        writer = csv.writer(buf, lineterminator="\n")
+        r = self.view.result if self.view is not None else None
+        if r is None or not r.lat.size:
+            writer.writerow(["error"])
+            writer.writerow([self._messages() or (r.message if r is not None else "no route")])
+            return buf
+        writer.writerow(["t", "lat", "lon", "heading_deg"])
+        for row in zip(r.t, r.lat, r.lon, r.heading_deg, strict=True):
+            writer.writerow([f"{v:.10g}" for v in row])
+        buf.seek(0)
+        return buf
