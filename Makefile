@@ -54,8 +54,9 @@ lint: $(STAMP)
 typecheck: $(STAMP)
 	$(BIN)/mypy src
 
+# Two pytest workers keep both cores busy: numba's kernels run single-threaded inside them.
 test: $(STAMP) test-setup lint typecheck
-	MPLBACKEND=Agg $(BIN)/python -m pytest -n 2 -q
+	MPLBACKEND=Agg NUMBA_NUM_THREADS=1 $(BIN)/python -m pytest -n 2 -q
 
 bench: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/python benchmarks/run_all.py

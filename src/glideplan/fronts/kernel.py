@@ -21,9 +21,9 @@ narrow band costs O(band) per step instead of O(grid).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
-__all__ = ["next_active", "rk_stage", "stage_two"]
+__all__ = ["next_active", "rk_stage", "rk_stage_parallel", "stage_two", "stage_two_parallel"]
 
 INF = np.inf
 SNAP = 0.97
@@ -151,8 +151,7 @@ def _rate(idx: int, p: np.ndarray, t: float, w: float, ny: int, nx: int, periodi
     return best, smax
 
 
-@njit(cache=True)
-def rk_stage(phi: np.ndarray, out: np.ndarray, act: np.ndarray, t: float, w: float, dt_cap: float,
+def _rk_stage(phi: np.ndarray, out: np.ndarray, act: np.ndarray, t: float, w: float, dt_cap: float,
              band: float, ny: int, nx: int, periodic: bool, hx: np.ndarray, hy: float,
              a: np.ndarray, b: np.ndarray, s: np.ndarray, arrival: np.ndarray, tb: np.ndarray,
              lo: np.ndarray, hi: np.ndarray, has_drift: bool, cfl: float,
@@ -161,27 +160,28 @@ def rk_stage(phi: np.ndarray, out: np.ndarray, act: np.ndarray, t: float, w: flo
     over the active nodes, dt_cap) (the CFL condition); returns the dt used."""
     n = act.size
     rates = np.empty(n)
-    smax = 1e-300
-    for m in range(n):
-        idx = act[m]
-        r, sp = _rate(idx, phi, t, w, ny, nx, periodic, hx, hy, a, b, s, arrival, tb, lo, hi,
+    speeds = np.empty(n)
+    for m in prange(n):  # nodes are independent: both cores share the band
+        r, sp = _rate(act[m], phi, t, w, ny, nx, periodic, hx, hy, a, b, s, arrival, tb, lo, hi,
                       has_drift, may)
         rates[m] = r
-        if sp > smax:
-            smax = sp
-    dt = min(cfl / smax, dt_cap)
+        speeds[m] = sp
+    smax = 1e-300
     for m in range(n):
+        if speeds[m] > smax:
+            smax = speeds[m]
+    dt = min(cfl / smax, dt_cap)
+    for m in prange(n):
         idx = act[m]
         if _blocked(idx, t, arrival, tb, lo, has_drift, may):
             out[idx] = band
-            continue
-        v = phi[idx] - dt * rates[m]
-        out[idx] = min(max(v, -band), band)
+        else:
+            v = phi[idx] - dt * rates[m]
+            out[idx] = min(max(v, -band), band)
     return dt
 
 
-@njit(cache=True)
-def stage_two(phi: np.ndarray, p1: np.ndarray, act: np.ndarray, t: float, t1: float, w1: float,
+def _stage_two(phi: np.ndarray, p1: np.ndarray, act: np.ndarray, t: float, t1: float, w1: float,
               dt: float, band: float, ny: int, nx: int, periodic: bool, hx: np.ndarray,
               hy: float, a: np.ndarray, b: np.ndarray, s: np.ndarray, arrival: np.ndarray,
               tb: np.ndarray, lo: np.ndarray, hi: np.ndarray, has_drift: bool,
@@ -193,7 +193,7 @@ def stage_two(phi: np.ndarray, p1: np.ndarray, act: np.ndarray, t: float, t1: fl
     """
     n = act.size
     new = np.empty(n)
-    for m in range(n):
+    for m in prange(n):
         idx = act[m]
         if _blocked(idx, t1, arrival, tb, lo, has_drift, may):
             new[m] = band
@@ -275,3 +275,12 @@ def next_active(phi: np.ndarray, act: np.ndarray, band: float, mark: np.ndarray,
     res = out[:cnt].copy()
     res.sort()  # row-major order: neighbours in cache (random order costs ~10x here)
     return res, nband, edges
+
+
+# Each stage compiled twice: serial, and with the nodes split over the cores (numba prange).
+# The driver picks the parallel one for large bands only (thread start-up costs ~10-50 us per
+# call, and oversubscribed cores -- e.g. pytest -n 2 -- stall at the barrier).
+rk_stage = njit(cache=True)(_rk_stage)
+rk_stage_parallel = njit(cache=True, parallel=True)(_rk_stage)
+stage_two = njit(cache=True)(_stage_two)
+stage_two_parallel = njit(cache=True, parallel=True)(_stage_two)

@@ -43,6 +43,18 @@ FloatArray = NDArray[np.float64]
 #: Band half-width in grid spacings: phi is clipped to +-B, B = BAND_CELLS x max spacing.
 BAND_CELLS = 6.0
 
+#: Active nodes from which a step splits its nodes over the cores (numba prange).
+PARALLEL_MIN_NODES = 20_000
+
+
+def _threads() -> int:
+    """Threads numba may use (NUMBA_NUM_THREADS; the Makefile's tests set 1: pytest -n 2
+    already keeps both cores busy)."""
+    import numba
+
+    return int(numba.get_num_threads())
+
+
 _EDGE_NAMES = ((1, "south"), (2, "north"), (4, "west"), (8, "east"))
 
 
@@ -352,7 +364,8 @@ def propagate(
     when its band is empty, or (steady problems) when it advances less than 1e-6 of a cell
     per step over 40/cfl steps. on_step(t, steps, reached_total) is called every step.
     """
-    from glideplan.fronts.kernel import next_active, rk_stage, stage_two
+    from glideplan.fronts import kernel
+    from glideplan.fronts.kernel import next_active
 
     if not (0.0 < cfl <= 0.9):
         raise InvalidParameterError("cfl", cfl, "must lie in (0, 0.9]")
@@ -380,6 +393,7 @@ def propagate(
     mark = np.zeros(ny * nx, dtype=np.int64)
     stamp = 0
     may = may_b.astype(np.uint8)
+    threads = _threads()
     steady = (drift is None or drift.steady) and not np.any(np.isfinite(tb) & (tb > t))
     stall_limit = math.ceil(40.0 / cfl)
     stall = 0
@@ -412,6 +426,9 @@ def propagate(
             lo = hi = dummy
             w = 0.0
         dt_cap = max(t_max - t, 1e-12 * max(abs(t), 1.0))
+        big = act.size >= PARALLEL_MIN_NODES and threads > 1
+        rk_stage = kernel.rk_stage_parallel if big else kernel.rk_stage
+        stage_two = kernel.stage_two_parallel if big else kernel.stage_two
         dt = rk_stage(phi, p1, act, t, w, dt_cap, band, ny, nx, g.periodic, hx, hy, a, b, s,
                       arrival, tb, lo, hi, has_drift, cfl, may)
         if dt < 1e-300:
