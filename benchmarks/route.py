@@ -1,13 +1,18 @@
 """Benchmarks of `glideplan.routing` (issue 12): speed, scaling, convergence, A*, sweeps.
 
-Run: `.venv/bin/python benchmarks/route.py [--quick]`. Prints Markdown tables:
+Run: `.venv/bin/python benchmarks/route.py [--quick] [--phases]`. Prints Markdown tables:
 
 1. a 300 x 300 routing grid through a field with 48 time levels (target <= 20 s, one core);
 2. scaling over 100^2, 200^2, 300^2, 400^2 grids, and the convergence of the arrival time
    when the grid spacing halves (grid and refined times);
 3. the grid A* baseline with crab-angle kinematics (`grid_astar.py`) on the same grids:
    arrival time and run time side by side;
-4. a sweep of 48 departure times through `glideplan.run_batch` (processes).
+4. a sweep of 48 departure times through `glideplan.run_batch` (processes);
+5. (`--phases`, issue 18) seconds per phase of `route()` (setup, grid, front, backtrack,
+   refine, verify) and the error against closed forms on the sphere: still-water transects
+   (D / V), a tailwind along the equator (D / (V + W)), an island (tangent-arc-tangent round
+   the clearance circle), a linear shear current (Zermelo's extremal), the double gyre at
+   1 km and 500 m.
 
 The field: the time-periodic double gyre (L = 150 km, max 0.4 m/s, period ~9.1 days)
 sampled onto a 0.02-degree grid with 48 levels, 3 hours apart (6 days), as a GriddedField —
@@ -32,7 +37,7 @@ from grid_astar import grid_astar
 from glideplan.fields import GriddedField, double_gyre
 from glideplan.geodesy import LocalProjection
 from glideplan.routing import route
-from glideplan.routing.grid import CurrentSampler, build_grid
+from glideplan.routing.grid import CurrentSampler, build_grid  # the plane A* baseline
 
 SPEED = 0.5
 START = (30.25, -39.75)
@@ -85,11 +90,63 @@ def _sweep_item(depart: float) -> float | None:
 _FIELD: GriddedField | None = None
 
 
+def _phase_row(name: str, r: Any, ref: float | None, wall: float) -> str:
+    s = r.stats
+    ph = [s.get(k, 0.0) for k in ("setup_s", "grid_s", "front_s", "backtrack_s")]
+    refine = s.get("refine_s", 0.0)
+    verify = s.get("verify_refined_s", 0.0) + s.get("verify_grid_s", 0.0)
+    err = "" if ref is None or r.duration_s is None else f"{r.duration_s / ref - 1:+.2e}"
+    gerr = "" if ref is None or r.grid_duration_s is None else \
+        f"{r.grid_duration_s / ref - 1:+.2e}"
+    return (f"| {name} | {r.status.value} | {s['grid_nodes'][0]}x{s['grid_nodes'][1]} | "
+            f"{s['spacing_m']:.0f} | {s.get('window_growths', 0)} | "
+            + " | ".join(f"{x:.2f}" for x in ph) + f" | {refine:.2f} | {verify:.2f} | "
+            f"{wall:.2f} | {r.method} | {gerr} | {err} | {r.endpoint_error_m or 0:.2g} |")
+
+
+def phases() -> None:
+    """Section 5 (module docstring)."""
+    from glideplan.fields import AnalyticField, Extent, UniformField
+    from glideplan.routing.sphere import EARTH_RADIUS_M, gc_distance
+
+    print("## 5. Phases (s) and closed forms on the sphere (issue 18)\n")
+    print("| case | status | grid | h (m) | growths | setup | grid | front | backtrack | "
+          "refine | verify | whole (s) | method | grid T err | T err | endpoint (m) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+
+    def run(name: str, field: Any, a: Any, b: Any, v: float, ref: float | None,
+            **kw: Any) -> None:
+        t = time.perf_counter()
+        r = route(field, a, b, v, **kw)
+        print(_phase_row(name, r, ref, time.perf_counter() - t), flush=True)
+
+    still = UniformField(0.0, 0.0)
+    for a, b, v in (((30.0, -40.0), (30.5, -39.5), 1.0), ((20.0, -60.0), (40.0, -20.0), 1.0),
+                    ((10.0, 175.0), (12.0, -170.0), 25.0)):
+        d = float(gc_distance(*a, *b))
+        run(f"still water {d / 1000:.0f} km", still, a, b, v, d / v)
+    d = float(gc_distance(0.0, -5.0, 0.0, 5.0))
+    run("tailwind 10 m/s, equator", UniformField(10.0, 0.0), (0.0, -5.0), (0.0, 5.0), 25.0,
+        d / 35.0)
+    s_shear, R = 1e-5, EARTH_RADIUS_M
+    shear = AnalyticField(fn=lambda t, la, lo: (s_shear * R * np.radians(la), 0.0 * la),
+                          extent=Extent(-1.0, 1.0, 9.0, 11.0), name="shear")
+    run("linear shear (ref 129655.81 s)", shear, (-0.1, 10.0), (0.1, 10.3), 0.3, 129655.81)
+    field = gridded_gyre()
+    for h in (1000.0, 500.0):
+        run(f"double gyre x48, {h:.0f} m", field, START, GOAL, SPEED, None, resolution=h)
+    print()
+
+
 def main() -> None:
     global _FIELD
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true", help="skip 400^2 and the A* on 300^2+")
+    ap.add_argument("--phases", action="store_true", help="only section 5 (issue 18)")
     args = ap.parse_args()
+    if args.phases:
+        phases()
+        return
     field = gridded_gyre()
     _FIELD = field
     print("Machine shared with other jobs: wall times are inflated.\n")

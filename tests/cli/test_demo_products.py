@@ -29,7 +29,7 @@ def test_the_products_are_the_four_of_the_issue() -> None:
 @pytest.mark.parametrize("key", [p.key for p in available_products()])
 def test_product_meets_its_reference(key: str, tmp_path) -> None:
     case = next(p for p in PRODUCTS if p.key == key)
-    run = run_product(case, tmp_path, plots=False)
+    run = run_product(case, tmp_path, plots=True)
     result = run.result
     assert isinstance(result, Outcome)
     assert dataclasses.is_dataclass(result)
@@ -39,6 +39,10 @@ def test_product_meets_its_reference(key: str, tmp_path) -> None:
     assert run.check.met, (run.check.numbers, run.check.reference)
     data = json.loads((tmp_path / f"{key}.json").read_text())
     assert data["status"] == result.status.value and data["message"] == result.message
+    import matplotlib.image  # the figure `plot()` drew, read back by Matplotlib
+
+    image = matplotlib.image.imread(tmp_path / f"{key}.png")
+    assert run.figure == str(tmp_path / f"{key}.png") and min(image.shape[:2]) > 200
 
 
 def test_demo_report_lists_every_product(run_cli, tmp_path, monkeypatch) -> None:
@@ -47,7 +51,7 @@ def test_demo_report_lists_every_product(run_cli, tmp_path, monkeypatch) -> None
     import glideplan.demos
 
     monkeypatch.setattr(glideplan.demos, "demo_cases", lambda: [])
-    keep = [p for p in available_products() if p.key != "route"]  # the slow one: above
+    keep = [p for p in available_products() if p.key != "route"]  # left out: the hook's row
     monkeypatch.setattr("glideplan.demos.products.available_products", lambda: tuple(keep))
     code, _, err = run_cli("demo", "--out", str(tmp_path), "--no-plots")
     assert code == 0, err

@@ -60,7 +60,9 @@ FRAME_JS = """() => {
   return {left: b.left + v.frame.bbox.left, top: b.top + v.frame.bbox.top,
           w: v.frame.bbox.width, h: v.frame.bbox.height,
           x0: v.model.x_range.start, x1: v.model.x_range.end,
-          y0: v.model.y_range.start, y1: v.model.y_range.end};
+          y0: v.model.y_range.start, y1: v.model.y_range.end,
+          xlabel: v.model.below[0].axis_label, ylabel: v.model.left[0].axis_label,
+          bottom: b.bottom};
 }"""
 
 
@@ -259,8 +261,15 @@ def test_drag_goal_updates_cost_and_url(dubins_page: Any, shots: pathlib.Path):
     page.mouse.down()
     for k in range(1, 9):
         page.mouse.move(sx + (tx - sx) * k / 8, sy + (ty - sy) * k / 8)
-    # the page re-plans while the point is still held (live), then commits it on the drop
+    # the page re-plans while the point is still held (live), then commits it on the drop;
+    # the live answers follow the pointer, so the last one (stable) is for where it is held
     live = _wait_result(page, previous=before, timeout=20.0)
+    for _ in range(50):
+        time.sleep(0.2)
+        now = _wait_result(page, timeout=20.0)
+        if now == live:
+            break
+        live = now
     page.mouse.up()
     after = float(_wait_result(page, previous=before))
     assert float(live) == pytest.approx(after, rel=1e-3)
@@ -309,6 +318,222 @@ def test_slow_planner_shows_busy(server: str, browser_context: Any):
         assert cost == pytest.approx(ref, rel=1e-6)
     finally:
         page.close()
+
+
+def _frame(page: Any) -> dict[str, Any]:
+    """The main figure's frame once the browser has laid it out (its size settles)."""
+    last: dict[str, Any] = {}
+    for _ in range(50):
+        f = page.evaluate(FRAME_JS)
+        if f == last:
+            return f
+        last = f
+        time.sleep(0.1)
+    return last
+
+
+SCREENS = ((1280, 720), (1366, 768), (1440, 900), (1920, 1080))
+
+
+def _enter(page: Any, name: str, text: str) -> None:
+    """Type `text` into the input `name` and press Enter (unless it already holds it)."""
+    box = page.locator(f".gp-input-{name} input")
+    if box.input_value() != text:
+        box.fill(text)
+        box.press("Enter")
+
+
+def test_equal_scales_and_fold_on_every_screen(dubins_page: Any, shots: pathlib.Path):
+    """At each screen size the x and y scales (px per m, measured on Bokeh's frame) agree to
+    one pixel over the frame, and the result strip and the whole plot with its x axis lie
+    above the fold (reference: the window's size)."""
+    page = dubins_page
+    _enter(page, "radius", "1")  # the shared page may hold an earlier test's bad value
+    _wait_result(page)
+    try:
+        for w, h in SCREENS:
+            page.set_viewport_size({"width": w, "height": h})
+            f = _frame(page)
+            sx = f["w"] / (f["x1"] - f["x0"])
+            sy = f["h"] / (f["y1"] - f["y0"])
+            assert sx == pytest.approx(sy, rel=1.0 / min(f["w"], f["h"])), (w, h, f)
+            assert f["w"] >= 300 and f["h"] >= 300, (w, h, f)
+            assert f["bottom"] <= h, (w, h, f)  # the figure, x axis included
+            strip = page.locator(".gp-strip").first.bounding_box()
+            assert strip is not None and strip["y"] + strip["height"] <= f["top"], (w, h)
+            assert page.evaluate("() => document.scrollingElement.scrollWidth") <= w
+            page.screenshot(path=str(shots / f"explore_{w}x{h}.png"))
+    finally:
+        page.set_viewport_size({"width": 1500, "height": 1000})
+
+
+def test_phone_layout(server: str, browser_context: Any, shots: pathlib.Path):
+    """At 390 x 844: a viewport meta tag, no sideways scrolling, the controls above the plot,
+    the plot inside the screen with equal scales."""
+    page = browser_context.new_page()
+    page.set_viewport_size({"width": 390, "height": 844})
+    try:
+        page.goto(f"{server}/?" + FAMILIES["dubins"])
+        page.wait_for_selector(".gp-cost", timeout=60_000)
+        _wait_result(page)
+        assert page.evaluate(
+            "() => document.querySelector('meta[name=viewport]').content"
+        ).startswith("width=device-width")
+        assert page.evaluate("() => document.scrollingElement.scrollWidth <= innerWidth")
+        f = _frame(page)
+        goal_box = page.locator(".gp-input-goal").first.bounding_box()
+        assert goal_box is not None and goal_box["y"] + goal_box["height"] <= f["top"]
+        assert f["left"] >= 0 and f["left"] + f["w"] <= 390
+        sx, sy = f["w"] / (f["x1"] - f["x0"]), f["h"] / (f["y1"] - f["y0"])
+        assert sx == pytest.approx(sy, rel=1.0 / min(f["w"], f["h"]))
+        page.screenshot(path=str(shots / "explore_phone.png"), full_page=True)
+    finally:
+        page.close()
+
+
+def test_units_in_labels_and_header(dubins_page: Any):
+    """Axes and inputs carry units; the cost header keeps its unit after a bad value."""
+    page = dubins_page
+    _enter(page, "radius", "1")
+    _wait_result(page)
+    f = _frame(page)
+    assert (f["xlabel"], f["ylabel"]) == ("x (m)", "y (m)")
+    for label in ("speed (m/s)", "radius (m)", "heading (deg"):
+        assert page.get_by_text(label).count() >= 1, label
+    helps = page.locator(".gp-help").all_inner_texts()
+    assert helps and not any("`" in t for t in helps)  # no raw code quotes
+    header = page.locator(".gp-k").first.inner_text().lower()
+    assert header == "cost (length, m)"
+    box = page.locator(".gp-input-radius input")
+    box.fill("-2")
+    box.press("Enter")
+    page.wait_for_selector(".gp-error", timeout=20_000)
+    assert page.locator(".gp-k").first.inner_text().lower() == header
+    box.fill("1")
+    box.press("Enter")
+    _wait_result(page)
+
+
+def test_planner_switch_keeps_poses(server: str, browser_context: Any):
+    """Switching the planner keeps the entered start and goal (inputs and link)."""
+    page = _open(browser_context, f"{server}/?planner=dubins&goal=2,5,45&start=1,-1,30")
+    try:
+        _wait_result(page)
+        from glideplan.explore.catalog import LABELS
+
+        page.locator("select").first.select_option(label=LABELS["wind"])
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline and _query(page).get("planner") != "wind":
+            time.sleep(0.1)
+        _wait_result(page)
+        q = _query(page)
+        assert q["planner"] == "wind"
+        assert (_pose(q["goal"]), _pose(q["start"])) == (_pose("2,5,45"), _pose("1,-1,30"))
+        assert page.locator(".gp-input-goal input").input_value() == "2,5,45"
+        assert float(page.locator(".gp-cost").first.inner_text()) == pytest.approx(
+            _reference(q), rel=1e-6
+        )
+    finally:
+        page.close()
+
+
+def test_zoom_restored_from_link(server: str, browser_context: Any):
+    """A link's `view=x0,y0,x1,y1` is shown (grown on one side to equal scales), and a zoom
+    goes into the address."""
+    page = _open(browser_context, f"{server}/?planner=dubins&goal=4,3,90&view=-1,-2,6,5")
+    try:
+        _wait_result(page)
+        f = _frame(page)
+        assert f["x0"] <= -1 + 1e-9 and f["x1"] >= 6 - 1e-9
+        assert f["y0"] <= -2 + 1e-9 and f["y1"] >= 5 - 1e-9
+        # one side is the link's exactly, the other grew about the same centre
+        assert min(abs(f["x1"] - f["x0"] - 7), abs(f["y1"] - f["y0"] - 7)) < 1e-6
+        assert 0.5 * (f["x0"] + f["x1"]) == pytest.approx(2.5)
+        assert 0.5 * (f["y0"] + f["y1"]) == pytest.approx(1.5)
+        x0, y0, x1, y1 = _floats(_query(page)["view"])
+        assert (x1 - x0) == pytest.approx(f["x1"] - f["x0"], rel=1e-3)
+    finally:
+        page.close()
+
+
+def test_route_link_duration_equals_cli(server: str, browser_context: Any, shots: pathlib.Path):
+    """The route link's `gp-cost` is `glideplan route --json`'s duration_s (10 significant
+    digits, as printed) for the same example, points and speed (the CLI runs meanwhile)."""
+    import subprocess
+    import sys
+
+    args = ["--example", "double-gyre", "--from", "30.45", "-39.8", "--to", "30.45", "-38.2",
+            "--speed", "0.5", "--json"]
+    code = "from glideplan.cli.app import main; raise SystemExit(main())"
+    proc = subprocess.Popen([sys.executable, "-c", code, "route", *args],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    page = _open(
+        browser_context,
+        f"{server}/?planner=route&example=double-gyre&from=30.45,-39.8&to=30.45,-38.2&speed=0.5",
+    )
+    try:
+        shown = _wait_result(page, timeout=120.0)
+        out, err = proc.communicate(timeout=120)
+        assert proc.returncode == 0, err
+        ref = json.loads(out)["duration_s"]
+        assert shown == f"{ref:.10g}"
+        assert page.locator(".gp-status").first.inner_text().strip() == "solved"
+        q = _query(page)
+        assert (q["planner"], q["from"], q["to"], q["speed"]) == (
+            "route", "30.45,-39.8", "30.45,-38.2", "0.5")
+        f = _frame(page)
+        assert (f["xlabel"], f["ylabel"]) == ("longitude (deg E)", "latitude (deg N)")
+        # equal metres per pixel at the field's middle latitude (30.45 deg)
+        k = math.cos(math.radians(30.4497))
+        sx, sy = f["w"] / ((f["x1"] - f["x0"]) * k), f["h"] / (f["y1"] - f["y0"])
+        assert sx == pytest.approx(sy, rel=1.0 / min(f["w"], f["h"]))
+        page.screenshot(path=str(shots / "explore_route.png"))
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+        proc.communicate()
+        page.close()
+
+
+def test_closing_a_tab_mid_update_logs_nothing(
+    server: str, browser_context: Any, caplog: pytest.LogCaptureFixture
+):
+    """A tab closed while a slow planner works: the server logs no error (no traceback)."""
+    import logging
+
+    page = _open(
+        browser_context, f"{server}/?planner=time-optimal-direct&goal=2,1.5,90&synthesis_starts=1"
+    )
+    _wait_result(page)
+    with caplog.at_level(logging.WARNING):
+        box = page.locator(".gp-input-goal input")
+        box.fill("2.5,1,90")
+        box.press("Enter")
+        page.wait_for_selector(".gp-stale", timeout=20_000)
+        page.close()
+        time.sleep(4.0)  # the worker finishes its plan for nobody
+    bad = [r for r in caplog.records if r.levelno >= logging.ERROR or r.exc_info]
+    assert not bad, [r.getMessage() for r in bad]
+
+
+def test_latency_benchmark_runs(dubins_page: Any):
+    """The browser latency benchmark's measurement (benchmarks/explore_browser.py) works on
+    the page: each goal change shows a new cost (no timing is asserted here)."""
+    import importlib.util
+
+    _enter(dubins_page, "radius", "1")
+    path = pathlib.Path(__file__).parents[2] / "benchmarks" / "explore_browser.py"
+    spec = importlib.util.spec_from_file_location("explore_browser", path)
+    assert spec is not None and spec.loader is not None
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    _wait_result(dubins_page)
+    ms = bench.measure(dubins_page, bench.goal_texts(4.0, 3.0, 90.0, 1.0, 4), warm=1)
+    assert len(ms) == 3 and all(0 < m < 10_000 for m in ms)
+    q = _query(dubins_page)
+    assert float(dubins_page.locator(".gp-cost").first.inner_text()) == pytest.approx(
+        _reference(q), rel=1e-6
+    )
 
 
 def test_every_request_stays_local(server: str, requests_seen: list[str]):

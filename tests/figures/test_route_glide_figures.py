@@ -125,11 +125,14 @@ def _hand_route(speed: float, heading_deg: float, current: tuple[float, float]) 
     x = (speed * math.sin(h) + current[0]) * t
     y = (speed * math.cos(h) + current[1]) * t
     lat, lon = LocalProjection(*START).to_geographic(x, y)
+    from glideplan.track import Track
+
+    track = Track(t, x, y, np.full(t.size, math.pi / 2 - h), lat=lat, lon=lon)
     return RouteResult(
-        "solved", np.datetime64("2026-03-01T06:00", "ms"), 0.0, float(t[-1]),
-        float(np.hypot(x[-1], y[-1])), t, np.asarray(lat), np.asarray(lon),
-        np.full(t.size, heading_deg), 1.5, 9000.0, None, None, "grid", 0.0,
-        {"kind": "uniform"}, {}, x=x, y=y,
+        status="solved", depart=np.datetime64("2026-03-01T06:00", "ms"), depart_s=0.0,
+        duration_s=float(t[-1]), distance_m=float(np.hypot(x[-1], y[-1])), track=track,
+        endpoint_error_m=1.5, straight_line_duration_s=9000.0, method="grid",
+        field_info={"kind": "uniform"},
     )
 
 
@@ -162,9 +165,8 @@ def test_unreachable_route_title_says_so(tmp_path):
 
     fld = UniformField(0.0, 0.0)
     msg = "the goal is not reachable by 2026-03-03T00:00:00Z: the reachable set came within 4511 m"
-    empty = np.zeros(0)
-    r = RouteResult("unreachable", None, 0.0, None, 0.0, empty, empty, empty, empty, None, None,
-                    None, None, "none", 4511.0, {"kind": "uniform"}, {}, message=msg)
+    r = RouteResult(status="unreachable", best_distance_m=4511.0,
+                    field_info={"kind": "uniform"}, message=msg)
     fig = route_figure(r, fld, speed=0.5, start=START, goal=GOAL)
     title = " ".join(fig.axes[0].get_title(loc="left").split())
     plt.close(fig)

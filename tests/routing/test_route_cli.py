@@ -140,6 +140,14 @@ def test_era5_file_across_greenwich_from_the_cli(tmp_path, run_cli):
     assert data["duration_s"] == pytest.approx(d / 25.0, rel=1e-2)
     assert data["land_clearance_m"] == pytest.approx(8000.0)  # one spacing: no land
     assert min(data["track"]["lon"]) < 0.0 < max(data["track"]["lon"])
+    # beyond the old 490 km limit: 40 N 30 W -> 45 N 0 E, ~2,500 km
+    code, out, err = run_cli("route", "--field", str(path), "--from", "40", "-30", "--to",
+                             "45", "0", "--speed", "25", "--resolution", "40000", "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    d = float(gc_distance(40.0, -30.0, 45.0, 0.0))
+    assert d > 2.4e6 and data["status"] == "solved"
+    assert data["duration_s"] == pytest.approx(d / 25.0, rel=1e-2)
 
 
 def test_route_across_180_plots_and_exports_split_lines(tmp_path, run_cli):
@@ -199,6 +207,39 @@ def test_headland_in_a_copernicus_file_with_the_readme_depth_range(tmp_path, run
     assert max(data["track"]["lat"]) > 30.6  # round the cape's north end
     code, out, err = run_cli(*args)
     assert code == 0 and "warning" in err and "0.494" in err
+
+
+def test_island_in_still_water_from_the_cli(tmp_path, run_cli):
+    """Still water with a circular island (NaN) between start and goal (was `unverified`):
+    solved, the shortest way round keeping the reported clearance c (tangent, arc of radius
+    R_n + c, tangent; closed form within 1 %, see `test_route.test_island_tangent_arc_tangent`
+    for the accuracy), no track point on land."""
+    import math
+
+    from glideplan.fields import open_field
+    from glideplan.geodesy import LocalProjection
+
+    centre = LocalProjection(30.0, -40.0)
+    lat = np.arange(29.7, 30.3001, 0.0025)
+    lon = np.arange(-40.35, -39.6499, 0.0029)
+    LA, LO = np.meshgrid(lat, lon, indexing="ij")
+    x, y = centre.to_local(LA, LO)
+    u = np.where(np.hypot(x, y) < 8000.0, np.nan, 0.0)[None, None]
+    path = tmp_path / "island.nc"
+    copernicus_dataset(lat, lon, TIMES[:1], [0.5], u, u).to_netcdf(path)
+    (a_lat, a_lon), (b_lat, b_lon) = (centre.to_geographic(-20000.0, 0.0),
+                                      centre.to_geographic(20000.0, 0.0))
+    code, out, err = run_cli("route", "--field", str(path), "--from", str(float(a_lat)),
+                             str(float(a_lon)), "--to", str(float(b_lat)), str(float(b_lon)),
+                             "--speed", "0.3", "--resolution", "400", "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["status"] == "solved", data["message"]
+    r = 8000.0 + data["land_clearance_m"]
+    ref = (2 * math.sqrt(20000.0**2 - r * r) + r * (math.pi - 2 * math.acos(r / 20000.0))) / 0.3
+    assert data["duration_s"] == pytest.approx(ref, rel=1e-2)
+    uu, _ = open_field(path).velocity(0.0, data["track"]["lat"], data["track"]["lon"])
+    assert np.all(np.isfinite(uu))
 
 
 def test_absurd_speed_is_refused_and_start_equal_goal_is_solved(files, run_cli, cli_error):

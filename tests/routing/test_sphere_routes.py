@@ -233,7 +233,7 @@ def test_unreachable_reasons(tmp_path):
     "front_stopped"; a field that ends before the still-water time -> "time_span"; a
     current out of the field faster than the vehicle -> "field_extent"."""
     fld = open_field(_lake_file(tmp_path))
-    r = route(fld, (30.2, -40.4), (30.5, -40.0), 0.5, cells=60)
+    r = route(fld, (30.2, -40.4), (30.5, -40.0), 0.5, cells=40)
     assert r.status == "unreachable" and r.unreachable_reason == "front_stopped"
     assert r.best_distance_m > 8000.0  # outside the ring
 
@@ -250,3 +250,44 @@ def test_unreachable_reasons(tmp_path):
     r = route(open_field(west), (30.0, -40.0), (30.0, -39.8), 0.3, cells=40)
     assert r.status == "unreachable" and r.unreachable_reason == "field_extent"
     assert r.front is not None and np.isfinite(r.front.arrival).any()
+
+
+def test_the_window_grows_to_the_whole_circle():
+    """Still water, 0 N 0 E -> 0 N 170 E (18,900 km): the window starts about start and goal
+    and grows with the front until it closes the circle of longitude (periodic); the route is
+    the equator, D / V."""
+    start, goal = (0.0, 0.0), (0.0, 170.0)
+    r = route(UniformField(0.0, 0.0), start, goal, 10.0, cells=60)
+    assert r.stats["periodic"] and r.stats["window_growths"] >= 1
+    _check_still(r, start, goal, 10.0)
+
+
+def test_phases_run_alone():
+    """setup -> grid -> front -> backtrack -> verify, each called on its own (still water,
+    70 km): the front's arrival at the goal is D / V to 1 %, the grid route's controls end
+    within a cell."""
+    from glideplan.routing import phases
+    from glideplan.routing.settings import RouteSettings
+
+    problem = phases.setup(UniformField(0.0, 0.0), (30.0, -40.0), (30.5, -39.5), 1.0,
+                           settings=RouteSettings(cells=60))
+    assert problem.limit_reason == "max_duration"
+    rg = phases.grid(problem)
+    assert rg.window.fixed_sides() == set() and not rg.obstacle.any()
+    fo, rg = phases.front(problem, rg)
+    assert fo.reason == "goal"
+    assert fo.goal_time - problem.t0 == pytest.approx(problem.distance_m, rel=1e-2)
+    cand = phases.backtrack(problem, rg, fo)
+    assert cand.duration == pytest.approx(problem.distance_m, rel=1e-2)
+    flown = phases.verify(problem, rg, cand)
+    assert phases.flown_ok(flown, rg.spacing_m) and not flown.on_land
+
+
+@pytest.mark.parametrize(("name", "value"), [("cfl", 0.0), ("cells", 2), ("resolution", -1.0),
+                                             ("land_clearance_m", float("nan"))])
+def test_bad_settings_are_refused(name, value):
+    from glideplan.errors import InvalidParameterError
+    from glideplan.routing import RouteSettings
+
+    with pytest.raises(InvalidParameterError, match=name):
+        RouteSettings(**{name: value})

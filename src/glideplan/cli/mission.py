@@ -91,15 +91,6 @@ def check_export_options(formats: tuple[str, ...], options: Any, waypoints: int)
         )
 
 
-def _track_json(plan: Any, track: Any) -> dict[str, list[float]]:
-    r = plan.route
-    if r.projection is None:
-        return {"x": [round(float(v), 4) for v in track.x],
-                "y": [round(float(v), 4) for v in track.y]}
-    lat, lon = r.projection.to_geographic(track.x, track.y)
-    return {"lat": [round(float(v), 9) for v in lat], "lon": [round(float(v), 9) for v in lon]}
-
-
 @mission_app.command("plan")
 def mission_plan(
     route: Annotated[pathlib.Path, typer.Argument(
@@ -172,6 +163,7 @@ def mission_plan(
     """
     from glideplan.cli.route import check_depth_range, parse_depart
     from glideplan.formats import ExportOptions, export_mission, parse_formats, read_route
+    from glideplan.geodesy import wind_from_to_vector
     from glideplan.missions import plan_mission, straight_leg_list
 
     plot = check_figure_file(plot)
@@ -217,10 +209,13 @@ def mission_plan(
         if field is not None:
             mission = _plan_in_field(r, field, speed, radius, when, depth_range)
         else:
+            # the compass --wind (speed, FROM deg) becomes the library's (east, north) vector
+            vector = None if wind is None else wind_from_to_vector(wind[0], wind[1])
             with phase_progress(PHASES) as progress:
                 mission = plan_mission(r, speed=speed, radius=radius, objective=obj,
-                                       wind=None if wind is None else (wind[0], wind[1]),
-                                       headings=headings, progress=progress)
+                                       wind_vector=vector, headings=headings,
+                                       progress=progress)
+    print_warnings(mission.warnings)
     if not mission.ok:
         raise PlanningError(_failure(mission))
     files: dict[str, Any] = {}
@@ -230,23 +225,14 @@ def mission_plan(
             files, legs = export_mission(mission, export, fmts, options)
         else:
             legs = straight_leg_list(mission, options.deviation)
-    stats = dict(mission.stats)
-    stats["straight_legs"] = {
-        "waypoints": len(legs.names),
-        "tolerance_m": legs.tolerance_m,
-        "max_deviation_m": legs.max_deviation_m,
-        "sample_spacing_m": legs.sample_spacing_m,
-    }
     if plot is not None:
         from glideplan.missions.plot import plot_mission
         from glideplan.plotting import save_figure
 
         save_figure(plot_mission(mission, legs), str(plot))
         files["plot"] = str(plot)
-    data = mission.to_dict()
-    data["stats"] = stats
-    data["track"] = _track_json(mission, mission.track())
-    data["files"] = files
+    # the plan's JSON is the library's (`to_dict`); the CLI adds only the files it wrote
+    data = mission.to_dict(straight_legs=legs) | {"files": files}
     if json_out:
         print_json(data)
     else:
@@ -268,12 +254,9 @@ def _plan_in_field(r: Any, path: pathlib.Path, speed: float, radius: float, when
     with flag_names(field="--field", depth_range="--depth-range"):
         flow = open_field(path, depth_range=depth_range)
     check_depart(flow, when)
-    mission = solving("routing the legs", lambda: plan_mission_in_field(
+    # its warnings (the field's, the routes', headings not enforced) are printed by the caller
+    return solving("routing the legs", lambda: plan_mission_in_field(
         r, flow, speed=speed, depart=when, radius=radius))
-    for name in mission.stats["headings_not_enforced"]:
-        print_warnings([f"heading given at {name} is not enforced when routing through a "
-                        "field (the router steers a point mass)"])
-    return mission
 
 
 def _failure(mission: Any) -> str:

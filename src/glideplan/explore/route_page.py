@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import html
 import io
-import json
 import math
 import threading
 from collections.abc import Callable, Mapping
@@ -162,8 +161,8 @@ def isochrones(front: Any, until_s: float) -> tuple[dict[str, list[Any]], float]
     if not np.isfinite(arrival).any() or until_s <= 0:
         return out, 0.0
     step_h = _nice_step(until_s / 3600.0, _ISOCHRONES)
-    z = np.where(np.isfinite(arrival), arrival, np.nanmax(arrival[np.isfinite(arrival)]) * 10)
-    gen = contour_generator(np.asarray(front.lon), np.asarray(front.lat), z / 3600.0)
+    z = np.ma.masked_invalid(arrival / 3600.0)  # never reached: no contour along its edge
+    gen = contour_generator(np.asarray(front.lon), np.asarray(front.lat), z)
     level = step_h
     while level < until_s / 3600.0:
         for line in gen.lines(level):
@@ -275,7 +274,7 @@ class RoutePage:
             self.error_panes[name] = html_pane(sizing_mode="stretch_width")
         self.general_error = html_pane(sizing_mode="stretch_width")
         self.slider = pn.widgets.FloatSlider(
-            name="currents at (h after departure)",
+            label="currents at (h after departure)",
             start=0.0,
             end=1.0,
             step=0.1,
@@ -474,10 +473,11 @@ class RoutePage:
         """A dragged start or goal: its new lat, lon (4 decimals, about 10 m)."""
         if getattr(self, "_syncing", False):
             return
-        names = list(new.get("name", []))
-        moved = dict(self.__dict__.get("_moved", {}))
-        for x, y, name in zip(new.get("x", []), new.get("y", []), names, strict=False):
-            moved[name] = f"{float(y):.4f},{float(x):.4f}"
+        moved = {
+            name: f"{float(y):.4f},{float(x):.4f}"
+            for x, y, name in zip(new.get("x", []), new.get("y", []), new.get("name", []),
+                                  strict=False)
+        }
         state = self.state
         if "start" in moved:
             state = replace(state, start=moved["start"])
@@ -663,7 +663,7 @@ class RoutePage:
                 else {"file": [str(self.field_path)]}
             )
             out["field"] = {**source, **out.get("field", {})}
-        return io.StringIO(to_json(json.loads(json.dumps(out, default=str))) + "\n")
+        return io.StringIO(to_json(out) + "\n")
 
     def _csv_file(self) -> io.StringIO:
         import csv
@@ -674,9 +674,8 @@ class RoutePage:
         if r is None or not r.lat.size:
             writer.writerow(["error"])
             writer.writerow([self._messages() or (r.message if r is not None else "no route")])
-            return buf
-        writer.writerow(["t", "lat", "lon", "heading_deg"])
-        for row in zip(r.t, r.lat, r.lon, r.heading_deg, strict=True):
-            writer.writerow([f"{v:.10g}" for v in row])
-        buf.seek(0)
-        return buf
+        else:
+            writer.writerow(["t", "lat", "lon", "heading_deg"])
+            for row in zip(r.t, r.lat, r.lon, r.heading_deg, strict=True):
+                writer.writerow([f"{v:.10g}" for v in row])
+        return io.StringIO(buf.getvalue())

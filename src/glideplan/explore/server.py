@@ -65,11 +65,18 @@ def warm_up() -> None:
 
 
 def serve(
-    port: int = 5006, host: str = "127.0.0.1", *, show: bool = True, threaded: bool = False
+    port: int = 5006,
+    host: str = "127.0.0.1",
+    *,
+    show: bool = True,
+    threaded: bool = False,
+    field: str | None = None,
 ) -> Any:
     """Serve the page at http://HOST:PORT/ (blocks unless `threaded`; then returns the server).
 
-    Connections are accepted from `host` only (127.0.0.1 unless told otherwise).
+    Connections are accepted from `host` only (127.0.0.1 unless told otherwise). `field`: a
+    current/wind file (server-side path) for the route map (`?planner=route`); without it
+    the route map shows the built-in double gyre.
     """
     import panel as pn
 
@@ -83,7 +90,7 @@ def serve(
     loopback = host in ("127.0.0.1", "localhost", "::1")
     origin: list[str] | str = [f"127.0.0.1:{port}", f"localhost:{port}"] if loopback else "*"
     return pn.serve(
-        {"/": lambda: create_page(catalog)},
+        {"/": lambda: create_page(catalog, field_path=field)},
         port=port,
         address=host,
         show=show,

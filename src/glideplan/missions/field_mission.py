@@ -21,8 +21,10 @@ the route's times at the same fraction of the distance.
 from __future__ import annotations
 
 import math
+import pathlib
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -34,6 +36,12 @@ from glideplan.missions.route import Route
 from glideplan.solution import Status
 from glideplan.validation import check_positive
 
+if TYPE_CHECKING:
+    from glideplan.fields.field import FlowField
+    from glideplan.missions.straight_legs import StraightLegList
+    from glideplan.routing.glider import GliderFollow
+    from glideplan.routing.result import RouteResult
+
 __all__ = ["FieldLeg", "FieldMission", "plan_mission_in_field"]
 
 
@@ -44,10 +52,10 @@ class FieldLeg:
     index: int
     start: int
     end: int
-    result: Any  # glideplan.routing.RouteResult
+    result: RouteResult
     length_m: float
     duration_s: float
-    glider: Any = None  # glideplan.routing.glider.GliderFollow with `radius`
+    glider: GliderFollow | None = None  # the flyable path followed, with a radius
 
     @property
     def word(self) -> str:
@@ -68,7 +76,9 @@ class FieldLeg:
 class FieldMission(LegTotals):
     """A mission routed through a field; the interface of `MissionPlan` the exporters use.
 
-    An `Outcome` (`glideplan.results`): status SOLVED or UNREACHABLE (a leg is).
+    An `Outcome` (`glideplan.results`): status SOLVED or UNREACHABLE (a leg is). `warnings`:
+    the field's (`FlowField.warnings`) and the legs' routes', and headings given but not
+    enforced.
     """
 
     failure_status: ClassVar[Status] = Status.UNREACHABLE
@@ -81,7 +91,7 @@ class FieldMission(LegTotals):
     stats: dict[str, Any] = field(default_factory=dict)
     objective: str = "time"
     radius: float | None = None
-    wind: tuple[float, float] | None = None
+    warnings: tuple[str, ...] = ()
 
     @property
     def ok(self) -> bool:
@@ -131,6 +141,7 @@ class FieldMission(LegTotals):
         xs, ys, hs, legs, ts = [], [], [], [], []
         t0 = 0.0
         for leg in self.legs:
+            assert leg.glider is not None and leg.glider.flyable is not None
             fp = leg.glider.flyable
             s, lx, ly, chi = fp.sample(spacing)
             lat, lon = fp.proj.to_geographic(lx, ly)
@@ -153,10 +164,12 @@ class FieldMission(LegTotals):
         return Track(t=np.concatenate(ts), x=np.concatenate(xs), y=np.concatenate(ys),
                      heading=np.concatenate(hs), leg=np.concatenate(legs).astype(np.intp))
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self, straight_legs: StraightLegList | None = None) -> dict[str, Any]:
+        """The `--json` object of `glideplan mission plan --field` (the CLI adds `files`);
+        `straight_legs` as in `MissionPlan.to_dict`."""
         r = self.route
         assert r.lat is not None and r.lon is not None
-        return {
+        return self._with_track({
             "status": self.status.value,
             "message": self.message,
             "warnings": list(self.warnings),
@@ -190,7 +203,7 @@ class FieldMission(LegTotals):
                 for leg in self.legs
             ],
             "stats": self.stats,
-        }
+        }, straight_legs)
 
 
 def _iso(when: np.datetime64 | None) -> str | None:
@@ -199,20 +212,23 @@ def _iso(when: np.datetime64 | None) -> str | None:
 
 
 def plan_mission_in_field(
-    route: Route, flow: Any, *, speed: float, depart: Any = None,
+    route: Route, flow: FlowField | str | pathlib.Path | Sequence[str | pathlib.Path], *,
+    speed: float, depart: Any = None,
     depth_range: tuple[float, float] | None = None, resolution: float | None = None,
-    radius: float | None = None,
+    radius: float | None = None, land_clearance_m: float | None = None,
 ) -> FieldMission:
     """Route every leg of a geographic `route` through `flow` (a FlowField or file paths).
 
     `depart` (datetime64, seconds since the field's epoch, or None: its first time), the
-    `depth_range` (m) and grid `resolution` (m) go to `glideplan.routing.route`; leg i + 1
+    `depth_range` (m), grid `resolution` (m) and `land_clearance_m` go to
+    `glideplan.routing.route` (routes on the sphere: legs of any length); leg i + 1
     departs when leg i arrives. `radius` R0 (m): build and follow each leg's flyable path
     (module docstring). A leg that would depart at or after the field's last time raises
     `PlanningError`.
     """
     from glideplan.errors import PlanningError
     from glideplan.fields.field import FlowField
+    from glideplan.routing import RouteSettings
     from glideplan.routing import route as route_leg
 
     speed = check_positive("speed", speed)
@@ -236,13 +252,17 @@ def plan_mission_in_field(
                 f"{flow.format_time(flow.time_span[1])}")
         res = route_leg(flow, (float(route.lat[i]), float(route.lon[i])),
                         (float(route.lat[i + 1]), float(route.lon[i + 1])), speed,
-                        depart=t, depth_range=depth_range, resolution=resolution)
+                        depart=t, depth_range=depth_range,
+                        settings=RouteSettings(resolution=resolution,
+                                               land_clearance_m=land_clearance_m))
         info = dict(res.field_info)
         if not res.ok:
-            legs.append(FieldLeg(i, i, i + 1, res, math.nan, math.nan))
+            legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res, length_m=math.nan,
+                                 duration_s=math.nan))
             break
         duration = float(res.duration_s or 0.0)
-        legs.append(FieldLeg(i, i, i + 1, res, float(res.distance_m), duration))
+        legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res,
+                             length_m=float(res.distance_m), duration_s=duration))
         t = float(res.depart_s) + duration
     if radius is not None and all(leg.ok for leg in legs):
         legs = _fly_legs(legs, flow, speed, radius)
@@ -263,16 +283,24 @@ def plan_mission_in_field(
         },
     }
     if radius is not None:
+        flown = [leg.glider for leg in legs if leg.glider is not None]
         stats["flyable"] = {
-            "feasible_radius_m": [leg.glider.feasible_radius_m for leg in legs],
-            "path_length_m": sum(leg.glider.path_length_m for leg in legs),
-            "max_cross_track_m": max((leg.glider.max_cross_track_m or 0.0) for leg in legs),
-        } if all(leg.glider is not None for leg in legs) else None
-    return FieldMission(route, np.nan_to_num(h), tuple(legs), speed, info, stats,
-                        radius=radius)
+            "feasible_radius_m": [g.feasible_radius_m for g in flown],
+            "path_length_m": sum(g.path_length_m for g in flown),
+            "max_cross_track_m": max((g.max_cross_track_m or 0.0) for g in flown),
+        } if len(flown) == len(legs) else None
+    # what the user must see: the field's warnings (e.g. depth range extended to the surface,
+    # held constant in time, regridded), the legs' routes', headings given but not enforced
+    warnings = list(flow.warnings)
+    for leg in legs:
+        warnings += [w for w in leg.result.warnings if w not in warnings]
+    warnings += [f"heading given at {name} is not enforced when routing through a field (the "
+                 "router steers a point mass)" for name in stats["headings_not_enforced"]]
+    return FieldMission(route=route, headings=np.nan_to_num(h), legs=tuple(legs), speed=speed,
+                        field_info=info, stats=stats, radius=radius, warnings=tuple(warnings))
 
 
-def _fly_legs(legs: list[FieldLeg], flow: Any, speed: float, radius: float) -> list[FieldLeg]:
+def _fly_legs(legs: list[FieldLeg], flow: FlowField, speed: float, radius: float) -> list[FieldLeg]:
     """Each leg's flyable path, ending on the next leg's initial ground course, followed in
     closed loop through `flow` (glideplan.routing.glider.follow_route)."""
     from glideplan.errors import PlanningError
@@ -297,6 +325,6 @@ def _fly_legs(legs: list[FieldLeg], flow: Any, speed: float, radius: float) -> l
             ex, ny = rotate_to_local(np.cos(first[k + 1]), np.sin(first[k + 1]), cg, sg)
             end_course = float(np.arctan2(ny[0], ex[0]))
         glider = follow_route(leg.result, flow, speed, radius, end_course=end_course)
-        out.append(FieldLeg(leg.index, leg.start, leg.end, leg.result, leg.length_m,
-                            leg.duration_s, glider))
+        out.append(FieldLeg(index=leg.index, start=leg.start, end=leg.end, result=leg.result,
+                            length_m=leg.length_m, duration_s=leg.duration_s, glider=glider))
     return out

@@ -4,6 +4,13 @@
 K candidates, then refinement), then plans every leg with `glideplan.plan()` — the Dubins
 planner in still air, the convected-Dubins planner with a wind — so each leg's path is
 verified by integrating the vehicle's equations of motion and carries its endpoint error.
+
+Wind inside the library is one vector, `wind_vector = (east, north)` m/s the air (water)
+moves TOWARDS; the compass form (speed, direction it blows FROM in degrees) appears only at the
+edges: the `wind=` compatibility keyword of `plan_mission` and the JSON of `to_dict()`.
+
+`MissionPlan.to_dict()` (and `FieldMission.to_dict()`) is exactly the `--json` object of
+`glideplan mission plan` (the CLI only adds `files`, the files it wrote).
 """
 
 from __future__ import annotations
@@ -12,7 +19,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -30,11 +37,31 @@ from glideplan.missions.route import Route
 from glideplan.path import Path
 from glideplan.solution import Solution, Status
 from glideplan.track import Track
-from glideplan.validation import check_physical
+from glideplan.validation import check_finite, check_physical
 
-__all__ = ["MissionLeg", "MissionPlan", "Track", "plan_mission"]
+if TYPE_CHECKING:
+    from glideplan.missions.straight_legs import StraightLegList
+
+__all__ = ["DEFAULT_MAX_DEVIATION_M", "MissionLeg", "MissionPlan", "Track", "plan_mission",
+           "wind_compass"]
 
 OBJECTIVES = ("length", "time")
+# The straight-leg deviation of `to_dict()` when none is given (m): the CLI's default, half its
+# default 100 m acceptance radius (`glideplan.formats.ExportOptions`).
+DEFAULT_MAX_DEVIATION_M = 50.0
+
+
+def wind_compass(wind_vector: tuple[float, float]) -> tuple[float, float]:
+    """(speed m/s, compass direction it blows FROM, deg in [0, 360)) of an (east, north) wind.
+
+    The inverse of `geodesy.wind_from_to_vector`: (u, v) = -speed (sin b, cos b), so
+    b = atan2(-u, -v). Both are rounded (speed to 1e-12 m/s, b to 1e-9 deg) so that a compass
+    wind given at an edge reads back as given.
+    """
+    u, v = float(wind_vector[0]), float(wind_vector[1])
+    speed = math.hypot(u, v)
+    b = math.degrees(math.atan2(-u, -v)) % 360.0 if speed > 0.0 else 0.0
+    return round(speed, 12), round(b, 9) % 360.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -79,6 +106,15 @@ class LegTotals:
     # the status of a mission that is not solved (a leg failed)
     failure_status: ClassVar[Status] = Status.FAILED
     warnings: tuple[str, ...] = ()
+    stats: dict[str, Any]
+    # (east, north) m/s the wind/current moves towards; None in still air or in a field
+    wind_vector: tuple[float, float] | None = None
+
+    def track(self, spacing: float | None = None) -> Track:
+        raise NotImplementedError
+
+    def track_spacing(self, tolerance: float) -> float:
+        raise NotImplementedError
 
     @property
     def ok(self) -> bool:
@@ -119,6 +155,40 @@ class LegTotals:
 
         return plot_mission(self, ax=ax, **kwargs)  # type: ignore[arg-type]
 
+    def track_json(self) -> dict[str, list[float]] | None:
+        """The track of `--json`: lat/lon (deg, 1e-9; -180..180) of a geographic route, else
+        x/y (m, 1e-4); None when a leg failed (no track)."""
+        if not self.ok:
+            return None
+        track = self.track()
+        proj = self.route.projection
+        if proj is None:
+            return {"x": [round(float(v), 4) for v in track.x],
+                    "y": [round(float(v), 4) for v in track.y]}
+        lat, lon = proj.to_geographic(track.x, track.y)
+        return {"lat": [round(float(v), 9) for v in np.atleast_1d(lat)],
+                "lon": [round(float(v), 9) for v in np.atleast_1d(lon)]}
+
+    def _with_track(self, data: dict[str, Any],
+                    straight_legs: StraightLegList | None) -> dict[str, Any]:
+        """`data` with the track and, in `stats`, the straight-leg list (`straight_legs`, a
+        `StraightLegList`; default: the list within `DEFAULT_MAX_DEVIATION_M`)."""
+        stats = dict(data.get("stats", {}))
+        if self.ok:
+            if straight_legs is None:
+                from glideplan.missions.straight_legs import straight_leg_list
+
+                straight_legs = straight_leg_list(self, DEFAULT_MAX_DEVIATION_M)  # type: ignore[arg-type]
+            stats["straight_legs"] = {
+                "waypoints": len(straight_legs.names),
+                "tolerance_m": straight_legs.tolerance_m,
+                "max_deviation_m": straight_legs.max_deviation_m,
+                "sample_spacing_m": straight_legs.sample_spacing_m,
+            }
+        data["stats"] = stats
+        data["track"] = self.track_json()
+        return data
+
 
 @dataclass(frozen=True, eq=False)
 class MissionPlan(LegTotals):
@@ -133,8 +203,8 @@ class MissionPlan(LegTotals):
     objective: str
     speed: float
     radius: float
-    wind: tuple[float, float] | None  # (speed m/s, compass direction it blows FROM, deg)
     heading_plan: HeadingPlan
+    wind_vector: tuple[float, float] | None = None  # (east, north) m/s, moving TOWARDS
     stats: dict[str, Any] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
 
@@ -143,7 +213,7 @@ class MissionPlan(LegTotals):
 
         Sagitta s^2 / (8 R_ground) with R_ground = R (1 - w/v)^2 the tightest ground turn.
         """
-        w = 0.0 if self.wind is None else self.wind[0]
+        w = 0.0 if self.wind_vector is None else math.hypot(*self.wind_vector)
         r_ground = self.radius * (1.0 - w / self.speed) ** 2
         return min(self.radius / 10.0, math.sqrt(0.08 * r_ground * tolerance))
 
@@ -166,18 +236,23 @@ class MissionPlan(LegTotals):
         return Track(t=np.concatenate(ts), x=np.concatenate(xs), y=np.concatenate(ys),
                      heading=np.concatenate(hs), leg=np.concatenate(legs).astype(np.intp))
 
-    def to_dict(self) -> dict[str, Any]:
-        """The mission as JSON data (without the track or files: the CLI adds those)."""
+    def to_dict(self, straight_legs: StraightLegList | None = None) -> dict[str, Any]:
+        """The `--json` object of `glideplan mission plan` (the CLI adds only `files`).
+
+        The wind at this edge is compass: {"speed" m/s, "from_deg"}. `track`: lat/lon or x/y
+        (`track_json`); `stats.straight_legs` describes `straight_legs` (the exported
+        `StraightLegList`; default: the list within `DEFAULT_MAX_DEVIATION_M`).
+        """
         r = self.route
-        return {
+        wind = None if self.wind_vector is None else wind_compass(self.wind_vector)
+        return self._with_track({
             "status": self.status.value,
             "message": self.message,
             "warnings": list(self.warnings),
             "objective": self.objective,
             "speed": self.speed,
             "radius": self.radius,
-            "wind": None if self.wind is None else
-            {"speed": self.wind[0], "from_deg": self.wind[1]},
+            "wind": None if wind is None else {"speed": wind[0], "from_deg": wind[1]},
             "total_length_m": self.total_length_m,
             "total_duration_s": self.total_duration_s,
             "headings_deg": self.headings_deg,
@@ -205,7 +280,7 @@ class MissionPlan(LegTotals):
                 for leg in self.legs
             ],
             "stats": self.stats,
-        }
+        }, straight_legs)
 
 
 def _ground_length(path: Path) -> float:
@@ -218,6 +293,7 @@ def plan_mission(
     speed: float,
     radius: float,
     objective: str = "length",
+    wind_vector: tuple[float, float] | None = None,
     wind: tuple[float, float] | None = None,
     headings: int | None = None,
     precision: str = "single",
@@ -226,8 +302,11 @@ def plan_mission(
 ) -> MissionPlan:
     """Plan `route` for a vehicle of `speed` (m/s) and minimum turn `radius` (m).
 
-    `objective` "length" (m) or "time" (s); `wind` = (speed m/s, compass direction it blows
-    FROM, deg) plans time-optimal convected Dubins legs (the objective must be "time").
+    `objective` "length" (m) or "time" (s); `wind_vector` = (east, north) m/s the steady wind
+    (current) moves TOWARDS plans time-optimal convected Dubins legs (the objective must be
+    "time"). `wind` = (speed m/s, compass direction it blows FROM, deg) is the compatibility
+    form of the same (the compass convention of earlier releases; prefer `wind_vector`),
+    converted once here by `geodesy.wind_from_to_vector`; give at most one of the two.
     `headings` = K candidates per free waypoint (default 360 in still air, 36 in a wind).
     `progress(phase, done, total)` reports the long phases ("headings": the DP over the
     legs; "legs": planning and verifying each leg) for a progress bar.
@@ -241,18 +320,27 @@ def plan_mission(
     radius = check_physical("radius", radius, "turn_radius")
     if objective not in OBJECTIVES:
         raise InvalidParameterError("objective", objective, "must be length or time")
-    k = headings if headings is not None else (36 if wind else 360)
+    if wind is not None and wind_vector is not None:
+        raise InvalidParameterError("wind", wind, "give either wind_vector or wind, not both")
+    if wind is not None:  # the compass edge form (compatibility)
+        wind_vector = wind_from_to_vector(check_physical("wind speed", wind[0], "wind_speed"),
+                                          check_physical("wind direction", wind[1], "heading"))
+    if wind_vector is not None:
+        wind_vector = (check_finite("wind_vector east", wind_vector[0]),
+                       check_finite("wind_vector north", wind_vector[1]))
+        check_physical("wind_vector", math.hypot(*wind_vector), "wind_speed")
+    k = headings if headings is not None else (36 if wind_vector is not None else 360)
     if not isinstance(k, int) or not 4 <= k <= 3600:
         raise InvalidParameterError("headings", k, "must be an integer in [4, 3600]")
     pts = route.points
     cost: LegCost
     vehicle: Any
-    if wind is not None:
+    if wind_vector is not None:
         if objective != "time":
             raise InvalidParameterError(
                 "objective", objective, "with a wind the planner minimises time: use time"
             )
-        u, v = wind_from_to_vector(float(wind[0]), float(wind[1]))
+        u, v = wind_vector
         w = math.hypot(u, v)
         vehicle = DubinsCarInWind(speed, radius, w, math.atan2(v, u) if w > 0 else 0.0)
         cost = WindCost(pts, radius, speed, (u, v))
@@ -269,16 +357,17 @@ def plan_mission(
             Pose(float(pts[i, 0]), float(pts[i, 1]), float(h[i])),
             Pose(float(pts[i + 1, 0]), float(pts[i + 1, 1]), float(h[i + 1])),
             vehicle,
-            objective if wind is None else "time",
+            objective if wind_vector is None else "time",
         )
         if sol.path is None:
-            legs.append(MissionLeg(i, i, i + 1, sol, math.nan, math.nan))
+            legs.append(MissionLeg(index=i, start=i, end=i + 1, solution=sol,
+                                   length_m=math.nan, duration_s=math.nan))
             if progress is not None:
                 progress("legs", i + 1, route.n - 1)
             continue
-        legs.append(
-            MissionLeg(i, i, i + 1, sol, _ground_length(sol.path), float(sol.path.duration))
-        )
+        legs.append(MissionLeg(index=i, start=i, end=i + 1, solution=sol,
+                               length_m=_ground_length(sol.path),
+                               duration_s=float(sol.path.duration)))
         if progress is not None:
             progress("legs", i + 1, route.n - 1)
     errors = [leg.solution.endpoint_error.max for leg in legs if leg.solution.endpoint_error]
@@ -302,6 +391,5 @@ def plan_mission(
     )
     return MissionPlan(
         route=route, headings=h, legs=tuple(legs), objective=objective, speed=speed,
-        radius=radius, wind=None if wind is None else (float(wind[0]), float(wind[1])),
-        heading_plan=hp, stats=stats,
+        radius=radius, wind_vector=wind_vector, heading_plan=hp, stats=stats,
     )

@@ -1,4 +1,10 @@
-"""Draw a planned mission: track, waypoints, heading arrows, labelled legs (Matplotlib)."""
+"""Draw a planned mission: track, waypoints, heading arrows, labelled legs (Matplotlib).
+
+Geographic missions are drawn in a frame centred on the route: longitudes are unwrapped about
+the route's centre lon_c (lon -> lon_c + ((lon - lon_c + 180) mod 360 - 180)), so a route
+across 180 deg (e.g. near Fiji) is drawn over its own span, not around the globe; the tick
+labels read the longitudes in -180..180.
+"""
 
 from __future__ import annotations
 
@@ -8,10 +14,29 @@ from typing import Any
 import numpy as np
 
 from glideplan.missions.field_mission import FieldMission
-from glideplan.missions.plan import MissionPlan
+from glideplan.missions.plan import MissionPlan, wind_compass
+from glideplan.missions.route import Route
 from glideplan.missions.straight_legs import StraightLegList
 
-__all__ = ["plot_mission"]
+__all__ = ["plot_mission", "route_centre_lon", "unwrap_lon"]
+
+
+def route_centre_lon(route: Route) -> float:
+    """The longitude (deg) the figure is centred on: the middle of the waypoints' span, the
+    waypoints unwrapped one after the other (each within 180 deg of the previous)."""
+    assert route.lon is not None
+    lon = np.degrees(np.unwrap(np.radians(np.asarray(route.lon, dtype=float))))
+    return 0.5 * (float(np.min(lon)) + float(np.max(lon)))
+
+
+def unwrap_lon(lon: np.ndarray, centre: float) -> np.ndarray:
+    """`lon` (deg) within 180 deg of `centre`: centre + ((lon - centre + 180) mod 360 - 180)."""
+    return centre + (np.asarray(lon, dtype=float) - centre + 180.0) % 360.0 - 180.0
+
+
+def _wrapped_lon_label(value: float, _pos: Any = None) -> str:
+    """A tick label of an unwrapped longitude, read in -180..180 deg."""
+    return f"{(value + 180.0) % 360.0 - 180.0:g}"
 
 
 def _ground_scale_axes(ax: Any, lon: np.ndarray, lat: np.ndarray, origin: str) -> None:
@@ -23,17 +48,21 @@ def _ground_scale_axes(ax: Any, lon: np.ndarray, lat: np.ndarray, origin: str) -
     drawn as long as a km north. The top and right axes read km east / north of the first
     waypoint `origin` (lon, lat of the track's first point) on that local plane.
     """
+    from matplotlib.ticker import FuncFormatter
+
     from glideplan.plotting import add_km_axes
     from glideplan.routing.plot import frame_scales
 
     lat_mid = 0.5 * (float(np.min(lat)) + float(np.max(lat)))
-    lon_mid = 0.5 * (float(np.min(lon)) + float(np.max(lon)))
-    m_lat, m_lon = frame_scales(lat_mid, lon_mid)
+    # the ellipsoid is symmetric about its axis: the lengths of a degree do not depend on the
+    # longitude, so they are taken at 0 E (clear of the +-180 limits of unwrapped longitudes)
+    m_lat, m_lon = frame_scales(lat_mid, 0.0)
     lon0, lat0 = float(lon[0]), float(lat[0])
     ax.set_aspect(m_lat / m_lon, adjustable="datalim")
     ax.set_xlabel("longitude (deg E)")
     ax.set_ylabel("latitude (deg N)")
     ax.ticklabel_format(useOffset=False)
+    ax.xaxis.set_major_formatter(FuncFormatter(_wrapped_lon_label))
 
     add_km_axes(ax, lat0, lon0, m_lat, m_lon, f"km east of {origin} (equal ground scale)",
                 f"km north of {origin}")
@@ -55,12 +84,13 @@ def plot_mission(
     track = plan.track()
     geo = r.projection is not None
     proj = r.projection
+    centre = route_centre_lon(r) if geo else 0.0
 
     def xy(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         if proj is None:
             return x, y
         lat, lon = proj.to_geographic(x, y)
-        return lon, lat
+        return unwrap_lon(lon, centre), np.asarray(lat, dtype=float)
 
     span = max(float(np.ptp(track.x)), float(np.ptp(track.y)), plan.radius or 0.0)
     arrow = 0.06 * span
@@ -105,8 +135,9 @@ def plot_mission(
         name = pathlib.Path(str(src)).name if src else ""
         how = f"time-optimal through the current field {name}".rstrip()
     else:
-        wind = "" if plan.wind is None else (
-            f", wind {plan.wind[0]:g} m/s from {plan.wind[1]:g}\N{DEGREE SIGN}")
+        compass = None if plan.wind_vector is None else wind_compass(plan.wind_vector)
+        wind = "" if compass is None else (
+            f", wind {compass[0]:g} m/s from {compass[1]:g}\N{DEGREE SIGN}")
         how = f"Dubins legs, turn radius R = {plan.radius:g} m{wind}, {plan.objective} optimal"
     err = plan.stats.get("max_endpoint_error")
     status = "all legs planned" if plan.ok else "some legs FAILED (see the report)"

@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 from glideplan.reach.problem import ReachProblem
 from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
 
-__all__ = ["DEFAULT_MAX_NODES", "ReachGrid", "reach_grid"]
+__all__ = ["DEFAULT_MAX_NODES", "ReachGrid", "cell_nodes", "reach_grid"]
 
 FloatArray = NDArray[np.float64]
 
@@ -58,8 +58,9 @@ class ReachGrid:
     notes: tuple[str, ...]
 
 
-def _cell_nodes(lat: FloatArray, lon: FloatArray, points: Iterable[tuple[float, float]]
-                ) -> list[tuple[int, int]]:
+def cell_nodes(lat: FloatArray, lon: FloatArray, points: Iterable[tuple[float, float]]
+               ) -> list[tuple[int, int]]:
+    """(row, column) of the 4 nodes of the cell holding each point (points outside skipped)."""
     out = []
     dlat, dlon = lat[1] - lat[0], lon[1] - lon[0]
     for la, lo in points:
@@ -103,7 +104,7 @@ def reach_grid(problem: ReachProblem, max_ratio: float) -> ReachGrid:
     block = alt - z - problem.safety_height
     block = np.where(np.isfinite(block), block, -np.inf)
     special = [(lat0, lon0)] + [(p.lat, p.lon) for p in problem.landables]
-    for i, j in _cell_nodes(lat, lon, special):
+    for i, j in cell_nodes(lat, lon, special):
         zp = float(fine.elevation(lat[i], lon[j]))
         if math.isfinite(zp):
             block[i, j] = alt - zp - problem.safety_height

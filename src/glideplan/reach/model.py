@@ -32,7 +32,7 @@ F(n) = max_k a_k + b_k . n of the set of ground velocities per metre of altitude
   front's velocity set is their convex hull, i.e. the minimum altitude loss over polygonal
   paths each leg of which is flown at the speed to fly for its own direction (where C is not
   convex, a zig-zag of two such legs); the inscribed polygon understates F by at most
-  1 - cos(pi / N) of r (3e-4 with N = 128). MC > 0 never reaches farther than MC = 0: C lies
+  1 - cos(pi / N) of r (1.2e-3 with N = 64). MC > 0 never reaches farther than MC = 0: C lies
   inside the MC = 0 set.
 
 The flown path (verification) uses `along` exactly at each leg's direction, not the terms.
@@ -59,7 +59,7 @@ FloatArray = NDArray[np.float64]
 _DENSE = 241  # speeds sampled before the golden-section refinement
 _GOLDEN = 48  # golden-section iterations (bracket shrinks by 0.618^48 ~ 1e-10)
 MC0_SPEEDS = 16  # K disks for MC = 0 in wind
-MC_DIRECTIONS = 128  # N points for MC > 0 in wind
+MC_DIRECTIONS = 64  # N points for MC > 0 in wind
 
 
 @dataclass(frozen=True, eq=False)

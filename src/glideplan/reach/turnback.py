@@ -37,7 +37,7 @@ from numpy.typing import NDArray
 from glideplan.errors import InvalidParameterError
 from glideplan.geodesy import check_latlon
 from glideplan.reach.flight import FlownPath, fly, front_candidates, rhumb
-from glideplan.reach.grid import ReachGrid, reach_grid
+from glideplan.reach.grid import ReachGrid, cell_nodes, reach_grid
 from glideplan.reach.model import Glide
 from glideplan.reach.problem import Landable, ReachProblem
 from glideplan.reach.solve import front_problem, interp_arrival, snap_to_reached, solve_front
@@ -358,9 +358,7 @@ def grid_contains(grid: ReachGrid, lat: FloatArray, lon: FloatArray) -> NDArray[
 
 
 def _special_nodes(grid: ReachGrid, pts: list[tuple[float, float]]) -> list[tuple[int, int]]:
-    from glideplan.reach.grid import _cell_nodes
-
-    return _cell_nodes(grid.lat, grid.lon, pts)
+    return cell_nodes(grid.lat, grid.lon, pts)
 
 
 def _result(status: Status, message: str, problem: ReachProblem, home: Landable, course: float,

@@ -1,4 +1,8 @@
-"""The routing grid: a local azimuthal-equidistant plane about the start, and the field on it.
+"""A local azimuthal-equidistant plane about a point, and the field on it (glider scale).
+
+Routes are solved on the sphere (`routing.window`, `routing.phases`); this plane grid serves
+the glider-scale tools that work in one local plane (`routing.glider`'s flyable paths, the
+mission legs' end courses, the grid A* baseline of `benchmarks/route.py`).
 
 Nodes (x_j, y_i) in metres (x east, y north at the start); `water` marks nodes inside the
 field's extent where the current is finite (NaN = land = obstacle). Currents are rotated from

@@ -1,4 +1,6 @@
-"""Independent checks of a route through the field itself (not the routing grid).
+"""Plane checks through the field itself for the glider-scale path (`routing.glider`).
+
+Routes themselves are verified on the sphere (`routing.sphere.fly_headings`).
 
 `integrate_headings` flies the heading controls h(t) (rad in the local plane, linear between
 nodes) through the field with SciPy's `solve_ivp` (RK45, rtol 1e-8):

@@ -9,7 +9,8 @@ to the whole circle of a global field closes exactly (`periodic`). Because the n
 move, a grown window holds the old one as a block (the front's state is embedded in it).
 
 The lattice is bounded by the field's extent (in the frame) and by +-85 deg latitude (the
-metric's cos(lat) vanishes at the poles); `fixed_sides` are the window's sides on a bound.
+metric's cos(lat) vanishes at the poles; on grids coarser than ~0.7 deg, 89 deg less the edge
+pad); `fixed_sides` are the window's sides on a bound.
 
 `WindowCurrents` samples the field on the window at time levels (the field's own, one for a
 steady field, or every `sample_dt` seconds for an analytic one), lazily, and interpolates
@@ -21,6 +22,7 @@ the great-circle distance (a k-d tree on 3-D positions, chord radius 2 R sin(c /
 
 from __future__ import annotations
 
+import bisect
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
@@ -42,6 +44,9 @@ BoolArray = NDArray[np.bool_]
 #: The window never goes beyond this latitude (deg): hx = R cos(lat) dlon -> 0 at the poles.
 MAX_LAT_DEG = 85.0
 SIDES = ("south", "north", "west", "east")
+#: Nodes beyond the field's edge (or +-85 deg) in a window that reaches it: obstacles, so the
+#: front's band never comes within the kernel's edge margin of a side that cannot grow.
+EDGE_PAD = 5
 
 
 @dataclass(frozen=True)
@@ -76,7 +81,9 @@ def build_lattice(fld: FlowField, start: tuple[float, float], goal_frame: tuple[
     n = max(round(360.0 / (dlat / math.cos(math.radians(lat_ref)))), 8)
     dlon = 360.0 / n
     ext = fld.extent
-    lat_lo, lat_hi = -MAX_LAT_DEG, MAX_LAT_DEG
+    # +-85 deg, or less on coarse grids: the edge pad must fit before the kernel's 89 deg
+    cap = min(MAX_LAT_DEG, 89.0 - (EDGE_PAD + 0.5) * dlat)
+    lat_lo, lat_hi = -cap, cap
     jmin: int | None = None
     jmax: int | None = None
     if ext is not None:
@@ -92,9 +99,6 @@ def build_lattice(fld: FlowField, start: tuple[float, float], goal_frame: tuple[
                    float(spacing))
 
 
-#: Nodes beyond the field's edge (or +-85 deg) in a window that reaches it: obstacles, so the
-#: front's band never comes within the kernel's edge margin of a side that cannot grow.
-EDGE_PAD = 5
 
 
 @dataclass(frozen=True)
@@ -315,8 +319,9 @@ class WindowCurrents:
             lv = self.levels
             if lv.size == 1:
                 return 0, 0.0
-            k = int(np.clip(np.searchsorted(lv, t, side="right") - 1, 0, lv.size - 2))
-            return k, float(np.clip((t - lv[k]) / (lv[k + 1] - lv[k]), 0.0, 1.0))
+            k = min(max(bisect.bisect_right(lv, t) - 1, 0), lv.size - 2)
+            a, b = float(lv[k]), float(lv[k + 1])
+            return k, min(max((t - a) / (b - a), 0.0), 1.0)
         f = max((t - self.t0) / self.sample_dt, 0.0)
         k = math.floor(f)
         return k, f - k

@@ -70,6 +70,47 @@ def _rhs(cur: WindowCurrents, speed: float, t: float, z: FloatArray) -> FloatArr
 
 def _fly(cur: WindowCurrents, speed: float, t0: float, duration: float, phi0: float,
          lam0: float, chi0: FloatArray, steps: int) -> FloatArray:
+    """RK4 states (steps + 1, 4, m) for each initial heading (shorter if it meets NaN);
+    compiled (`_fly_compiled`) when the levels it needs fit in memory, else NumPy."""
+    fast = _fly_compiled(cur, speed, t0, duration, phi0, lam0, chi0, steps)
+    if fast is not None:
+        return fast
+    return _fly_numpy(cur, speed, t0, duration, phi0, lam0, chi0, steps)
+
+
+#: Largest number of float64 values (levels x 2 x nodes) the compiled shooting copies.
+_MAX_COMPILED_VALUES = 20_000_000
+
+
+def _fly_compiled(cur: WindowCurrents, speed: float, t0: float, duration: float, phi0: float,
+                  lam0: float, chi0: FloatArray, steps: int) -> FloatArray | None:
+    """The same RK4 as `_fly_numpy`, compiled with numba over the levels spanning the flight."""
+    win = cur.window
+    ny, nx = win.shape
+    k0, _ = cur.bracket(t0)
+    k1, w1 = cur.bracket(t0 + duration)
+    ks = list(range(k0, k1 + (2 if (w1 > 0 and not cur.steady) else 1)))
+    if cur.steady:
+        ks = [0]
+    if len(ks) * 2 * ny * nx > _MAX_COMPILED_VALUES:
+        return None
+    levels = np.stack([cur._flat(k) for k in ks])  # (L, 2, N)
+    times = np.array([cur.level_time(k) for k in ks], dtype=float)
+    L = win.lattice
+    from glideplan.routing._zermelo_kernel import fly
+
+    centre = L.lon0 + 0.5 * (win.j0 + win.j1 - 1) * L.dlon
+    out = fly(levels, times, bool(cur.steady), float(L.lat0 + win.i0 * L.dlat),
+              float(L.lon0 + win.j0 * L.dlon), math.radians(L.dlat), math.radians(L.dlon),
+              ny, nx, bool(win.periodic), float(centre), float(speed), float(t0),
+              float(duration), float(phi0), float(lam0), np.ascontiguousarray(chi0, dtype=float),
+              int(steps), EARTH_RADIUS_M)
+    n = int(out[1])
+    return np.asarray(out[0][:n])
+
+
+def _fly_numpy(cur: WindowCurrents, speed: float, t0: float, duration: float, phi0: float,
+               lam0: float, chi0: FloatArray, steps: int) -> FloatArray:
     """RK4 states (steps + 1, 4, m) for each initial heading (shorter if it meets NaN)."""
     z = np.stack([np.full(chi0.size, phi0), np.full(chi0.size, lam0), np.cos(chi0),
                   np.sin(chi0) * math.cos(phi0)])
