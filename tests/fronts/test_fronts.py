@@ -17,8 +17,8 @@ import pytest
 
 pytest.importorskip("numba")
 
-from glideplan.errors import InvalidParameterError  # noqa: E402
-from glideplan.fronts import (  # noqa: E402
+from glideplan.errors import InvalidParameterError
+from glideplan.fronts import (
     EARTH_RADIUS_M,
     DriftLevels,
     FrontProblem,
