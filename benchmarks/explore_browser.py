@@ -142,8 +142,10 @@ def main() -> None:
             break
         except OSError:
             time.sleep(0.1)
-    print(f"{'planner':<8} {'median (ms)':>11} {'p90 (ms)':>9} {'plan() (ms)':>12} "
-          f"{'budget':>7}  verdict")
+    print(
+        f"{'planner':<8} {'median (ms)':>11} {'p90 (ms)':>9} {'plan() (ms)':>12} "
+        f"{'budget':>7}  verdict"
+    )
     failed = False
     try:
         with sync_playwright() as p:
@@ -161,13 +163,17 @@ def main() -> None:
                 med, p90 = float(np.median(ms)), float(np.percentile(ms, 90))
                 ok = med <= BUDGET_MS
                 failed |= not ok
-                print(f"{name:<8} {med:>11.1f} {p90:>9.1f} {planner_ms(query, goals):>12.1f} "
-                      f"{BUDGET_MS:>7.0f}  {'PASS' if ok else 'FAIL'}")
+                print(
+                    f"{name:<8} {med:>11.1f} {p90:>9.1f} {planner_ms(query, goals):>12.1f} "
+                    f"{BUDGET_MS:>7.0f}  {'PASS' if ok else 'FAIL'}"
+                )
             browser.close()
     finally:
         srv.stop()
-    print(f"\n{args.changes} changes per planner in Chromium (one process serves and "
-          "measures; machine load affects every number)")
+    print(
+        f"\n{args.changes} changes per planner in Chromium (one process serves and "
+        "measures; machine load affects every number)"
+    )
     if failed:
         sys.exit(1)
 

@@ -195,3 +195,95 @@ def test_cli_serves_the_page_locally(tmp_path):
 
 def test_cli_refuses_a_bad_port(cli_error):
     assert cli_error("explore", "--port", "0") == "glideplan: error: --port=0: must be in 1..65535"
+
+
+def test_labels_carry_units_and_angles_are_degrees(catalog):
+    """Every input's label names its unit (m/s, m, rad/s, deg, kg, ...) or is a pure number;
+    bank max is entered in degrees (the Sailplane default, 45 deg = pi/4 rad inside)."""
+    units = ("(m/s)", "(m)", "(rad/s)", "(deg", "(kg)", "(nondim.)", "(g)", "(ratio", "(L)",
+             "(%)", "(m²)", "(relative)", "(true/false)", "(s/m)")
+    counts = ("n intervals", "max starts", "max refinements", "max iterations", "scheme",
+              "formulation", "seeds", "synthesis starts", "polar name")
+    for entry in catalog.entries:
+        for p in entry.parameters:
+            label = p.caption(entry.nondimensional)
+            assert "_" not in label and "((" not in label, label
+            assert any(u in label for u in units) or label in counts, (entry.key, label)
+    glide = catalog.get("final-glide")
+    bank = glide.parameter("bank_max")
+    assert bank is not None and bank.caption() == "bank max (deg)" and bank.default == "45"
+    assert bank.parse("30") == {"bank_max": pytest.approx(math.pi / 6, rel=1e-15)}
+    dubins = catalog.get("dubins")
+    assert [p.caption() for p in dubins.parameters][:2] == ["speed (m/s)", "radius (m)"]
+    assert "`" not in dubins.help
+
+
+def test_cost_header_keeps_its_unit_after_an_error(catalog):
+    """The strip's cost header comes from the planner: 'cost (length, m)' with or without an
+    answer, 'cost (altitude, nondim.)' for the nondimensional glider; never doubled '(('."""
+    from glideplan.explore.texts import strip_html
+
+    good = solve_view(catalog, state_from_query(catalog, "planner=dubins&goal=4,3,90"))
+    bad = solve_view(catalog, state_from_query(catalog, "planner=dubins&radius=-1"))
+    for view in (good, bad):
+        html = strip_html(view)
+        assert "cost (length, m)" in html and "((" not in html and "nondim" not in html
+    lf = state_from_query(catalog, "planner=load-factor&v_min=-1")
+    assert "cost (altitude, nondim.)" in strip_html(solve_view(catalog, lf))
+    assert "gp-stale" in strip_html(good, stale=True)
+
+
+def test_downloads_after_an_error_carry_the_message(catalog, cli_error):
+    """JSON and CSV written for a bad input hold the CLI's one-line message (read back by
+    `json` and `csv`); the PNG is a readable image."""
+    import csv
+    import io
+    import json
+
+    from glideplan.explore.downloads import path_csv, solution_json, solution_png
+
+    view = solve_view(catalog, state_from_query(catalog, "planner=dubins&radius=-1&goal=4,3,90"))
+    line = cli_error("plan", "dubins", "--goal", "4", "3", "90", "--radius", "-1")
+    message = line.removeprefix("glideplan: error: ")
+    data = json.loads(solution_json(None, view.errors))
+    assert data["status"] == "no_path" and data["message"] == message
+    assert data["errors"] == {"radius": message}
+    rows = list(csv.DictReader(io.StringIO(path_csv(None, view.errors))))
+    assert rows == [{"error": message}]
+    from matplotlib.image import imread
+
+    assert imread(io.BytesIO(solution_png(None, view.errors))).shape[0] > 100
+
+
+def test_link_view_is_parsed():
+    from glideplan.explore.app import _parse_view
+
+    assert _parse_view("-1,-2,6,5") == (-1.0, -2.0, 6.0, 5.0)
+    for bad in ("", "1,2,3", "1,2,0,5", "a,b,c,d", "0,0,nan,1", "0,0,1,inf"):
+        assert _parse_view(bad) is None, bad
+
+
+def test_isochrones_of_still_water_are_circles():
+    """In still water the arrival time is T = d / V (d great-circle-free local distance), so
+    the isochrone of level L is the circle of radius V L about the start (closed form); its
+    points lie within one grid spacing of it."""
+    from types import SimpleNamespace
+
+    from glideplan.explore.route_page import isochrones
+
+    lat0, lon0, speed = 30.0, -40.0, 1.0
+    lat = np.linspace(29.5, 30.5, 121)
+    lon = np.linspace(-40.6, -39.4, 141)
+    r_earth = 6_371_000.0
+    y = np.radians(lat - lat0)[:, None] * r_earth
+    x = np.radians(lon - lon0)[None, :] * r_earth * math.cos(math.radians(lat0))
+    arrival = np.hypot(x, y) / speed
+    arrival[:5, :5] = np.inf  # never reached: no contour drawn along that edge
+    lines, step = isochrones(SimpleNamespace(lat=lat, lon=lon, arrival=arrival), 12 * 3600.0)
+    assert step in (1.0, 2.0) and lines["xs"]
+    spacing = np.radians(lat[1] - lat[0]) * r_earth
+    for xs, ys, label in zip(lines["xs"], lines["ys"], lines["label"], strict=True):
+        level_h = float(label.removesuffix(" h"))
+        px = np.radians(np.asarray(xs) - lon0) * r_earth * math.cos(math.radians(lat0))
+        py = np.radians(np.asarray(ys) - lat0) * r_earth
+        assert np.abs(np.hypot(px, py) - speed * level_h * 3600.0).max() < spacing

@@ -11,13 +11,29 @@ from glideplan.cli.app import glide_app
 from glideplan.errors import PlanningError
 
 PolarOpt = Annotated[
-    pathlib.Path,
-    typer.Option("--polar", metavar="FILE", help="Polar file (.plr).", show_default=False),
+    pathlib.Path | None,
+    typer.Option("--polar", metavar="FILE",
+                 help="Polar file (.plr); required unless --example.", show_default=False),
 ]
 FromOpt = Annotated[
-    tuple[float, float, float],
+    tuple[float, float, float] | None,
     typer.Option("--from", metavar="LAT LON ALT_M",
-                 help="Glider now: LAT LON (WGS84 degrees) and altitude ALT_M (m MSL).",
+                 help="Glider now: LAT LON (WGS84 degrees) and altitude ALT_M (m MSL); "
+                      "required unless --example.",
+                 show_default=False),
+]
+ExampleOpt = Annotated[
+    str | None,
+    typer.Option("--example", metavar="NAME",
+                 help="A built-in scenario instead of files: ridge (synthetic SRTM3 tile, "
+                      "fields, start, polar, wind); explicit options override its values.",
+                 show_default=False),
+]
+WriteExampleOpt = Annotated[
+    pathlib.Path | None,
+    typer.Option("--write-example", metavar="DIR",
+                 help="With --example: write its terrain (.hgt), fields (.cup) and polar "
+                      "into DIR, print the equivalent command line, and stop.",
                  show_default=False),
 ]
 TerrainOpt = Annotated[
@@ -32,9 +48,13 @@ WindOpt = Annotated[
                  help="Wind SPEED_MS FROM_DEG (compass, where it blows from).",
                  show_default=False),
 ]
-McOpt = Annotated[float, typer.Option("--mc", help="MacCready setting (m/s); 0: best glide.")]
-SafetyOpt = Annotated[float, typer.Option(
-    "--safety-height", help="Height kept above the terrain all along and above the field (m).")]
+McOpt = Annotated[float | None, typer.Option(
+    "--mc", help="MacCready setting (m/s); 0: best glide. Default 0 (the example's with "
+    "--example).", show_default=False)]
+SafetyOpt = Annotated[float | None, typer.Option(
+    "--safety-height",
+    help="Height kept above the terrain all along and above the field (m). Default 300 "
+         "(the example's with --example).", show_default=False)]
 RatioOpt = Annotated[float | None, typer.Option(
     "--safety-glide-ratio", help="Cap the still-air glide ratio at R (min(polar L/D, R)).",
     show_default=False)]
@@ -45,7 +65,8 @@ BugsOpt = Annotated[float, typer.Option(
     "--bugs", help="Bugs: percent less glide ratio at every speed (0-50).")]
 ResolutionOpt = Annotated[float | None, typer.Option(
     "--resolution", metavar="M",
-    help="Front grid spacing (m); default chosen for speed (terrain max-pooled per cell).",
+    help="Front grid spacing (m); default chosen for speed (terrain max-pooled per cell; "
+         "the example's: 700).",
     show_default=False)]
 VoidsOpt = Annotated[str | None, typer.Option(
     "--fill-voids", metavar="nearest|linear",
@@ -61,7 +82,10 @@ _FLAGS = {
     "resolution": "--resolution", "wind": "--wind", "wind east": "--wind",
     "wind north": "--wind", "wind speed": "--wind SPEED_MS", "wind direction": "--wind FROM_DEG",
     "course": "--course", "home": "--home", "voids": "--fill-voids", "terrain": "--terrain",
+    "example": "--example", "directory": "--write-example",
 }
+DEFAULT_MC = 0.0
+DEFAULT_SAFETY_M = 300.0
 
 
 def _wind(wind: tuple[float, float] | None) -> tuple[float, float]:
@@ -108,23 +132,104 @@ def _polar(file: pathlib.Path, mass: float | None, ballast: float, bugs: float) 
     return read_polar(file, mass, ballast, bugs, "--polar")
 
 
+def _example(name: str | None, write_to: pathlib.Path | None) -> Any:
+    """The `--example` scenario (None without one); --write-example needs --example."""
+    if name is None:
+        if write_to is not None:
+            from glideplan.cli.common import usage_error
+
+            usage_error("--write-example DIR needs --example NAME (ridge)")
+        return None
+    from glideplan.cli.common import flag_names
+    from glideplan.reach.examples import example
+
+    with flag_names(**_FLAGS):
+        return example(name)
+
+
+def _or(value: Any, ex: Any, attr: str, default: Any) -> Any:
+    """An explicit option wins; else the example's value; else the default."""
+    if value is not None:
+        return value
+    return getattr(ex, attr) if ex is not None else default
+
+
+def _required(value: Any, flag: str, ex: Any) -> None:
+    if value is None and ex is None:
+        from glideplan.cli.common import usage_error
+
+        usage_error(f"{flag} is required (or give --example ridge)")
+
+
+def _write_example(ex: Any, directory: pathlib.Path, command: str, args: list[str],
+                   json_out: bool) -> None:
+    """Write the example's files into `directory`; print the equivalent command line (the
+    example's files and values, with `args`: the options given explicitly)."""
+    import shlex
+
+    from glideplan.cli.common import announce, flag_names, print_json
+    from glideplan.reach.examples import write_example
+
+    with flag_names(**_FLAGS):
+        files = write_example(ex, directory)
+    line = shlex.join(["glideplan", "glide", command, *args])
+    if json_out:
+        print_json({"example": ex.name, "files": [str(f) for f in files], "command": line})
+        return
+    for f in files:
+        announce(f"wrote {f}", json_out)
+    typer.echo("the same case from these files:")
+    typer.echo(line)
+
+
+def _flag_args(polar: pathlib.Path, start: tuple[float, float, float],
+               terrain: list[pathlib.Path], wind: tuple[float, float] | None, mc: float,
+               safety: float, ratio: float | None, mass: float | None, ballast: float,
+               bugs: float, resolution: float | None, voids: str | None) -> list[str]:
+    """The shared options as command-line words."""
+    out = ["--polar", str(polar), "--from", *(repr(float(v)) for v in start)]
+    for f in terrain:
+        out += ["--terrain", str(f)]
+    if wind is not None:
+        out += ["--wind", repr(float(wind[0])), repr(float(wind[1]))]
+    out += ["--mc", repr(float(mc)), "--safety-height", repr(float(safety))]
+    for flag, value in (("--safety-glide-ratio", ratio), ("--mass", mass),
+                        ("--resolution", resolution)):
+        if value is not None:
+            out += [flag, repr(float(value))]
+    if ballast:
+        out += ["--ballast", repr(float(ballast))]
+    if bugs:
+        out += ["--bugs", repr(float(bugs))]
+    if voids is not None:
+        out += ["--fill-voids", voids]
+    return out
+
+
+def _example_files(ex: Any, directory: pathlib.Path) -> tuple[pathlib.Path, ...]:
+    """Where `write_example` puts the tile, the fields and the polar."""
+    return (directory / ex.tile_name, directory / "fields.cup", directory / ex.polar_file.name)
+
+
 @glide_app.command("reach")
 def glide_reach_cmd(
-    polar_file: PolarOpt,
-    start: FromOpt,
+    polar_file: PolarOpt = None,
+    start: FromOpt = None,
     terrain: TerrainOpt = None,
     landables: Annotated[pathlib.Path | None, typer.Option(
         "--landables", metavar="FILE.cup",
         help="Landables: SeeYou .cup (styles 2-5 are landable).", show_default=False)] = None,
     wind: WindOpt = None,
-    mc: McOpt = 0.0,
-    safety_height: SafetyOpt = 300.0,
+    mc: McOpt = None,
+    safety_height: SafetyOpt = None,
     safety_glide_ratio: RatioOpt = None,
     mass: MassOpt = None,
     ballast: BallastOpt = 0.0,
     bugs: BugsOpt = 0.0,
     resolution: ResolutionOpt = None,
     fill_voids: VoidsOpt = None,
+    example_name: ExampleOpt = None,
+    write_example_dir: WriteExampleOpt = None,
     json_out: JsonOpt = False,
     geojson: Annotated[pathlib.Path | None, typer.Option(
         "--geojson", metavar="FILE", help="Write the footprint and landables as GeoJSON.",
@@ -134,7 +239,10 @@ def glide_reach_cmd(
         show_default=False)] = None,
     plot: PlotOpt = None,
 ) -> None:
-    """Where can I still glide to? Footprint over terrain in wind, each landable verified."""
+    """Where can I still glide to? Footprint over terrain in wind, each landable verified.
+
+    Try it without files: glideplan glide reach --example ridge
+    """
     from glideplan.cli.common import (
         announce,
         check_figure_file,
@@ -147,12 +255,30 @@ def glide_reach_cmd(
     )
     from glideplan.reach import glide_reach
 
+    ex = _example(example_name, write_example_dir)
+    _required(polar_file, "--polar FILE", ex)
+    _required(start, "--from LAT LON ALT_M", ex)
+    if ex is None and not terrain:
+        _terrain(terrain, fill_voids, required=True)  # the usage error
     plot = check_figure_file(plot)
     check_output_file(geojson, "--geojson")
     check_output_file(kml, "--kml")
-    p = _polar(polar_file, mass, ballast, bugs)
-    t = _terrain(terrain, fill_voids, required=True)
-    lands: Any = ()
+    mc_v = float(_or(mc, ex, "mc", DEFAULT_MC))
+    safety_v = float(_or(safety_height, ex, "safety_height", DEFAULT_SAFETY_M))
+    resolution_v = _or(resolution, ex, "resolution_m", None)
+    start_v = _or(start, ex, "start", None)
+    wind_in = wind if wind is not None or ex is None else (ex.wind_speed_ms, ex.wind_from_deg)
+    if write_example_dir is not None:
+        tile, cup, plr = _example_files(ex, write_example_dir)
+        args = _flag_args(polar_file or plr, start_v, list(terrain or [tile]), wind_in, mc_v,
+                          safety_v, safety_glide_ratio, mass, ballast, bugs, resolution_v,
+                          fill_voids)
+        args += ["--landables", str(landables or cup)]
+        _write_example(ex, write_example_dir, "reach", args, json_out)
+        return
+    p = _polar(polar_file or ex.polar_file, mass, ballast, bugs)
+    t = _terrain(terrain, fill_voids, required=True) if terrain else ex.terrain
+    lands: Any = () if ex is None else ex.landables
     if landables is not None:
         check_input_file(landables, "--landables")
         from glideplan.reach.landables import read_cup_landables
@@ -162,11 +288,13 @@ def glide_reach_cmd(
         if skipped:
             print_warnings([f"--landables: {skipped} waypoint(s) are not landable (SeeYou "
                             "style not 2-5) and were skipped"])
-    w = _wind(wind)
+    w = _wind(wind_in)
+    if ex is not None:
+        announce(f"example {ex.name}: {ex.description}", json_out)
     with flag_names(**_FLAGS):
-        result = glide_reach(t, (start[0], start[1], start[2]), p, landables=lands, mc=mc, wind=w,
-                             safety_height=safety_height,
-                             safety_glide_ratio=safety_glide_ratio, resolution_m=resolution)
+        result = glide_reach(t, (start_v[0], start_v[1], start_v[2]), p, landables=lands,
+                             mc=mc_v, wind=w, safety_height=safety_v,
+                             safety_glide_ratio=safety_glide_ratio, resolution_m=resolution_v)
     if json_out:
         print_json(result.to_dict())
     else:
@@ -195,28 +323,33 @@ def glide_reach_cmd(
 
 @glide_app.command("turnback")
 def glide_turnback_cmd(
-    polar_file: PolarOpt,
-    start: FromOpt,
-    course: Annotated[float, typer.Option(
-        "--course", metavar="DEG", help="Outbound course (compass degrees).",
-        show_default=False)],
-    home: Annotated[tuple[float, float, float], typer.Option(
-        "--home", metavar="LAT LON ELEV_M", help="Home field: LAT LON and elevation (m).",
-        show_default=False)],
+    polar_file: PolarOpt = None,
+    start: FromOpt = None,
+    course: Annotated[float | None, typer.Option(
+        "--course", metavar="DEG", help="Outbound course (compass degrees); required unless "
+        "--example.", show_default=False)] = None,
+    home: Annotated[tuple[float, float, float] | None, typer.Option(
+        "--home", metavar="LAT LON ELEV_M", help="Home field: LAT LON and elevation (m); "
+        "required unless --example.", show_default=False)] = None,
     terrain: TerrainOpt = None,
     wind: WindOpt = None,
-    mc: McOpt = 0.0,
-    safety_height: SafetyOpt = 300.0,
+    mc: McOpt = None,
+    safety_height: SafetyOpt = None,
     safety_glide_ratio: RatioOpt = None,
     mass: MassOpt = None,
     ballast: BallastOpt = 0.0,
     bugs: BugsOpt = 0.0,
     resolution: ResolutionOpt = None,
     fill_voids: VoidsOpt = None,
+    example_name: ExampleOpt = None,
+    write_example_dir: WriteExampleOpt = None,
     json_out: JsonOpt = False,
     plot: PlotOpt = None,
 ) -> None:
-    """When must I turn back? Distance out along --course from which home is still reachable."""
+    """When must I turn back? Distance out along --course from which home is still reachable.
+
+    Try it without files: glideplan glide turnback --example ridge
+    """
     from glideplan.cli.common import (
         announce,
         check_figure_file,
@@ -226,14 +359,42 @@ def glide_turnback_cmd(
     )
     from glideplan.reach import turnback
 
+    ex = _example(example_name, write_example_dir)
+    _required(polar_file, "--polar FILE", ex)
+    _required(start, "--from LAT LON ALT_M", ex)
+    _required(course, "--course DEG", ex)
+    _required(home, "--home LAT LON ELEV_M", ex)
     plot = check_figure_file(plot)
-    p = _polar(polar_file, mass, ballast, bugs)
-    t = _terrain(terrain, fill_voids, required=False)
-    w = _wind(wind)
+    mc_v = float(_or(mc, ex, "mc", DEFAULT_MC))
+    safety_v = float(_or(safety_height, ex, "safety_height", DEFAULT_SAFETY_M))
+    resolution_v = _or(resolution, ex, "resolution_m", None)
+    start_v = _or(start, ex, "start", None)
+    course_v = float(_or(course, ex, "course_deg", None))
+    home_v = home if home is not None else (ex.home.lat, ex.home.lon, ex.home.elevation_m)
+    wind_in = wind if wind is not None or ex is None else (ex.wind_speed_ms, ex.wind_from_deg)
+    if write_example_dir is not None:
+        tile, _, plr = _example_files(ex, write_example_dir)
+        args = _flag_args(polar_file or plr, start_v, list(terrain or [tile]), wind_in, mc_v,
+                          safety_v, safety_glide_ratio, mass, ballast, bugs, resolution_v,
+                          fill_voids)
+        args += ["--course", repr(course_v), "--home", *(repr(float(v)) for v in home_v)]
+        _write_example(ex, write_example_dir, "turnback", args, json_out)
+        return
+    p = _polar(polar_file or ex.polar_file, mass, ballast, bugs)
+    if terrain:
+        t = _terrain(terrain, fill_voids, required=False)
+    else:
+        t = None if ex is None else ex.terrain
+    w = _wind(wind_in)
+    if ex is not None:
+        announce(f"example {ex.name}: {ex.description}; home {ex.home.name}, course "
+                 f"{course_v:g} deg", json_out)
     with flag_names(**_FLAGS):
-        result = turnback((start[0], start[1], start[2]), course, (home[0], home[1], home[2]),
-                          p, terrain=t, mc=mc, wind=w, safety_height=safety_height,
-                          safety_glide_ratio=safety_glide_ratio, resolution_m=resolution)
+        result = turnback((start_v[0], start_v[1], start_v[2]), course_v,
+                          ex.home if home is None else (home_v[0], home_v[1], home_v[2]), p,
+                          terrain=t, mc=mc_v, wind=w,
+                          safety_height=safety_v, safety_glide_ratio=safety_glide_ratio,
+                          resolution_m=resolution_v)
     if json_out:
         print_json(result.to_dict())
     else:

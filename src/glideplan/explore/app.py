@@ -226,7 +226,7 @@ class Explorer:
 
     def _pose_label(self, name: str) -> str:
         unit = self.entry.length_unit
-        return f"{name}: x ({unit}), y ({unit}), heading (deg CCW from +x)"
+        return f"{name}: x, y ({unit}), heading (deg CCW from +x)"
 
     def _set_planner_inputs(self) -> None:
         entry = self.entry
@@ -309,7 +309,8 @@ class Explorer:
         self.state = state
         if self._dragging is None:  # the browser is moving the point itself
             self._draw_poses()
-        self._push_url()
+        if self.sync or self.entry.slow or self._doc is None:
+            self._push_url()  # else with the candidates, after the answer
         self.solve()
 
     def set_goal(self, x: float, y: float, heading_deg: float | None = None) -> None:
@@ -355,8 +356,13 @@ class Explorer:
         entry = self.catalog.get(key)
         self._planner_note = ""
         old = self.state
-        self.state = replace(initial_state(entry), start=old.start, goal=old.goal,
-                             candidates=old.candidates, partition=old.partition)
+        self.state = replace(
+            initial_state(entry),
+            start=old.start,
+            goal=old.goal,
+            candidates=old.candidates,
+            partition=old.partition,
+        )
         self._set_inputs_from_state()
         self._set_planner_inputs()
         self._reset_ranges()
@@ -520,11 +526,14 @@ class Explorer:
         answer goes out with the input's echo in one message), on the worker thread for
         the direct methods (seconds; the old answer is shown as stale meanwhile)."""
         if self.sync or not self.entry.slow:
-            view, part = self._compute(self.state, candidates=self.sync)
+            view, part = self._compute(self.state, candidates=self.sync or self._doc is None)
             self._apply(view, part)
+            if self._doc is not None and not view.candidates_pending:
+                self._push_url()
             if view.candidates_pending and self._doc is not None:
                 # the answer goes out now; its candidates in the next message
-                self._doc.add_next_tick_callback(lambda: self._held(self._add_candidates))
+                # (30 ms later: the browser paints the answer before it parses the rest)
+                self._doc.add_timeout_callback(lambda: self._held(self._add_candidates), 30)
             return
         with self._lock:
             self._pending = self.state
@@ -566,6 +575,7 @@ class Explorer:
         view = self.view
         if view is None or not view.candidates_pending or view.state != self.state:
             return
+        self._push_url()
         self.view = view = with_candidates(view)
         self.figs.show_candidates(view, self.state.candidates)
         self.table.object = table_html(view.candidates or empty_candidates())
@@ -602,8 +612,10 @@ class Explorer:
         if self.view is not None:
             self.strip.object = strip_html(self.view, stale=busy)
         elif busy:
-            self.strip.object = '<div class="gp-strip gp-stale"><span class="gp-busy">' \
+            self.strip.object = (
+                '<div class="gp-strip gp-stale"><span class="gp-busy">'
                 "computing&hellip;</span></div>"
+            )
         if self.entry.slow and hasattr(self, "plot_pane"):
             self.plot_pane.loading = busy
 

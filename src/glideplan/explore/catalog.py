@@ -387,14 +387,14 @@ def _vehicle_parameters(cls: type, obj: Any, prefix: str = "") -> list[Parameter
         kind = _kind(value, getattr(base, "__name__", base)) or "float"
         if obj is None and f.default is not dataclasses.MISSING:
             value = f.default
-        units: tuple[str, ...] = ()
+        entered: tuple[str, ...] = ()
         if f.name in _DEGREE_FIELDS and isinstance(value, (int, float)):
-            value, units = round(math.degrees(value), 9), ("deg",)
+            value, entered = round(math.degrees(value), 9), ("deg",)
         default = "" if value is None else _fmt(value)
         out.append(
             (
                 order[f.name],
-                Parameter(opt_name(f.name), (path,), default, kind, "vehicle", units, optional),
+                Parameter(opt_name(f.name), (path,), default, kind, "vehicle", entered, optional),
             )
         )
     out.sort(key=lambda item: item[0])

@@ -8,15 +8,8 @@ from typing import Any, cast
 
 import numpy as np
 from bokeh.layouts import column
-from bokeh.models import (
-    ColumnDataSource,
-    CustomJS,
-    HoverTool,
-    Legend,
-    LegendItem,
-    PointDrawTool,
-    Range1d,
-)
+from bokeh.models import ColumnDataSource, CustomJS, HoverTool, PointDrawTool, Range1d
+from bokeh.models.annotations import Legend, LegendItem
 from bokeh.models.annotations.arrows import Arrow, VeeHead
 from bokeh.models.widgets import Div
 from bokeh.plotting import figure
@@ -226,18 +219,21 @@ class PlanFigures:
 
         swatches = [
             fig.scatter(
-                x=[],
-                y=[],
+                x=[math.nan],  # one point, never drawn: the legend draws its square
+                y=[math.nan],
                 marker="square",
                 size=12,
-                fill_color="#%02x%02x%02x" % _WORD_COLOURS[w],
+                fill_color="#{:02x}{:02x}{:02x}".format(*_WORD_COLOURS[w]),
                 fill_alpha=0.6,
                 line_color=None,
             )
             for w in PARTITION_WORDS
         ]
         self.part_legend = Legend(
-            items=[LegendItem(label=w, renderers=[r]) for w, r in zip(PARTITION_WORDS, swatches)],
+            items=[
+                LegendItem(label=w, renderers=[cast(Any, r)])
+                for w, r in zip(PARTITION_WORDS, swatches, strict=True)
+            ],
             location="bottom_right",
             orientation="horizontal",
             title="optimal word (partition map)",
@@ -246,7 +242,6 @@ class PlanFigures:
             background_fill_alpha=0.8,
             visible=False,
             spacing=4,
-            padding=4,
         )
         fig.add_layout(self.part_legend)
         self.fig = fig
@@ -270,9 +265,7 @@ class PlanFigures:
             sizing_mode="stretch_width",
         )
 
-    def _profile_figure(
-        self, key: str, label: str, color: str, x_range: Any | None = None
-    ) -> Any:
+    def _profile_figure(self, key: str, label: str, color: str, x_range: Any | None = None) -> Any:
         """A small plot of the profile column `key` against time (shared time axis)."""
         extra = {} if x_range is None else {"x_range": x_range}
         fig = figure(
@@ -381,7 +374,10 @@ class PlanFigures:
         else:
             x1, y1 = x0, y0
         direction = math.degrees(math.atan2(wy, wx)) if w > 0 else 0.0
-        self.wind_src.data = {"x_start": [x0], "y_start": [y0], "x_end": [x1], "y_end": [y1]}
+        arrow = {"x_start": [x0], "y_start": [y0], "x_end": [x1], "y_end": [y1]}
+        if dict(self.wind_src.data) == arrow:
+            return  # the same wind in the same view
+        self.wind_src.data = arrow
         self.wind_label.data = {
             "x": [x0],
             "y": [y0 + 0.03 * span],

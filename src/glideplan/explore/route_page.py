@@ -53,7 +53,7 @@ class RouteState:
     goal: str
     speed: str
     depart: str = ""
-    hours: float = 0.0  # the slider: current arrows at depart + hours
+    resolution: str = ""  # grid spacing (m) as `route --resolution`; empty: automatic
 
     def query(self) -> str:
         items = [("planner", "route")]
@@ -62,6 +62,8 @@ class RouteState:
         items += [("from", self.start), ("to", self.goal), ("speed", self.speed)]
         if self.depart:
             items.append(("depart", self.depart))
+        if self.resolution:
+            items.append(("resolution", self.resolution))
         return urlencode(items, safe=",:", quote_via=quote)
 
 
@@ -133,13 +135,25 @@ def route_view(flow: Any, state: RouteState) -> RouteView:
         when = parse_depart(state.depart or None)
     except InvalidParameterError as err:
         errors["depart"] = one_line(err)
+    resolution = None
+    if state.resolution.strip():
+        try:
+            resolution = float(state.resolution)
+            if not (math.isfinite(resolution) and resolution > 0):
+                raise ValueError
+        except ValueError:
+            errors["resolution"] = one_line(
+                InvalidParameterError(
+                    "--resolution", state.resolution, "must be finite and > 0 (m)"
+                )
+            )
     if errors:
         return RouteView(state, None, errors)
     try:
-        result = route(flow, pts["from"], pts["to"], speed, depart=when)
+        result = route(flow, pts["from"], pts["to"], speed, depart=when, resolution=resolution)
     except InvalidParameterError as err:
         name = {"start": "from", "goal": "to"}.get(err.name.lstrip("-"), err.name.lstrip("-"))
-        key = name if name in ("from", "to", "speed", "depart") else ""
+        key = name if name in ("from", "to", "speed", "depart", "resolution") else ""
         return RouteView(state, None, {key: one_line(err)})
     return RouteView(state, result, {})
 
@@ -166,8 +180,9 @@ def isochrones(front: Any, until_s: float) -> tuple[dict[str, list[Any]], float]
     level = step_h
     while level < until_s / 3600.0:
         for line in gen.lines(level):
-            out["xs"].append(line[:, 0])
-            out["ys"].append(line[:, 1])
+            xy = np.asarray(line, dtype=float)
+            out["xs"].append(xy[:, 0])
+            out["ys"].append(xy[:, 1])
             out["label"].append(f"{level:g} h")
         level += step_h
     return out, step_h
@@ -206,6 +221,7 @@ class RoutePage:
             goal=query.get("to", default_to),
             speed=query.get("speed", "0.5"),
             depart=query.get("depart", ""),
+            resolution=query.get("resolution", ""),
         )
         self._build()
         if self._doc is not None:
@@ -261,6 +277,7 @@ class RoutePage:
             "to": ("goal", "to: lat (deg), lon (deg)"),
             "speed": ("speed", "speed through the water (m/s)"),
             "depart": ("depart", "depart (ISO 8601 UTC; empty: the field's first time)"),
+            "resolution": ("resolution", "grid spacing (m; empty: ~200 cells across)"),
         }
         for name, (attr, label) in labels.items():
             w = _TextInput(
@@ -284,12 +301,20 @@ class RoutePage:
         self.slider.param.watch(self._on_slider, "value")
         self.downloads = pn.Row(
             pn.widgets.FileDownload(
-                callback=self._json_file, filename="glideplan-route.json", label="JSON",
-                color="primary", width=92, embed=False,
+                callback=self._json_file,
+                filename="glideplan-route.json",
+                label="JSON",
+                color="primary",
+                width=92,
+                embed=False,
             ),
             pn.widgets.FileDownload(
-                callback=self._csv_file, filename="glideplan-route.csv", label="CSV",
-                color="primary", width=92, embed=False,
+                callback=self._csv_file,
+                filename="glideplan-route.csv",
+                label="CSV",
+                color="primary",
+                width=92,
+                embed=False,
             ),
             margin=(5, 0),
         )
@@ -298,8 +323,11 @@ class RoutePage:
         sidebar = pn.Column(
             self.mode_select,
             self.field_help,
-            *[x for n in ("from", "to", "speed", "depart")
-              for x in (self.inputs[n], self.error_panes[n])],
+            *[
+                x
+                for n in ("from", "to", "speed", "depart", "resolution")
+                for x in (self.inputs[n], self.error_panes[n])
+            ],
             self.slider,
             self.general_error,
             html_pane(
@@ -323,8 +351,7 @@ class RoutePage:
             margin=(5, 5, 10, 5),
         )
         page = pn.FlexBox(sidebar, main, flex_wrap="wrap", stylesheets=[LAYOUT_CSS])
-        self.layout = pn.Column(header, page, sizing_mode="stretch_width",
-                                stylesheets=[ROOT_CSS])
+        self.layout = pn.Column(header, page, sizing_mode="stretch_width", stylesheets=[ROOT_CSS])
 
     def _figure(self) -> None:
         ext = self.flow.extent
@@ -348,25 +375,79 @@ class RoutePage:
         self.land_src = ColumnDataSource({"image": [], "x": [], "y": [], "dw": [], "dh": []})
         fig.image_rgba("image", x="x", y="y", dw="dw", dh="dh", source=self.land_src)
         self.arrow_src = ColumnDataSource({"x0": [], "y0": [], "x1": [], "y1": [], "angle": []})
-        fig.segment("x0", "y0", "x1", "y1", source=self.arrow_src, line_color=WIND,
-                    line_alpha=0.6, line_width=1.5, legend_label="current")
-        fig.scatter("x1", "y1", source=self.arrow_src, marker="triangle", size=6,
-                    angle="angle", fill_color=WIND, line_color=WIND, fill_alpha=0.6,
-                    line_alpha=0.6)
+        fig.segment(
+            "x0",
+            "y0",
+            "x1",
+            "y1",
+            source=self.arrow_src,
+            line_color=WIND,
+            line_alpha=0.6,
+            line_width=1.5,
+            legend_label="current",
+        )
+        fig.scatter(
+            "x1",
+            "y1",
+            source=self.arrow_src,
+            marker="triangle",
+            size=6,
+            angle="angle",
+            fill_color=WIND,
+            line_color=WIND,
+            fill_alpha=0.6,
+            line_alpha=0.6,
+        )
         self.iso_src = ColumnDataSource({"xs": [], "ys": [], "label": []})
-        fig.multi_line("xs", "ys", source=self.iso_src, line_color="#8e44ad", line_alpha=0.55,
-                       line_width=1.3, line_dash="dashed", legend_label="isochrones")
+        fig.multi_line(
+            "xs",
+            "ys",
+            source=self.iso_src,
+            line_color="#8e44ad",
+            line_alpha=0.55,
+            line_width=1.3,
+            line_dash="dashed",
+            legend_label="isochrones",
+        )
         self.iso_label_src = ColumnDataSource({"x": [], "y": [], "text": []})
-        fig.text("x", "y", "text", source=self.iso_label_src, text_font_size="10px",
-                 text_color="#6c3483", text_baseline="middle")
+        fig.text(
+            "x",
+            "y",
+            "text",
+            source=self.iso_label_src,
+            text_font_size="10px",
+            text_color="#6c3483",
+            text_baseline="middle",
+        )
         self.route_src = ColumnDataSource({"x": [], "y": []})
-        fig.line("x", "y", source=self.route_src, line_color="#1f5fa8", line_width=3.5,
-                 legend_label="route")
+        fig.line(
+            "x",
+            "y",
+            source=self.route_src,
+            line_color="#1f5fa8",
+            line_width=3.5,
+            legend_label="route",
+        )
         self.points_src = ColumnDataSource({"x": [], "y": [], "name": [], "c": []})
-        pts = fig.scatter("x", "y", source=self.points_src, size=15, fill_color="c",
-                          line_color="white", line_width=2)
-        fig.text("x", "y", "name", source=self.points_src, x_offset=10, y_offset=-8,
-                 text_font_size="12px", text_color="c")
+        pts = fig.scatter(
+            "x",
+            "y",
+            source=self.points_src,
+            size=15,
+            fill_color="c",
+            line_color="white",
+            line_width=2,
+        )
+        fig.text(
+            "x",
+            "y",
+            "name",
+            source=self.points_src,
+            x_offset=10,
+            y_offset=-8,
+            text_font_size="12px",
+            text_color="c",
+        )
         draw = PointDrawTool(renderers=[pts], add=False, drag=True)  # type: ignore[list-item]
         fig.add_tools(draw)
         fig.toolbar.active_drag = draw
@@ -438,7 +519,7 @@ class RoutePage:
     def _draw_arrows(self) -> None:
         """Current arrows at departure + the slider's hours (longest: 0.8 of a cell)."""
         lon, lat = self._grid(_ARROWS_X)
-        u, v = self._velocity(self._t0() + 3600.0 * self.slider.value, lat, lon)
+        u, v = self._velocity(self._t0() + 3600.0 * float(self.slider.value or 0.0), lat, lon)
         u, v = np.nan_to_num(u), np.nan_to_num(v)
         speed = np.hypot(u, v)
         top = float(speed.max()) if speed.size else 0.0
@@ -448,14 +529,19 @@ class RoutePage:
         y1 = lat + scale * v * self.k  # north metres -> degrees of latitude
         keep = speed > 0.02 * top
         self.arrow_src.data = {
-            "x0": lon[keep], "y0": lat[keep], "x1": x1[keep], "y1": y1[keep],
+            "x0": lon[keep],
+            "y0": lat[keep],
+            "x1": x1[keep],
+            "y1": y1[keep],
             "angle": np.arctan2(v, u)[keep] - 0.5 * math.pi,
         }
 
     def _draw_points(self) -> None:
         data: dict[str, list[Any]] = {"x": [], "y": [], "name": [], "c": []}
-        for name, text, colour in (("start", self.state.start, START),
-                                   ("goal", self.state.goal, GOAL)):
+        for name, text, colour in (
+            ("start", self.state.start, START),
+            ("goal", self.state.goal, GOAL),
+        ):
             try:
                 lat, lon = _latlon(text, name)
             except InvalidParameterError:
@@ -475,8 +561,9 @@ class RoutePage:
             return
         moved = {
             name: f"{float(y):.4f},{float(x):.4f}"
-            for x, y, name in zip(new.get("x", []), new.get("y", []), new.get("name", []),
-                                  strict=False)
+            for x, y, name in zip(
+                new.get("x", []), new.get("y", []), new.get("name", []), strict=False
+            )
         }
         state = self.state
         if "start" in moved:
@@ -591,8 +678,11 @@ class RoutePage:
             self.route_src.data = {"x": [], "y": []}
         front = getattr(r, "front", None)
         if r is not None and front is not None:
-            until = r.duration_s if r.duration_s else float(np.nanmax(
-                np.where(np.isfinite(front.arrival), front.arrival, np.nan)))
+            until = (
+                r.duration_s
+                if r.duration_s
+                else float(np.nanmax(np.where(np.isfinite(front.arrival), front.arrival, np.nan)))
+            )
             lines, _ = isochrones(front, until)
             self.iso_src.data = lines
             self.iso_label_src.data = {
@@ -610,8 +700,10 @@ class RoutePage:
 
     def _strip_html(self, view: RouteView | None, stale: bool = False) -> str:
         def item(k: str, v: str, cls: str = "") -> str:
-            return (f'<div class="gp-item"><span class="gp-k">{k}</span>'
-                    f'<span class="gp-v {cls}">{v}</span></div>')
+            return (
+                f'<div class="gp-item"><span class="gp-k">{k}</span>'
+                f'<span class="gp-v {cls}">{v}</span></div>'
+            )
 
         r = view.result if view is not None else None
         cost = view.cost_text if view is not None else "n/a"
@@ -626,19 +718,34 @@ class RoutePage:
         ok = r is not None and r.ok
         hours = f"{r.duration_s / 3600.0:.2f} h" if r is not None and r.duration_s else "&ndash;"
         dist = f"{r.distance_m / 1000.0:.1f} km" if r is not None and r.distance_m else "&ndash;"
-        err = (f"{r.endpoint_error_m:.2f} m" if r is not None and r.endpoint_error_m is not None
-               else "n/a")
-        straight = (f"{r.straight_line_duration_s / 3600.0:.2f} h"
-                    if r is not None and r.straight_line_duration_s else "n/a")
-        busy = ('<div class="gp-item gp-computing"><span class="gp-busy">computing&hellip;'
-                "</span></div>") if stale else ""
+        err = (
+            f"{r.endpoint_error_m:.2f} m"
+            if r is not None and r.endpoint_error_m is not None
+            else "n/a"
+        )
+        straight = (
+            f"{r.straight_line_duration_s / 3600.0:.2f} h"
+            if r is not None and r.straight_line_duration_s
+            else "n/a"
+        )
+        busy = (
+            (
+                '<div class="gp-item gp-computing"><span class="gp-busy">computing&hellip;'
+                "</span></div>"
+            )
+            if stale
+            else ""
+        )
         return (
             f'<div class="gp-strip{" gp-stale" if stale else ""}">'
             + item("duration (s)", html.escape(cost), "gp-cost")
             + item("duration", hours, "gp-word")
             + item("distance", dist, "gp-small")
-            + item("status", html.escape(status),
-                   "gp-small gp-status" + ("" if ok else " gp-status-bad"))
+            + item(
+                "status",
+                html.escape(status),
+                "gp-small gp-status" + ("" if ok else " gp-status-bad"),
+            )
             + item("endpoint error", err, "gp-small gp-endpoint")
             + item("straight line", straight, "gp-small")
             + busy
@@ -659,7 +766,8 @@ class RoutePage:
         else:
             out = r.to_dict()
             source: dict[str, Any] = (
-                {"file": None, "example": self.state.example} if self.state.example
+                {"file": None, "example": self.state.example}
+                if self.state.example
                 else {"file": [str(self.field_path)]}
             )
             out["field"] = {**source, **out.get("field", {})}

@@ -129,7 +129,8 @@ class FastHtml:
     """
 
     def __init__(self, text: str = "", **kw: Any) -> None:
-        from bokeh.models import ColumnDataSource, CustomJS, Div
+        from bokeh.models import ColumnDataSource, CustomJS
+        from bokeh.models.widgets import Div
 
         self.src = ColumnDataSource({"html": [text]})
         self.model = Div(
@@ -148,12 +149,6 @@ class FastHtml:
     def object(self) -> str:
         return self._text
 
-    def sync(self) -> None:
-        """Put the latest text into the Div itself (once the page is shown: a result that
-        arrived while the browser was still building the page never reached it)."""
-        if self.model.text != self._text:
-            self.model.text = self._text
-
     @object.setter
     def object(self, text: str) -> None:
         if text != self._text:
@@ -161,6 +156,12 @@ class FastHtml:
             if self.model.document is None:  # not shown yet: the page is built with it
                 self.model.text = text
             self.src.data = {"html": [text]}
+
+    def sync(self) -> None:
+        """Put the latest text into the Div itself (once the page is shown: a result that
+        arrived while the browser was still building the page never reached it)."""
+        if self.model.text != self._text:
+            self.model.text = self._text
 
 
 _FAST_HTML_JS = """

@@ -483,15 +483,17 @@ def backtrack(problem: RouteProblem, rg: RouteGrid, fo: FrontOutcome) -> Candida
     else:
         lat[-1], lon[-1] = problem.goal
     lat, lon = _thin(lat, lon, 1.5 * rg.spacing_m)
-    lat, lon = keep_clearance(lat, lon, rg.coast_xyz, rg.clearance_m)
+    rules = clearance_rules(rg)
+    snap = out_of_obstacles(rg)
+    lat, lon = keep_clearance(lat, lon, rules, snap=snap)
 
     def current(tt: FloatArray, la: FloatArray, lo: FloatArray) -> FloatArray:
         return rg.currents.points(float(tt[0]), la, lo)
 
     times, chi, _ok = crab_controls(current, problem.speed, problem.t0, lat, lon)
-    if rg.coast_xyz.shape[0] and rg.clearance_m > 0:
+    if _near(lat, lon, rules, 2.0 * rg.spacing_m):
         # Next to obstacles: the taut polyline (clearance kept) when it is not slower.
-        la2, lo2 = taut(lat, lon, rg.coast_xyz, rg.clearance_m)
+        la2, lo2 = taut(lat, lon, rules, snap=snap)
         t2, c2, ok2 = crab_controls(current, problem.speed, problem.t0, la2, lo2)
         wet = np.all(np.isfinite(rg.currents.points(problem.t0, la2, lo2)))
         if ok2 and wet and t2[-1] < times[-1]:
@@ -506,41 +508,113 @@ def backtrack(problem: RouteProblem, rg: RouteGrid, fo: FrontOutcome) -> Candida
                      np.interp(ta, tc, cc), False, float(times[-1] - problem.t0))
 
 
-def keep_clearance(lat: FloatArray, lon: FloatArray, coast: FloatArray, clearance: float,
-                   passes: int = 3) -> tuple[FloatArray, FloatArray]:
-    """Vertices closer than `clearance` (m) to a coast point moved straight away from it to
-    the clearance (the backtracked characteristic may cut up to about a cell into the
-    clearance band next to obstacles; the ends stay where they are)."""
-    if coast.shape[0] == 0 or clearance <= 0 or lat.size < 3:
-        return lat, lon
+def clearance_rules(rg: RouteGrid) -> list[tuple[Any, float]]:
+    """What a route must keep clear of, as (k-d tree of 3-D points, distance m): the coast
+    points by the land clearance, and the window's land and off-field nodes (the field's
+    NaN stencil and edge) by 1.5 spacings (the chords between vertices 1.5 spacings apart
+    then stay clear too)."""
     from scipy.spatial import cKDTree
 
+    from glideplan.routing.window import _coast, _xyz
+
+    rules: list[tuple[Any, float]] = []
+    if rg.clearance_m > 0 and rg.coast_xyz.shape[0]:
+        rules.append((cKDTree(rg.coast_xyz), rg.clearance_m))
+    hard = rg.land | ~rg.window.inside
+    if hard.any():
+        edge = _coast(hard)
+        LA, LO = np.meshgrid(rg.window.lat, rg.window.lon, indexing="ij")
+        rules.append((cKDTree(_xyz(LA[edge], LO[edge])), 1.5 * rg.spacing_m))
+    return rules
+
+
+def _near(lat: FloatArray, lon: FloatArray, rules: Sequence[tuple[Any, float]],
+          margin: float) -> bool:
+    """Whether a vertex lies within a rule's distance + `margin` (m) of its points."""
     from glideplan.routing.window import _xyz
 
-    tree = cKDTree(coast)
+    p = _xyz(lat, lon)
+    return any(bool(np.any(tree.query(p, distance_upper_bound=c + margin)[0] < c + margin))
+               for tree, c in rules)
+
+
+def out_of_obstacles(rg: RouteGrid) -> Callable[[FloatArray, FloatArray], tuple[
+        FloatArray, FloatArray]] | None:
+    """(lat, lon) -> the same points, those whose nearest node is land or off the field moved
+    to the nearest node that is neither (a characteristic that meets an obstacle can run
+    straight through it); None when there is no such node."""
+    from scipy.ndimage import distance_transform_edt
+
+    hard = rg.land | ~rg.window.inside
+    if not hard.any():
+        return None
+    _, (ni, nj) = distance_transform_edt(hard, return_indices=True)
+    win = rg.window
+    lat_n, lon_n = win.lat, win.lon
+
+    def snap(la: FloatArray, lo: FloatArray) -> tuple[FloatArray, FloatArray]:
+        fi, fj = win.frac_index(la, lo)
+        ny, nx = win.shape
+        i = np.clip(np.rint(fi).astype(int), 0, ny - 1)
+        j = np.rint(fj).astype(int)
+        j = np.mod(j, nx) if win.periodic else np.clip(j, 0, nx - 1)
+        bad = hard[i, j]
+        bad[0] = bad[-1] = False
+        if not bad.any():
+            return la, lo
+        la, lo = la.copy(), lo.copy()
+        ti, tj = ni[i[bad], j[bad]], nj[i[bad], j[bad]]
+        la[bad] = lat_n[ti]
+        lo[bad] = unwrap_lon(lon_n[tj], lo[bad])
+        return la, lo
+
+    return snap
+
+
+def keep_clearance(lat: FloatArray, lon: FloatArray, rules: Sequence[tuple[Any, float]],
+                   passes: int = 3, snap: Callable[[FloatArray, FloatArray], tuple[
+                       FloatArray, FloatArray]] | None = None) -> tuple[FloatArray, FloatArray]:
+    """Vertices inside an obstacle moved out (`snap`, `out_of_obstacles`), then those closer
+    than a rule's distance (m) to one of its points moved straight away from it to that
+    distance (`clearance_rules`; the backtracked characteristic may cut a cell or more into
+    the obstacles' margin next to them; the ends stay where they are)."""
+    if lat.size < 3:
+        return lat, lon
+    if snap is not None:
+        lat, lon = snap(lat, lon)
+    if not rules:
+        return lat, lon
+    from glideplan.routing.window import _xyz
+
     la, lo = lat.copy(), lon.copy()
     for _ in range(passes):
-        p = _xyz(la[1:-1], lo[1:-1])
-        d, k = tree.query(p)
-        close = d < clearance * (1 - 1e-6)
-        if not close.any():
+        moved = False
+        for tree, clearance in rules:
+            p = _xyz(la[1:-1], lo[1:-1])
+            d, k = tree.query(p)
+            close = d < clearance * (1 - 1e-6)
+            if not close.any():
+                continue
+            moved = True
+            q = tree.data[k[close]]
+            dirn = p[close] - q
+            norm = np.linalg.norm(dirn, axis=1, keepdims=True)
+            norm[norm == 0] = 1.0
+            new = q + clearance * (1 + 1e-6) * dirn / norm
+            new *= EARTH_RADIUS_M / np.linalg.norm(new, axis=1, keepdims=True)
+            nla = np.degrees(np.arcsin(np.clip(new[:, 2] / EARTH_RADIUS_M, -1, 1)))
+            nlo = np.degrees(np.arctan2(new[:, 1], new[:, 0]))
+            idx = np.flatnonzero(close) + 1
+            la[idx] = nla
+            lo[idx] = unwrap_lon(nlo, lo[idx])
+        if not moved:
             break
-        q = coast[k[close]]
-        dirn = p[close] - q
-        norm = np.linalg.norm(dirn, axis=1, keepdims=True)
-        norm[norm == 0] = 1.0
-        new = q + clearance * (1 + 1e-6) * dirn / norm
-        new *= EARTH_RADIUS_M / np.linalg.norm(new, axis=1, keepdims=True)
-        nla = np.degrees(np.arcsin(np.clip(new[:, 2] / EARTH_RADIUS_M, -1, 1)))
-        nlo = np.degrees(np.arctan2(new[:, 1], new[:, 0]))
-        idx = np.flatnonzero(close) + 1
-        la[idx] = nla
-        lo[idx] = unwrap_lon(nlo, lo[idx])
     return la, lo
 
 
-def taut(lat: FloatArray, lon: FloatArray, coast: FloatArray, clearance: float,
-         iterations: int = 200) -> tuple[FloatArray, FloatArray]:
+def taut(lat: FloatArray, lon: FloatArray, rules: Sequence[tuple[Any, float]],
+         iterations: int = 200, snap: Callable[[FloatArray, FloatArray], tuple[
+             FloatArray, FloatArray]] | None = None) -> tuple[FloatArray, FloatArray]:
     """The polyline pulled taut with the ends fixed, keeping the clearance: each pass moves
     every interior vertex half way to its neighbours' mean, then out of the clearance
     (`keep_clearance`); in still water this converges to the shortest way round (tangent,
@@ -555,7 +629,7 @@ def taut(lat: FloatArray, lon: FloatArray, coast: FloatArray, clearance: float,
         p *= EARTH_RADIUS_M / np.linalg.norm(p, axis=1, keepdims=True)
         la = np.degrees(np.arcsin(np.clip(p[:, 2] / EARTH_RADIUS_M, -1, 1)))
         lo = unwrap_lon(np.degrees(np.arctan2(p[:, 1], p[:, 0])), lo)
-        la, lo = keep_clearance(la, lo, coast, clearance, passes=1)
+        la, lo = keep_clearance(la, lo, rules, passes=1, snap=snap)
         p = _xyz(la, lo)
     la[0], lo[0], la[-1], lo[-1] = lat[0], lon[0], lat[-1], lon[-1]
     return la, lo
@@ -630,7 +704,11 @@ def verify(problem: RouteProblem, rg: RouteGrid, cand: Candidate) -> FlownRoute:
             return None
         return i, j
 
+    field_land = _field_land_cells(problem.field_)
+
     def is_land(lat: float, lon: float) -> bool:
+        if field_land is not None:
+            return field_land(lat, lon)
         ij = node(lat, lon)
         return bool(ij is not None and land[ij])
 
@@ -646,6 +724,32 @@ def verify(problem: RouteProblem, rg: RouteGrid, cand: Candidate) -> FlownRoute:
 
     return fly_headings(problem.field_, problem.speed, cand.t, cand.chi, problem.start,
                         problem.goal, hold=cand.hold, fill=fill, is_land=is_land)
+
+
+def _field_land_cells(fld: FlowField) -> Callable[[float, float], bool] | None:
+    """For a gridded field: (lat, lon) -> whether the field node nearest the point is land
+    (NaN), i.e. the point lies in a land cell; None for other fields (their NaN is land)."""
+    from glideplan.fields.field import GriddedField
+
+    if not isinstance(fld, GriddedField):
+        return None
+    nan = ~(np.isfinite(fld.u[0]) & np.isfinite(fld.v[0]))
+    lat_f, lon_f = fld.lat, fld.lon
+    periodic = bool(getattr(fld, "periodic_lon", False))
+
+    def nearest(axis: FloatArray, x: float) -> int:
+        k = int(np.clip(np.searchsorted(axis, x), 1, axis.size - 1))
+        return k if abs(axis[k] - x) < abs(x - axis[k - 1]) else k - 1
+
+    def is_land(lat: float, lon: float) -> bool:
+        lo = float(lon_f[0] + np.mod(lon - lon_f[0], 360.0))
+        if periodic and lo > lon_f[-1] + 0.5 * (lon_f[0] + 360.0 - lon_f[-1]):
+            j = 0
+        else:
+            j = nearest(lon_f, lo)
+        return bool(nan[nearest(lat_f, lat), j])
+
+    return is_land
 
 
 def flown_ok(flown: FlownRoute, tolerance: float) -> bool:

@@ -123,7 +123,8 @@ def route(
         straight = straight_line_duration(problem.field_, problem.speed, problem.t0,
                                           problem.start, problem.goal, problem.t_max)
         why = fo.unreachable_reason or "front_stopped"
-        msg = _unreachable_message(why, problem, fo.closest_m, rg.clearance_m)
+        msg = _unreachable_message(why, problem, fo.closest_m,
+                                   rg.clearance_m if rg.coast_xyz.shape[0] else 0.0)
         return RouteResult(status=Status.UNREACHABLE, message=msg, warnings=tuple(warnings),
                            straight_line_duration_s=straight, best_distance_m=fo.closest_m,
                            unreachable_reason=why, stats=stats, **common)

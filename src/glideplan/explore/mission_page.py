@@ -1,0 +1,469 @@
+"""The explorer's mission map: drag the waypoints of a route file and watch the mission's legs.
+
+A lon/lat map (equal metres per pixel at the route's middle latitude; offline) of a route file
+read on the server (`glideplan explore --route FILE`; without it the bundled Buzzard's Bay
+example), planned by `glideplan.missions.plan_mission` for a Dubins vehicle of the entered
+speed and turn radius, as `glideplan mission plan` does: the track, each leg's word, length
+and duration, and the totals (`gp-cost` is the total length in m, 10 significant digits).
+Waypoints drag; the plan follows on a worker thread (about a second). Downloads: the mission
+JSON (the CLI's `--json` object) and a GPX of the track (written by `formats.export`).
+
+URL: `?planner=mission&speed=V&radius=R[&moved=I:LAT:LON;...]` (moved waypoints).
+"""
+
+from __future__ import annotations
+
+import html
+import io
+import math
+import pathlib
+import tempfile
+import threading
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, replace
+from typing import Any
+from urllib.parse import quote, urlencode
+
+import numpy as np
+import panel as pn
+from bokeh.models import ColumnDataSource, PointDrawTool, Range1d
+from bokeh.plotting import figure
+from panel.io.document import hold
+from panel.io.state import set_curdoc
+
+from glideplan.errors import InvalidParameterError
+from glideplan.explore.figures import BLUE, GOAL, equal_scales, follow_url
+from glideplan.explore.state import one_line
+from glideplan.explore.texts import FastHtml, error_html, html_pane
+
+__all__ = ["EXAMPLE_ROUTE", "MissionPage", "MissionState", "mission_view"]
+
+EXAMPLE_ROUTE = pathlib.Path(__file__).parents[1] / "missions" / "data" / "buzzards_bay.gpx"
+
+
+@dataclass(frozen=True)
+class MissionState:
+    """The mission's inputs: waypoints (lat, lon deg), speed and radius as entered."""
+
+    names: tuple[str, ...]
+    lat: tuple[float, ...]
+    lon: tuple[float, ...]
+    speed: str = "1"
+    radius: str = "100"
+    moved: tuple[tuple[int, float, float], ...] = ()
+
+    def query(self) -> str:
+        items = [("planner", "mission"), ("speed", self.speed), ("radius", self.radius)]
+        if self.moved:
+            items.append(("moved", ";".join(f"{i}:{la:.6f}:{lo:.6f}" for i, la, lo in self.moved)))
+        return urlencode(items, safe=",:;", quote_via=quote)
+
+    def with_move(self, i: int, lat: float, lon: float) -> MissionState:
+        lats, lons = list(self.lat), list(self.lon)
+        lats[i], lons[i] = lat, lon
+        moved = tuple(m for m in self.moved if m[0] != i) + ((i, lat, lon),)
+        return replace(self, lat=tuple(lats), lon=tuple(lons), moved=moved)
+
+
+@dataclass(frozen=True, eq=False)
+class MissionView:
+    state: MissionState
+    plan: Any = None
+    errors: Mapping[str, str] | None = None
+
+    @property
+    def cost_text(self) -> str:
+        p = self.plan
+        return f"{p.total_length_m:.10g}" if p is not None and p.ok else "n/a"
+
+
+def mission_view(state: MissionState, source: str) -> MissionView:
+    """`plan_mission` of the state's waypoints (compass headings free) at its speed and radius,
+    or the one-line message of each bad input."""
+    from glideplan.missions import Route, plan_mission
+
+    errors: dict[str, str] = {}
+    values: dict[str, float] = {}
+    for name in ("speed", "radius"):
+        text = getattr(state, name)
+        try:
+            values[name] = float(text)
+        except ValueError:
+            errors[name] = one_line(InvalidParameterError(f"--{name}", text, "must be a number"))
+    if errors:
+        return MissionView(state, None, errors)
+    try:
+        route = Route.from_geographic(state.names, state.lat, state.lon, source=source)
+        plan = plan_mission(route, speed=values["speed"], radius=values["radius"])
+    except InvalidParameterError as err:
+        name = err.name.lstrip("-")
+        return MissionView(state, None, {name if name in ("speed", "radius") else "": one_line(err)})
+    return MissionView(state, plan, {})
+
+
+class MissionPage:
+    """The mission map of one session (module docstring); `layout` is its Panel view."""
+
+    def __init__(
+        self, query: Mapping[str, str] | None = None, route_path: str | None = None
+    ) -> None:
+        from glideplan.formats.readers import read_route
+
+        query = dict(query or {})
+        self.on_mode: Callable[[str], None] | None = None
+        self._doc = pn.state.curdoc
+        self._lock = threading.Lock()
+        self._pending: MissionState | None = None
+        self._running = False
+        self._closed = False
+        self._syncing = False
+        self.view: MissionView | None = None
+        self.file_error = ""
+        path = pathlib.Path(route_path) if route_path else EXAMPLE_ROUTE
+        try:
+            route = read_route(path)
+        except (InvalidParameterError, OSError, ValueError) as err:
+            self.file_error = one_line(err)
+            path = EXAMPLE_ROUTE
+            route = read_route(path)
+        self.path = path
+        if route.lat is None or route.lon is None:
+            raise InvalidParameterError("--route", str(path), "needs latitudes and longitudes")
+        state = MissionState(
+            names=tuple(route.names),
+            lat=tuple(float(v) for v in route.lat),
+            lon=tuple(float(v) for v in route.lon),
+            speed=query.get("speed", "1"),
+            radius=query.get("radius", "100"),
+        )
+        for item in (query.get("moved") or "").split(";"):
+            try:
+                i, la, lo = item.split(":")
+                if 0 <= int(i) < len(state.names):
+                    state = state.with_move(int(i), float(la), float(lo))
+            except ValueError:
+                continue
+        self.state = state
+        self.k = math.cos(math.radians(float(np.mean(state.lat))))
+        self._build()
+        if self._doc is not None:
+            self._doc.on_session_destroyed(self._on_closed)
+        self.solve()
+
+    def _on_closed(self, _context: Any) -> None:
+        self._closed = True
+
+    def _build(self) -> None:
+        from glideplan.explore.app import (
+            BODY_CSS,
+            LAYOUT_CSS,
+            MAIN_CSS,
+            MAP_MODES,
+            PLOT_CSS,
+            RIGHT_CSS,
+            ROOT_CSS,
+            SIDEBAR_CSS,
+            _TextInput,
+        )
+        from glideplan.explore.catalog import build_catalog
+
+        options = {e.label: e.key for e in build_catalog().entries}
+        options.update(MAP_MODES)
+        self.mode_select = pn.widgets.Select(
+            label="Planner", options=options, value="mission", sizing_mode="stretch_width"
+        )
+        self.mode_select.param.watch(self._on_mode, "value")
+        help_text = (
+            f'<div class="gp-help">Route file <code>{html.escape(self.path.name)}</code> '
+            f"({len(self.state.names)} waypoints). Drag a waypoint; the mission's Dubins legs "
+            "(headings chosen at each waypoint) follow.</div>" + error_html(self.file_error)
+        )
+        self.inputs: dict[str, Any] = {}
+        self.error_panes: dict[str, Any] = {}
+        for name, label in (("speed", "speed (m/s)"), ("radius", "turn radius (m)")):
+            w = _TextInput(
+                label=label,
+                value=getattr(self.state, name),
+                sizing_mode="stretch_width",
+                css_classes=[f"gp-input-{name}"],
+            )
+            w.param.watch(self._make_watcher(name), "value")
+            self.inputs[name] = w
+            self.error_panes[name] = html_pane(sizing_mode="stretch_width")
+        self.general_error = html_pane(sizing_mode="stretch_width")
+        self.strip = FastHtml()
+        self.table = FastHtml()
+        self.downloads = pn.Row(
+            pn.widgets.FileDownload(
+                callback=self._json_file,
+                filename="glideplan-mission.json",
+                label="JSON",
+                color="primary",
+                width=92,
+                embed=False,
+            ),
+            pn.widgets.FileDownload(
+                callback=self._gpx_file,
+                filename="glideplan-mission.gpx",
+                label="GPX",
+                color="primary",
+                width=92,
+                embed=False,
+            ),
+            margin=(5, 0),
+        )
+        self._figure()
+        sidebar = pn.Column(
+            self.mode_select,
+            html_pane(help_text, sizing_mode="stretch_width"),
+            self.inputs["speed"],
+            self.error_panes["speed"],
+            self.inputs["radius"],
+            self.error_panes["radius"],
+            self.general_error,
+            html_pane(
+                '<div class="gp-help">Download the mission (as <code>mission plan --json'
+                "</code>) and its track (GPX)</div>"
+            ),
+            self.downloads,
+            stylesheets=[SIDEBAR_CSS],
+        )
+        self.fig.stylesheets = [PLOT_CSS]
+        right = pn.Column(self.table.pane, stylesheets=[RIGHT_CSS])
+        body = pn.FlexBox(
+            pn.pane.Bokeh(self.fig), right, flex_wrap="wrap", stylesheets=[BODY_CSS]
+        )
+        main = pn.Column(self.strip.pane, body, stylesheets=[MAIN_CSS])
+        header = pn.Row(
+            html_pane(
+                '<div class="gp-title">glideplan explore: mission</div>'
+                '<div class="gp-sub">Waypoints of a route file, flown as Dubins legs</div>'
+            ),
+            styles={"background": "#1f3b5c", "border-radius": "6px"},
+            sizing_mode="stretch_width",
+            margin=(5, 5, 10, 5),
+        )
+        page = pn.FlexBox(sidebar, main, flex_wrap="wrap", stylesheets=[LAYOUT_CSS])
+        self.layout = pn.Column(
+            header, page, sizing_mode="stretch_width", stylesheets=[ROOT_CSS]
+        )
+
+    def _figure(self) -> None:
+        lat, lon = np.array(self.state.lat), np.array(self.state.lon)
+        pad = 0.15 * max(float(np.ptp(lat)), float(np.ptp(lon)) * self.k, 1e-3)
+        self.x_range = Range1d(lon.min() - pad / self.k, lon.max() + pad / self.k)
+        self.y_range = Range1d(lat.min() - pad, lat.max() + pad)
+        fig = figure(
+            sizing_mode="stretch_both",
+            min_width=240,
+            min_height=240,
+            x_range=self.x_range,
+            y_range=self.y_range,
+            tools="pan,wheel_zoom,box_zoom,reset,save",
+            toolbar_location="above",
+            x_axis_label="longitude (deg E)",
+            y_axis_label="latitude (deg N)",
+            output_backend="canvas",
+        )
+        fig.background_fill_color = "#eef5fb"
+        fig.grid.grid_line_color = "#d9e3ee"
+        self.legs_src = ColumnDataSource({"x": [], "y": []})
+        fig.line("x", "y", source=self.legs_src, line_color="#9aa5b1", line_dash="dotted",
+                 line_width=1.5, legend_label="waypoint order")
+        self.track_src = ColumnDataSource({"x": [], "y": []})
+        fig.line("x", "y", source=self.track_src, line_color=BLUE, line_width=3,
+                 legend_label="mission track")
+        self.points_src = ColumnDataSource({"x": [], "y": [], "name": []})
+        pts = fig.scatter("x", "y", source=self.points_src, size=13, fill_color=GOAL,
+                          line_color="white", line_width=2)
+        fig.text("x", "y", "name", source=self.points_src, x_offset=9, y_offset=-7,
+                 text_font_size="11px", text_color="#2c3e50")
+        draw = PointDrawTool(renderers=[pts], add=False, drag=True)  # type: ignore[list-item]
+        fig.add_tools(draw)
+        fig.toolbar.active_drag = draw
+        legend = fig.legend[0]
+        legend.location = "top_left"
+        legend.background_fill_alpha = 0.8
+        legend.label_text_font_size = "11px"
+        equal_scales(fig, self.x_range, self.y_range, self.k)
+        follow_url(fig)
+        self.fig = fig
+        self.points_src.on_change("data", self._on_points)
+        self._draw_points()
+
+    def _draw_points(self) -> None:
+        self._syncing = True
+        try:
+            self.points_src.data = {
+                "x": list(self.state.lon), "y": list(self.state.lat), "name": list(self.state.names)
+            }
+            self.legs_src.data = {"x": list(self.state.lon), "y": list(self.state.lat)}
+        finally:
+            self._syncing = False
+
+    def _on_points(self, attr: str, old: Any, new: Any) -> None:
+        if self._syncing:
+            return
+        xs, ys = list(new.get("x", [])), list(new.get("y", []))
+        if len(xs) != len(self.state.names):
+            self._locked(self._draw_points)  # a deleted point comes back
+            return
+        state = self.state
+        for i, (x, y) in enumerate(zip(xs, ys, strict=True)):
+            if abs(x - state.lon[i]) > 1e-9 or abs(y - state.lat[i]) > 1e-9:
+                state = state.with_move(i, round(float(y), 6), round(float(x), 6))
+        if state != self.state:
+            self._locked(lambda: self.set_state(state))
+
+    def _make_watcher(self, name: str) -> Callable[[Any], None]:
+        def watch(event: Any) -> None:
+            state = replace(self.state, **{name: event.new})
+            self._locked(lambda: self.set_state(state))
+
+        return watch
+
+    def _on_mode(self, event: Any) -> None:
+        if event.new != "mission" and self.on_mode is not None:
+            self._locked(lambda: self.on_mode(event.new) if self.on_mode else None)
+
+    def _locked(self, fn: Callable[[], None]) -> None:
+        if self._doc is None:
+            fn()
+        else:
+            self._doc.add_next_tick_callback(lambda: self._held(fn))
+
+    def _held(self, fn: Callable[[], None]) -> None:
+        if self._closed or self._doc is None:
+            return
+        with set_curdoc(self._doc), hold(self._doc):
+            fn()
+
+    def push_url(self) -> None:
+        self.strip.sync()
+        self.table.sync()
+        self.fig.tags = ["?" + self.state.query()]
+
+    def set_state(self, state: MissionState) -> None:
+        self.state = state
+        self._draw_points()
+        self.push_url()
+        self.solve()
+
+    def solve(self) -> None:
+        """Plan the current state on the worker thread (latest state wins)."""
+        if self._doc is None:
+            self._apply(mission_view(self.state, self.path.name))
+            return
+        with self._lock:
+            self._pending = self.state
+            start = not self._running
+            self._running = True
+        self.strip.object = self._strip_html(self.view, stale=True)
+        if start:
+            threading.Thread(target=self._work, daemon=True, name="glideplan-mission").start()
+
+    def _work(self) -> None:
+        while True:
+            with self._lock:
+                state, self._pending = self._pending, None
+                if state is None:
+                    self._running = False
+                    return
+            try:
+                view = mission_view(state, self.path.name)
+            except Exception as exc:  # a bug: show it rather than lose the thread
+                view = MissionView(state, None, {"": f"internal error: {exc!r}"})
+            with self._lock:
+                latest = self._pending is None
+            if latest and not self._closed and self._doc is not None:
+                try:
+                    self._doc.add_next_tick_callback(
+                        lambda v=view: self._held(lambda: self._apply(v))  # type: ignore[misc]
+                    )
+                except Exception:  # the session went away meanwhile
+                    self._closed = True
+
+    def _apply(self, view: MissionView) -> None:
+        if view.state != self.state:
+            return
+        self.view = view
+        errors = dict(view.errors or {})
+        for name, pane in self.error_panes.items():
+            pane.object = error_html(errors.get(name, ""))
+        self.general_error.object = error_html(errors.get("", ""))
+        self.strip.object = self._strip_html(view)
+        p = view.plan
+        if p is not None and p.ok:
+            track = p.track()
+            lat, lon = p.route.projection.to_geographic(track.x, track.y)
+            self.track_src.data = {"x": np.asarray(lon), "y": np.asarray(lat)}
+        else:
+            self.track_src.data = {"x": [], "y": []}
+        self.table.object = self._table_html(p)
+
+    def _strip_html(self, view: MissionView | None, stale: bool = False) -> str:
+        def item(k: str, v: str, cls: str = "") -> str:
+            return (
+                f'<div class="gp-item"><span class="gp-k">{k}</span>'
+                f'<span class="gp-v {cls}">{v}</span></div>'
+            )
+
+        p = view.plan if view is not None else None
+        cost = view.cost_text if view is not None else "n/a"
+        status = "bad input" if view is not None and view.errors else (
+            str(getattr(p.status, "value", p.status)) if p is not None else "")
+        dur = f"{p.total_duration_s / 60.0:.1f} min" if p is not None and p.ok else "&ndash;"
+        busy = (
+            '<div class="gp-item gp-computing"><span class="gp-busy">computing&hellip;'
+            "</span></div>"
+        ) if stale else ""
+        return (
+            f'<div class="gp-strip{" gp-stale" if stale else ""}">'
+            + item("total length (m)", html.escape(cost), "gp-cost")
+            + item("duration", dur, "gp-word")
+            + item("legs", str(len(p.legs)) if p is not None else "&ndash;", "gp-small")
+            + item("status", html.escape(status), "gp-small gp-status")
+            + busy
+            + "</div>"
+        )
+
+    def _table_html(self, p: Any) -> str:
+        if p is None:
+            return ""
+        names = p.route.names
+        rows = "".join(
+            f"<tr><td>{leg.index + 1}</td><td>{html.escape(names[leg.start])} &rarr; "
+            f"{html.escape(names[leg.end])}</td><td>{html.escape(str(leg.word))}</td>"
+            f"<td>{leg.length_m:.1f}</td><td>{leg.duration_s:.1f}</td></tr>"
+            for leg in p.legs
+        )
+        head = "".join(
+            f"<th>{h}</th>" for h in ("#", "leg", "word", "length (m)", "duration (s)")
+        )
+        return (
+            '<div class="gp-help"><b>Legs</b></div><div class="gp-table-wrap">'
+            f'<table class="gp-table"><thead><tr>{head}</tr></thead><tbody>{rows}</tbody>'
+            "</table></div>"
+        )
+
+    def _messages(self) -> str:
+        errors = dict(self.view.errors or {}) if self.view is not None else {"": "no answer yet"}
+        return "; ".join(v for v in errors.values() if v) or "no mission"
+
+    def _json_file(self) -> io.StringIO:
+        from glideplan.jsonio import to_json
+
+        p = self.view.plan if self.view is not None else None
+        out = p.to_dict() if p is not None else {"status": "no_path", "message": self._messages()}
+        return io.StringIO(to_json(out) + "\n")
+
+    def _gpx_file(self) -> io.BytesIO:
+        from glideplan.formats.export import export_mission
+
+        p = self.view.plan if self.view is not None else None
+        if p is None or not p.ok:
+            text = f"<!-- no mission: {html.escape(self._messages())} -->\n"
+            return io.BytesIO(text.encode())
+        with tempfile.TemporaryDirectory() as tmp:
+            files, _ = export_mission(p, pathlib.Path(tmp), ("gpx",))
+            return io.BytesIO(pathlib.Path(str(files["gpx"])).read_bytes())
