@@ -43,16 +43,9 @@ FloatArray = NDArray[np.float64]
 #: Band half-width in grid spacings: phi is clipped to +-B, B = BAND_CELLS x max spacing.
 BAND_CELLS = 6.0
 
-#: Active nodes from which a step splits its nodes over the cores (numba prange).
-PARALLEL_MIN_NODES = 20_000
-
-
-def _threads() -> int:
-    """Threads numba may use (NUMBA_NUM_THREADS; the Makefile's tests set 1: pytest -n 2
-    already keeps both cores busy)."""
-    import numba
-
-    return int(numba.get_num_threads())
+#: Active nodes from which a step splits its nodes over numba's threads (NUMBA_NUM_THREADS;
+#: the Makefile's tests set 1, since pytest -n 2 already keeps both cores busy).
+PARALLEL_MIN_NODES = 8_000
 
 
 _EDGE_NAMES = ((1, "south"), (2, "north"), (4, "west"), (8, "east"))
@@ -380,6 +373,9 @@ def propagate(
     band = problem.band
     hx = np.ascontiguousarray(g.hx)
     hy = float(g.hy)
+    # spacings as the kernel uses them: 1/h, 1/h^2, h/2 per row (x) and for y; 1/min(hx, hy)
+    sp = (1.0 / hx, 1.0 / hx**2, 0.5 * hx, 1.0 / hy, 1.0 / hy**2, 0.5 * hy,
+          1.0 / np.minimum(hx, hy))
     a = np.ascontiguousarray(problem.speeds)
     b = np.ascontiguousarray(problem.drifts)
     s = np.ascontiguousarray(problem.drift_scales)
@@ -393,7 +389,10 @@ def propagate(
     mark = np.zeros(ny * nx, dtype=np.int64)
     stamp = 0
     may = may_b.astype(np.uint8)
-    threads = _threads()
+    import numba
+
+    threads = int(numba.get_num_threads())
+    current = threads
     steady = (drift is None or drift.steady) and not np.any(np.isfinite(tb) & (tb > t))
     stall_limit = math.ceil(40.0 / cfl)
     stall = 0
@@ -426,11 +425,12 @@ def propagate(
             lo = hi = dummy
             w = 0.0
         dt_cap = max(t_max - t, 1e-12 * max(abs(t), 1.0))
-        big = act.size >= PARALLEL_MIN_NODES and threads > 1
-        rk_stage = kernel.rk_stage_parallel if big else kernel.rk_stage
-        stage_two = kernel.stage_two_parallel if big else kernel.stage_two
-        dt = rk_stage(phi, p1, act, t, w, dt_cap, band, ny, nx, g.periodic, hx, hy, a, b, s,
-                      arrival, tb, lo, hi, has_drift, cfl, may)
+        use = threads if act.size >= PARALLEL_MIN_NODES else 1
+        if use != current:
+            numba.set_num_threads(use)
+            current = use
+        dt = kernel.rk_stage(phi, p1, act, t, w, dt_cap, band, ny, nx, g.periodic, *sp, a, b,
+                             s, arrival, tb, lo, hi, has_drift, cfl, may)
         if dt < 1e-300:
             reason = "stalled"
             break
@@ -440,8 +440,8 @@ def propagate(
             lo, hi, w1 = drift.pair(t1)
         else:
             w1 = 0.0
-        reached, dmax = stage_two(phi, p1, act, t, t1, w1, dt, band, ny, nx, g.periodic, hx, hy,
-                                  a, b, s, arrival, tb, lo, hi, has_drift, may)
+        reached, dmax = kernel.stage_two(phi, p1, act, t, t1, w1, dt, band, ny, nx, g.periodic,
+                                         *sp, a, b, s, arrival, tb, lo, hi, has_drift, may)
         t = t1
         steps += 1
         reached_total += reached
@@ -488,4 +488,6 @@ def propagate(
     arr = arrival.reshape(ny, nx)
     new_state = FrontState(phi.reshape(ny, nx), arr, t, act, steps, state.source,
                            state.start_radius_m)
+    if current != threads:
+        numba.set_num_threads(threads)
     return FrontResult(arr, reason, goal_time, names, new_state, steps, t)
