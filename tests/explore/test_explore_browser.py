@@ -520,6 +520,72 @@ def test_route_link_duration_equals_cli(server: str, browser_context: Any, shots
         page.close()
 
 
+def test_mission_map_total_and_exports(server: str, browser_context: Any, tmp_path: pathlib.Path):
+    """The mission map of the bundled route: `gp-cost` is `plan_mission`'s total length
+    (the call of `glideplan mission plan`) for the URL's speed and radius; its JSON download
+    is that plan's `to_dict()` (read by `json`), its GPX is read by the XML parser."""
+    import xml.etree.ElementTree as ET
+
+    from glideplan.explore.mission_page import EXAMPLE_ROUTE
+    from glideplan.formats.readers import read_route
+    from glideplan.missions import plan_mission
+
+    page = _open(browser_context, f"{server}/?planner=mission&speed=1.5&radius=150")
+    try:
+        shown = float(_wait_result(page, timeout=60.0))
+        ref = plan_mission(read_route(EXAMPLE_ROUTE), speed=1.5, radius=150.0)
+        assert shown == pytest.approx(ref.total_length_m, rel=1e-9)
+        files = {}
+        for label in ("JSON", "GPX"):
+            with page.expect_download(timeout=30_000) as info:
+                page.get_by_role("button", name=label).click()
+            files[label] = tmp_path / info.value.suggested_filename
+            info.value.save_as(files[label])
+        data = json.loads(files["JSON"].read_text())
+        assert data["total_length_m"] == pytest.approx(ref.total_length_m, rel=1e-12)
+        assert [leg["word"] for leg in data["legs"]] == [leg.word for leg in ref.legs]
+        root = ET.parse(files["GPX"]).getroot()
+        assert root.tag.endswith("gpx") and len(list(root.iter())) > 10
+    finally:
+        page.close()
+
+
+def test_reach_map_counts_reachable_landables(server: str, browser_context: Any):
+    """The reach map of the `ridge` example: `gp-cost` counts the landables that
+    `glide_reach` (the call of `glide reach --example ridge`) finds reachable for the URL's
+    start, wind, MC and safety height."""
+    from glideplan.cli.glide import _polar
+    from glideplan.geodesy import wind_from_to_vector
+    from glideplan.reach import glide_reach
+    from glideplan.reach.examples import example
+
+    page = _open(
+        browser_context,
+        f"{server}/?planner=reach&example=ridge&from=46.5,7.4,1800&wind=4,250&mc=0&safety=300",
+    )
+    ex = example("ridge")
+    polar = _polar(ex.polar_file, None, 0.0, 0.0, "--polar")
+    # the reference while the page computes the same on the server's worker thread
+    ref = glide_reach(
+        ex.terrain,
+        (46.5, 7.4, 1800.0),
+        polar,
+        landables=ex.landables,
+        mc=0.0,
+        wind=wind_from_to_vector(4.0, 250.0),
+        safety_height=300.0,
+        resolution_m=ex.resolution_m,
+    )
+    try:
+        shown = _wait_result(page, timeout=60.0)
+        n = sum(1 for p in ref.points if p.reachable)
+        assert shown.strip() == f"{n} of {len(ref.points)}"
+        f = _frame(page)
+        assert (f["xlabel"], f["ylabel"]) == ("longitude (deg E)", "latitude (deg N)")
+    finally:
+        page.close()
+
+
 def test_closing_a_tab_mid_update_logs_nothing(
     server: str, browser_context: Any, caplog: pytest.LogCaptureFixture
 ):
@@ -535,7 +601,6 @@ def test_closing_a_tab_mid_update_logs_nothing(
     page = _open(
         browser_context, f"{server}/?planner=time-optimal-direct&goal=2,1.5,90&synthesis_starts=1"
     )
-    _wait_result(page)
     with caplog.at_level(logging.WARNING):
         box = page.locator(".gp-input-goal input")
         box.fill("2.5,1,90")

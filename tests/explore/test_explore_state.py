@@ -287,3 +287,11 @@ def test_isochrones_of_still_water_are_circles():
         px = np.radians(np.asarray(xs) - lon0) * r_earth * math.cos(math.radians(lat0))
         py = np.radians(np.asarray(ys) - lat0) * r_earth
         assert np.abs(np.hypot(px, py) - speed * level_h * 3600.0).max() < spacing
+
+
+def test_cli_refuses_missing_field_and_route_files(cli_error, tmp_path):
+    """`explore --field` / `--route` with a missing file: one line naming the flag, exit 2,
+    before anything is served."""
+    missing = tmp_path / "nope.nc"
+    assert "--field" in cli_error("explore", "--no-show", "--field", str(missing))
+    assert "--route" in cli_error("explore", "--no-show", "--route", str(tmp_path / "r.gpx"))

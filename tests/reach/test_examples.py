@@ -125,16 +125,20 @@ def _local(lat, lon, lat0, lon0):
             R_EARTH * np.radians(np.asarray(lat) - lat0))
 
 
-def test_ground_glide_set_is_convex(glide):
-    """The premise of the bounds: the ground distance per metre of altitude, r(chi) u(chi),
-    traces a convex curve in the example's wind (cross products of successive edges >= 0,
-    3600 directions)."""
+def _convex(glide) -> bool:
+    """Does r(chi) u(chi), the ground distance per metre of altitude, trace a convex curve
+    (cross products of successive edges >= 0, 3600 directions)?"""
     chi = np.linspace(0.0, 2 * np.pi, 3600, endpoint=False)
     r = glide.ratio(chi)
     pts = np.stack([r * np.cos(chi), r * np.sin(chi)], axis=-1)
     e = np.roll(pts, -1, axis=0) - pts
-    cross = e[:, 0] * np.roll(e, -1, axis=0)[:, 1] - e[:, 1] * np.roll(e, -1, axis=0)[:, 0]
-    assert np.all(cross >= -1e-9 * np.max(r) ** 2)
+    f = np.roll(e, -1, axis=0)
+    return bool(np.all(e[:, 0] * f[:, 1] - e[:, 1] * f[:, 0] >= -1e-9 * np.max(r) ** 2))
+
+
+def test_ground_glide_set_is_convex(glide):
+    """The premise of the bounds, in the example's wind."""
+    assert _convex(glide)
 
 
 def test_example_runs_with_no_files(reach_json, ex):
@@ -200,28 +204,28 @@ def test_fields_in_the_valley_are_the_straight_glide(reach_json, ex, glide):
         assert p["arrival_altitude_m"] == pytest.approx(ref, abs=1e-3)
 
 
-def test_behind_the_ridge_detour_reachable_and_unreachable(reach_json, ex, glide):
+def _check_behind_the_ridge(points, h, glide, ex):
     """The bounds of the module docstring decide each field behind the ridge; the flown
     arrival must lie between them (the upper bound on the loss less the front's accuracy of
-    two grid cells of glide, as in test_reach); a field whose straight line crosses the crest
-    must be reported with a detour, its path leaving the line by at least the line's distance
-    from the crest's end."""
+    two grid cells h of glide, as in test_reach); a field whose straight line crosses the
+    crest must be reported with a detour, its path leaving the line by at least the line's
+    distance from the crest's end. Returns (a reachable detour seen, an unreachable seen)."""
+    assert _convex(glide)  # the bounds' premise
     lat0, lon0, alt = ex.start
-    h = reach_json["grid"]["resolution_m"]
     floor_needed = E.FLOOR_M + ex.safety_height
+    r_min = float(np.min(glide.ratio(np.linspace(0, 2 * np.pi, 360))))
     seen_detour_reachable = seen_unreachable = False
-    for p in reach_json["points"]:
+    for p in points:
         if p["lon"] <= E.RIDGE_NORTH[1]:
             continue
         lower, upper = _bounds(glide, ex, p["lat"], p["lon"])
         _, blocked = _crosses_crest(ex, p["lat"], p["lon"])
         if alt - lower < floor_needed:  # no path whatever reaches it
-            assert p["reachable"] is False
+            assert p["reachable"] is False, p["name"]
             seen_unreachable = True
             continue
         if alt - upper >= floor_needed:  # the box path reaches it: so must the solver
-            assert p["reachable"] is True
-            r_min = float(np.min(glide.ratio(np.linspace(0, 2 * np.pi, 360))))
+            assert p["reachable"] is True, p["name"]
             assert alt - upper - 2 * h / r_min <= p["arrival_altitude_m"] <= alt - lower + 1e-6
             x, y = _local(p["track"]["lat"], p["track"]["lon"], lat0, lon0)
             gx, gy = _local(p["lat"], p["lon"], lat0, lon0)
@@ -233,8 +237,34 @@ def test_behind_the_ridge_detour_reachable_and_unreachable(reach_json, ex, glide
                 assert need > h  # a detour the grid resolves
                 assert p["detour"] is True and offset >= need
                 seen_detour_reachable = True
-    # the example is built to show both (a failure here means the example changed)
-    assert seen_detour_reachable and seen_unreachable
+    return seen_detour_reachable, seen_unreachable
+
+
+def test_behind_the_ridge_detour_reachable_and_unreachable(reach_json, ex, glide):
+    """`_check_behind_the_ridge` on the example as it ships; it is built to show both a
+    reachable field with a detour and an unreachable one (a failure of the last assertion
+    means the example changed)."""
+    seen = _check_behind_the_ridge(reach_json["points"], reach_json["grid"]["resolution_m"],
+                                   glide, ex)
+    assert seen == (True, True)
+
+
+def test_behind_the_ridge_in_a_stronger_wind_at_mc_1(ex):
+    """The same bounds with the README's override (wind 10 m/s from 250 deg, MC 1): Behind
+    North is reachable round the ridge's north end (the box path arrives 15 m above its
+    safety height) although the front's characteristic cuts the end's corner there; the
+    fallback down the reached nodes (`solve.descend_reached`) finds the flown path (it was
+    reported unreachable before)."""
+    from glideplan.reach import glide_reach
+
+    polar = polar_from_file(read_plr(ex.polar_file))
+    wind = wind_from_to_vector(10.0, 250.0)
+    glide = Glide(polar, mc=1.0, wind=wind)
+    r = glide_reach(ex.terrain, ex.start, polar, landables=ex.landables, mc=1.0, wind=wind,
+                    safety_height=ex.safety_height, resolution_m=ex.resolution_m)
+    seen = _check_behind_the_ridge(r.to_dict()["points"], r.resolution_m, glide, ex)
+    assert seen == (True, True)
+    assert r.points[2].landable.name == "Behind North" and r.points[2].reachable
 
 
 def test_written_files_give_the_same_answer(run_cli, reach_json, ex, tmp_path):

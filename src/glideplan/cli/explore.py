@@ -29,13 +29,24 @@ def explore_command(
             show_default=False,
         ),
     ] = None,
+    route: Annotated[
+        pathlib.Path | None,
+        typer.Option(
+            "--route",
+            metavar="FILE",
+            help="Route file (GPX, KML, GeoJSON, CSV) for the mission map (?planner=mission); "
+            "without it the map shows a bundled example route.",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """Serve a web page at http://HOST:PORT/ to drag the start and goal and watch the plan.
 
     Every registered planner with its vehicle's parameters (named like `plan` options),
     every candidate and its cost, the endpoint error and the planner time; the state lives
     in the URL (e.g. /?planner=dubins&goal=4,3,90&radius=1). The route map (/?planner=route)
-    drags a route through the --field file's currents (or the double gyre, needing no file).
+    drags a route through the --field file's currents (or the double gyre, needing no file);
+    the mission map (/?planner=mission) drags the waypoints of the --route file.
     Works offline. Ctrl-C stops.
     """
     from glideplan.explore.server import check_address, serve
@@ -47,6 +58,18 @@ def explore_command(
         check_input_file(field, "--field")
         with flag_names(field="--field"):
             open_field(field)  # a foreign or broken file: one line now, not on the page
+    if route is not None:
+        from glideplan.cli.common import check_input_file
+        from glideplan.formats.readers import read_route
+
+        check_input_file(route, "--route")
+        read_route(route)  # a foreign or broken file: one line now, not on the page
     check_address(host, port)  # a busy port or a foreign host: one line, before announcing
     typer.echo(f"glideplan explore: serving http://{host}:{port}/ (Ctrl-C to stop)", err=True)
-    serve(port, host, show=not no_show, field=None if field is None else str(field))
+    serve(
+        port,
+        host,
+        show=not no_show,
+        field=None if field is None else str(field),
+        route=None if route is None else str(route),
+    )

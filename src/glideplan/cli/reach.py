@@ -154,6 +154,18 @@ def _or(value: Any, ex: Any, attr: str, default: Any) -> Any:
     return getattr(ex, attr) if ex is not None else default
 
 
+def _announce_example(ex: Any, start: tuple[float, float, float], polar: Any,
+                      wind: tuple[float, float] | None, mc: float, safety: float,
+                      json_out: bool, extra: str = "") -> None:
+    """One line naming the example and the values it runs with (overrides included)."""
+    from glideplan.cli.common import announce
+
+    w = "still air" if wind is None else f"wind {wind[0]:g} m/s from {wind[1]:g} deg"
+    announce(f"example {ex.name}: {ex.description}; start {start[0]:g} N {start[1]:g} E "
+             f"{start[2]:g} m; polar {getattr(polar, 'name', '')}; {w}; MC {mc:g} m/s; "
+             f"safety height {safety:g} m{extra}", json_out)
+
+
 def _required(value: Any, flag: str, ex: Any) -> None:
     if value is None and ex is None:
         from glideplan.cli.common import usage_error
@@ -290,7 +302,7 @@ def glide_reach_cmd(
                             "style not 2-5) and were skipped"])
     w = _wind(wind_in)
     if ex is not None:
-        announce(f"example {ex.name}: {ex.description}", json_out)
+        _announce_example(ex, start_v, p, wind_in, mc_v, safety_v, json_out)
     with flag_names(**_FLAGS):
         result = glide_reach(t, (start_v[0], start_v[1], start_v[2]), p, landables=lands,
                              mc=mc_v, wind=w, safety_height=safety_v,
@@ -387,8 +399,9 @@ def glide_turnback_cmd(
         t = None if ex is None else ex.terrain
     w = _wind(wind_in)
     if ex is not None:
-        announce(f"example {ex.name}: {ex.description}; home {ex.home.name}, course "
-                 f"{course_v:g} deg", json_out)
+        home_name = ex.home.name if home is None else "--home"
+        _announce_example(ex, start_v, p, wind_in, mc_v, safety_v, json_out,
+                          f"; home {home_name}, course {course_v:g} deg")
     with flag_names(**_FLAGS):
         result = turnback((start_v[0], start_v[1], start_v[2]), course_v,
                           ex.home if home is None else (home_v[0], home_v[1], home_v[2]), p,

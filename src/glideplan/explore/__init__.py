@@ -1,7 +1,12 @@
 """`glideplan explore`: a local web page to plan interactively.
 
-`catalog` builds the planners and their inputs from the registry, `state` holds the page's
-state and its URL query, `solve` plans it with `glideplan.plan()` and makes the figure data,
-`downloads` writes JSON/CSV/PNG, `app` is the Panel/Bokeh page and `server` serves it.
-Only `catalog`, `state`, `solve` and `downloads` are importable without Panel.
+`catalog` builds the planners and their inputs (labels with units) from the registry, `state`
+holds the page's state and its URL query, `solve` plans it with `glideplan.plan()` and makes
+the figure data, `downloads` writes JSON/CSV/PNG, `figures` holds the Bokeh figures (equal
+scales kept in the browser), `texts` the HTML, `app` is the Panel/Bokeh page of the plane
+planners and `server` serves it. The map modes: `route_page` (routes through currents or
+winds, `glideplan.routing.route`), `mission_page` (waypoints of a route file,
+`glideplan.missions.plan_mission`) and `reach_page` (glide reach over terrain,
+`glideplan.reach.glide_reach`). Only `catalog`, `state`, `solve` and `downloads` are
+importable without Panel.
 """

@@ -1,10 +1,19 @@
 """The explorer page: Panel widgets around a Bokeh figure, one `Explorer` per browser session.
 
 The figure's start and goal are dragged with Bokeh's `PointDrawTool` (a second draggable point
-per pose sets its heading); every change goes into an `ExploreState`, the URL query follows it,
-and the state is planned by `solve_view` on a worker thread (latest state wins), so a slow
-planner never blocks the page. The result is applied to the Bokeh data sources on the
-document's own thread. Imported only by `glideplan explore` (Panel and Bokeh are heavy).
+per pose sets its heading); every change goes into an `ExploreState`, the URL query follows it
+(with the zoom, `view=x0,y0,x1,y1`, kept by the browser), and the state is planned:
+
+- synthesis planners (milliseconds) at once, in the input's own callback, their answer (cost
+  strip, path, poses) sent as one patch, the candidates' lines and table 30 ms later in a
+  second one (the browser paints the answer first); texts go through `FastHtml` (one
+  innerHTML, no re-layout of the page);
+- direct methods (seconds) on a worker thread (latest state wins), the shown answer marked
+  stale ("computing") meanwhile.
+
+Equal x/y scales are kept in the browser (`figures.ASPECT_JS`); the layout is a wrapping flex
+box (controls left of the strip and the plot, or above them below 760 px). Imported only by
+`glideplan explore` (Panel and Bokeh are heavy).
 """
 
 from __future__ import annotations
@@ -708,7 +717,11 @@ def _with_pose(state: ExploreState, name: str, text: str) -> ExploreState:
 
 
 # The map modes offered beside the planners (label -> key); `create_page` switches to them.
-MAP_MODES: dict[str, str] = {"Route through currents or winds (lat/lon map)": "route"}
+MAP_MODES: dict[str, str] = {
+    "Route through currents or winds (lat/lon map)": "route",
+    "Mission: waypoints of a route file (lat/lon map)": "mission",
+    "Glide reach over terrain in wind (lat/lon map)": "reach",
+}
 
 
 def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Viewable:
@@ -726,7 +739,15 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
         if mode == "route":
             from glideplan.explore.route_page import RoutePage
 
-            page: Any = RoutePage(q, **map_kw)
+            page: Any = RoutePage(q, field_path=map_kw.get("field_path"))
+        elif mode == "mission":
+            from glideplan.explore.mission_page import MissionPage
+
+            page = MissionPage(q, route_path=map_kw.get("route_path"))
+        elif mode == "reach":
+            from glideplan.explore.reach_page import ReachPage
+
+            page = ReachPage(q)
         else:
             page = Explorer(catalog, q)
         page.on_mode = lambda key: show(key, {"planner": key})
@@ -734,7 +755,8 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
         root.objects = [page.layout]
         page.push_url()
 
-    show("route" if query.get("planner") == "route" else "plane", query)
+    asked = query.get("planner", "")
+    show(asked if asked in MAP_MODES.values() else "plane", query)
     pn.state.onload(lambda: pages["current"].push_url())
     doc = pn.state.curdoc
     if doc is not None:

@@ -61,7 +61,7 @@ class MissionState:
     def with_move(self, i: int, lat: float, lon: float) -> MissionState:
         lats, lons = list(self.lat), list(self.lon)
         lats[i], lons[i] = lat, lon
-        moved = tuple(m for m in self.moved if m[0] != i) + ((i, lat, lon),)
+        moved = (*(m for m in self.moved if m[0] != i), (i, lat, lon))
         return replace(self, lat=tuple(lats), lon=tuple(lons), moved=moved)
 
 
@@ -97,7 +97,9 @@ def mission_view(state: MissionState, source: str) -> MissionView:
         plan = plan_mission(route, speed=values["speed"], radius=values["radius"])
     except InvalidParameterError as err:
         name = err.name.lstrip("-")
-        return MissionView(state, None, {name if name in ("speed", "radius") else "": one_line(err)})
+        return MissionView(
+            state, None, {name if name in ("speed", "radius") else "": one_line(err)}
+        )
     return MissionView(state, plan, {})
 
 
@@ -146,6 +148,12 @@ class MissionPage:
         self.state = state
         self.k = math.cos(math.radians(float(np.mean(state.lat))))
         self._build()
+        from glideplan.explore.app import _parse_view
+
+        linked = _parse_view(query.get("view"))
+        if linked is not None:  # a link's zoom (the browser grows a side to equal scales)
+            self.x_range.update(start=linked[0], end=linked[2])
+            self.y_range.update(start=linked[1], end=linked[3])
         if self._doc is not None:
             self._doc.on_session_destroyed(self._on_closed)
         self.solve()
@@ -230,9 +238,7 @@ class MissionPage:
         )
         self.fig.stylesheets = [PLOT_CSS]
         right = pn.Column(self.table.pane, stylesheets=[RIGHT_CSS])
-        body = pn.FlexBox(
-            pn.pane.Bokeh(self.fig), right, flex_wrap="wrap", stylesheets=[BODY_CSS]
-        )
+        body = pn.FlexBox(pn.pane.Bokeh(self.fig), right, flex_wrap="wrap", stylesheets=[BODY_CSS])
         main = pn.Column(self.strip.pane, body, stylesheets=[MAIN_CSS])
         header = pn.Row(
             html_pane(
@@ -244,9 +250,7 @@ class MissionPage:
             margin=(5, 5, 10, 5),
         )
         page = pn.FlexBox(sidebar, main, flex_wrap="wrap", stylesheets=[LAYOUT_CSS])
-        self.layout = pn.Column(
-            header, page, sizing_mode="stretch_width", stylesheets=[ROOT_CSS]
-        )
+        self.layout = pn.Column(header, page, sizing_mode="stretch_width", stylesheets=[ROOT_CSS])
 
     def _figure(self) -> None:
         lat, lon = np.array(self.state.lat), np.array(self.state.lon)
@@ -268,16 +272,44 @@ class MissionPage:
         fig.background_fill_color = "#eef5fb"
         fig.grid.grid_line_color = "#d9e3ee"
         self.legs_src = ColumnDataSource({"x": [], "y": []})
-        fig.line("x", "y", source=self.legs_src, line_color="#9aa5b1", line_dash="dotted",
-                 line_width=1.5, legend_label="waypoint order")
+        fig.line(
+            "x",
+            "y",
+            source=self.legs_src,
+            line_color="#9aa5b1",
+            line_dash="dotted",
+            line_width=1.5,
+            legend_label="waypoint order",
+        )
         self.track_src = ColumnDataSource({"x": [], "y": []})
-        fig.line("x", "y", source=self.track_src, line_color=BLUE, line_width=3,
-                 legend_label="mission track")
+        fig.line(
+            "x",
+            "y",
+            source=self.track_src,
+            line_color=BLUE,
+            line_width=3,
+            legend_label="mission track",
+        )
         self.points_src = ColumnDataSource({"x": [], "y": [], "name": []})
-        pts = fig.scatter("x", "y", source=self.points_src, size=13, fill_color=GOAL,
-                          line_color="white", line_width=2)
-        fig.text("x", "y", "name", source=self.points_src, x_offset=9, y_offset=-7,
-                 text_font_size="11px", text_color="#2c3e50")
+        pts = fig.scatter(
+            "x",
+            "y",
+            source=self.points_src,
+            size=13,
+            fill_color=GOAL,
+            line_color="white",
+            line_width=2,
+        )
+        fig.text(
+            "x",
+            "y",
+            "name",
+            source=self.points_src,
+            x_offset=9,
+            y_offset=-7,
+            text_font_size="11px",
+            text_color="#2c3e50",
+        )
         draw = PointDrawTool(renderers=[pts], add=False, drag=True)  # type: ignore[list-item]
         fig.add_tools(draw)
         fig.toolbar.active_drag = draw
@@ -295,7 +327,9 @@ class MissionPage:
         self._syncing = True
         try:
             self.points_src.data = {
-                "x": list(self.state.lon), "y": list(self.state.lat), "name": list(self.state.names)
+                "x": list(self.state.lon),
+                "y": list(self.state.lat),
+                "name": list(self.state.names),
             }
             self.legs_src.data = {"x": list(self.state.lon), "y": list(self.state.lat)}
         finally:
@@ -410,13 +444,20 @@ class MissionPage:
 
         p = view.plan if view is not None else None
         cost = view.cost_text if view is not None else "n/a"
-        status = "bad input" if view is not None and view.errors else (
-            str(getattr(p.status, "value", p.status)) if p is not None else "")
+        status = (
+            "bad input"
+            if view is not None and view.errors
+            else (str(getattr(p.status, "value", p.status)) if p is not None else "")
+        )
         dur = f"{p.total_duration_s / 60.0:.1f} min" if p is not None and p.ok else "&ndash;"
         busy = (
-            '<div class="gp-item gp-computing"><span class="gp-busy">computing&hellip;'
-            "</span></div>"
-        ) if stale else ""
+            (
+                '<div class="gp-item gp-computing"><span class="gp-busy">computing&hellip;'
+                "</span></div>"
+            )
+            if stale
+            else ""
+        )
         return (
             f'<div class="gp-strip{" gp-stale" if stale else ""}">'
             + item("total length (m)", html.escape(cost), "gp-cost")
@@ -437,9 +478,7 @@ class MissionPage:
             f"<td>{leg.length_m:.1f}</td><td>{leg.duration_s:.1f}</td></tr>"
             for leg in p.legs
         )
-        head = "".join(
-            f"<th>{h}</th>" for h in ("#", "leg", "word", "length (m)", "duration (s)")
-        )
+        head = "".join(f"<th>{h}</th>" for h in ("#", "leg", "word", "length (m)", "duration (s)"))
         return (
             '<div class="gp-help"><b>Legs</b></div><div class="gp-table-wrap">'
             f'<table class="gp-table"><thead><tr>{head}</tr></thead><tbody>{rows}</tbody>'

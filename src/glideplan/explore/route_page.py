@@ -224,6 +224,12 @@ class RoutePage:
             resolution=query.get("resolution", ""),
         )
         self._build()
+        from glideplan.explore.app import _parse_view
+
+        linked = _parse_view(query.get("view"))
+        if linked is not None:  # a link's zoom (the browser grows a side to equal scales)
+            self.x_range.update(start=linked[0], end=linked[2])
+            self.y_range.update(start=linked[1], end=linked[3])
         if self._doc is not None:
             self._doc.on_session_destroyed(self._on_closed)
         self.solve()
@@ -566,10 +572,16 @@ class RoutePage:
             )
         }
         state = self.state
-        if "start" in moved:
-            state = replace(state, start=moved["start"])
-        if "goal" in moved:
-            state = replace(state, goal=moved["goal"])
+        for name, attr in (("start", "start"), ("goal", "goal")):
+            if name not in moved:
+                continue
+            try:
+                was = _latlon(getattr(state, attr), name)
+                now = _latlon(moved[name], name)
+            except InvalidParameterError:
+                was, now = (math.nan, math.nan), (0.0, 0.0)
+            if max(abs(was[0] - now[0]), abs(was[1] - now[1])) > 1e-4:  # this one moved
+                state = replace(state, **{attr: moved[name]})
         if state != self.state:
             self._set_inputs(state)
             self._locked(lambda: self.set_state(state))

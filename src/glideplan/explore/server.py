@@ -71,12 +71,14 @@ def serve(
     show: bool = True,
     threaded: bool = False,
     field: str | None = None,
+    route: str | None = None,
 ) -> Any:
     """Serve the page at http://HOST:PORT/ (blocks unless `threaded`; then returns the server).
 
     Connections are accepted from `host` only (127.0.0.1 unless told otherwise). `field`: a
     current/wind file (server-side path) for the route map (`?planner=route`); without it
-    the route map shows the built-in double gyre.
+    the route map shows the built-in double gyre. `route`: a route file (server-side path)
+    for the mission map (`?planner=mission`); without it, the bundled example route.
     """
     import panel as pn
 
@@ -90,7 +92,7 @@ def serve(
     loopback = host in ("127.0.0.1", "localhost", "::1")
     origin: list[str] | str = [f"127.0.0.1:{port}", f"localhost:{port}"] if loopback else "*"
     return pn.serve(
-        {"/": lambda: create_page(catalog, field_path=field)},
+        {"/": lambda: create_page(catalog, field_path=field, route_path=route)},
         port=port,
         address=host,
         show=show,

@@ -357,3 +357,50 @@ class GriddedField(FlowField):
         points = np.stack([np.asarray(a, dtype=float).ravel() for a in axes], axis=-1)
         uv = self._interpolator(points).reshape(*la.shape, 2)
         return uv[..., 0], uv[..., 1]
+
+    def lattice_level(self, k: int, lat: ArrayLike, lon: ArrayLike) -> tuple[FloatArray,
+                                                                              FloatArray]:
+        """(u, v) of time level k on the lattice lat (ny,) x lon (nx,) degrees: (ny, nx) each.
+
+        The same bilinear values as `velocity(times[k], ...)` (a cell touching NaN is NaN),
+        computed separably: the row and column weights are found once for the whole lattice
+        (fast: routing samples every level on its window). Points outside are NaN; longitudes
+        are taken in the field's frame (periodic fields wrap).
+        """
+        la = np.asarray(lat, dtype=float)
+        lo = np.asarray(lon, dtype=float)
+        ext = self.extent
+        if ext.periodic:
+            lo = ext.lon_min + np.mod(lo - ext.lon_min, 360.0)
+        else:
+            centre = 0.5 * (ext.lon_min + ext.lon_max)
+            lo = centre + np.mod(lo - centre + 180.0, 360.0) - 180.0
+        lat_ax, lon_ax = self.lat, self.lon
+        u, v = self.u[k], self.v[k]
+        if ext.periodic:  # the seam column: lon[0] + 360 holds the first column again
+            lon_ax = np.concatenate([lon_ax, [lon_ax[0] + 360.0]])
+            u = np.concatenate([u, u[:, :1]], axis=1)
+            v = np.concatenate([v, v[:, :1]], axis=1)
+
+        def weights(q: FloatArray, ax: FloatArray) -> tuple[Any, Any, Any]:
+            i = np.clip(np.searchsorted(ax, q, side="right") - 1, 0, ax.size - 2)
+            w = (q - ax[i]) / (ax[i + 1] - ax[i])
+            ok = (q >= ax[0] - 1e-9) & (q <= ax[-1] + 1e-9)
+            return i, np.clip(w, 0.0, 1.0), ok
+
+        i, wy, oki = weights(la, lat_ax)
+        j, wx, okj = weights(lo, lon_ax)
+        out = []
+        for comp in (u, v):
+            a = comp[i][:, j]
+            b = comp[i][:, j + 1]
+            c = comp[i + 1][:, j]
+            d = comp[i + 1][:, j + 1]
+            wxx = wx[None, :]
+            val = (1 - wy)[:, None] * ((1 - wxx) * a + wxx * b) + wy[:, None] * (
+                (1 - wxx) * c + wxx * d)
+            val[~oki, :] = np.nan
+            val[:, ~okj] = np.nan
+            out.append(val)
+        return out[0], out[1]
+

@@ -18,6 +18,7 @@ tau0 = r0 / max a_k for the drift frozen at the source (its gauge function on 14
 
 from __future__ import annotations
 
+import bisect
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
@@ -45,7 +46,7 @@ BAND_CELLS = 6.0
 
 #: Active nodes from which a step splits its nodes over numba's threads (NUMBA_NUM_THREADS;
 #: the Makefile's tests set 1, since pytest -n 2 already keeps both cores busy).
-PARALLEL_MIN_NODES = 8_000
+PARALLEL_MIN_NODES = 30_000
 
 
 _EDGE_NAMES = ((1, "south"), (2, "north"), (4, "west"), (8, "east"))
@@ -94,9 +95,9 @@ class DriftLevels:
         lv = self.times
         if lv.size == 1:
             return 0, 0.0
-        k = int(np.clip(np.searchsorted(lv, t, side="right") - 1, 0, lv.size - 2))
-        w = float(np.clip((t - lv[k]) / (lv[k + 1] - lv[k]), 0.0, 1.0))
-        return k, w
+        k = min(max(bisect.bisect_right(lv, t) - 1, 0), lv.size - 2)  # scalar: no NumPy calls
+        a, b = float(lv[k]), float(lv[k + 1])
+        return k, min(max((t - a) / (b - a), 0.0), 1.0)
 
     def pair(self, t: float) -> tuple[FloatArray, FloatArray, float]:
         k, w = self.bracket(t)
@@ -108,23 +109,27 @@ class DriftLevels:
         """(u, v) at fractional node (fi, fj), bilinear; NaN stencils give NaN."""
         lo, hi, w = self.pair(t)
         ny, nx = grid.shape
-        i = int(np.clip(math.floor(fi), 0, ny - 2))
-        j = math.floor(fj)
-        wy = float(np.clip(fi - i, 0.0, 1.0))
-        wx = fj - j
-        j0 = j % nx if grid.periodic else int(np.clip(j, 0, nx - 2))
-        j1 = (j0 + 1) % nx if grid.periodic else j0 + 1
-        if not grid.periodic:
-            wx = float(np.clip(fj - j0, 0.0, 1.0))
-        out = np.zeros(2)
+        i = min(max(math.floor(fi), 0), ny - 2)
+        wy = min(max(fi - i, 0.0), 1.0)
+        if grid.periodic:
+            j0 = math.floor(fj)
+            wx = fj - j0
+            j0 %= nx
+            j1 = (j0 + 1) % nx
+        else:
+            j0 = min(max(math.floor(fj), 0), nx - 2)
+            j1 = j0 + 1
+            wx = min(max(fj - j0, 0.0), 1.0)
+        r0, r1 = i * nx, (i + 1) * nx
+        out = [0.0, 0.0]
         for arr, weight in ((lo, 1.0 - w), (hi, w)):
             if weight == 0.0:
                 continue
-            v00, v01 = arr[:, i * nx + j0], arr[:, i * nx + j1]
-            v10, v11 = arr[:, (i + 1) * nx + j0], arr[:, (i + 1) * nx + j1]
-            out += weight * ((1 - wy) * ((1 - wx) * v00 + wx * v01)
-                             + wy * ((1 - wx) * v10 + wx * v11))
-        return out
+            for c in (0, 1):
+                row = arr[c]
+                out[c] += weight * ((1 - wy) * ((1 - wx) * row[r0 + j0] + wx * row[r0 + j1])
+                                    + wy * ((1 - wx) * row[r1 + j0] + wx * row[r1 + j1]))
+        return np.array(out)
 
 
 @dataclass(frozen=True, eq=False)

@@ -157,9 +157,8 @@ def example(name: str) -> ReachExample:
     return ReachExample(
         name="ridge",
         description=("synthetic SRTM3 tile N46E007: a 500 m valley floor, a 3000 m ridge "
-                     "(46.40-46.62 N on 7.55 E) between the glider and three fields, a 2800 m "
-                     "range on 7.20 E; glider at 46.50 N 7.40 E, 1500 m; DG-1001M polar; "
-                     "wind 6 m/s from 250 deg"),
+                     "(46.40-46.62 N on 7.55 E) between the glider and three of the five "
+                     "fields, a 2800 m range on 7.20 E"),
         terrain=_ridge_terrain(),
         tile_name=TILE,
         landables=fields,

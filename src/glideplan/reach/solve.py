@@ -34,7 +34,8 @@ from glideplan.sailplane.polar import SailplanePolar
 from glideplan.solution import Status
 from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
 
-__all__ = ["front_problem", "glide_reach", "interp_arrival", "snap_to_reached", "solve_front"]
+__all__ = ["descend_reached", "front_problem", "glide_reach", "interp_arrival", "snap_to_reached",
+           "solve_front"]
 
 FloatArray = NDArray[np.float64]
 
@@ -159,6 +160,45 @@ def snap_to_reached(lat: FloatArray, lon: FloatArray, arrival: FloatArray, glat:
     return la, lo
 
 
+def descend_reached(arrival: FloatArray, glat: FloatArray, glon: FloatArray, la: float,
+                    lo: float) -> tuple[FloatArray, FloatArray] | None:
+    """A path of reached nodes from the node nearest (la, lo) down the arrival field to its
+    minimum (the start's disk): each step to the 8-neighbour of least arrival, while that
+    decreases; returned start first (None when no reached node is near the point).
+
+    The fallback when the backtracked characteristic cuts through blocked nodes (near the
+    tip of an obstacle, where the arrival field has a kink, it can cut a corner by several
+    cells, farther than `snap_to_reached` moves points): every node of this path was
+    reached, so its pooled terrain bounds the terrain within a cell of it; it is then
+    string-pulled and flown like the characteristic (the flight decides).
+    """
+    ny, nx = arrival.shape
+    dla, dlo = glat[1] - glat[0], glon[1] - glon[0]
+    i0 = int(np.clip(np.round((la - glat[0]) / dla), 0, ny - 1))
+    j0 = int(np.clip(np.round((lo - glon[0]) / dlo), 0, nx - 1))
+    best = None
+    for di in range(-1, 2):
+        for dj in range(-1, 2):
+            i, j = i0 + di, j0 + dj
+            if 0 <= i < ny and 0 <= j < nx and math.isfinite(arrival[i, j]) and (
+                    best is None or arrival[i, j] < arrival[best]):
+                best = (i, j)
+    if best is None:
+        return None
+    nodes = [best]
+    i, j = best
+    for _ in range(ny * nx):
+        win = arrival[max(i - 1, 0):i + 2, max(j - 1, 0):j + 2]
+        k = np.unravel_index(int(np.argmin(win)), win.shape)
+        ni, nj = max(i - 1, 0) + int(k[0]), max(j - 1, 0) + int(k[1])
+        if not arrival[ni, nj] < arrival[i, j]:
+            break
+        i, j = ni, nj
+        nodes.append((i, j))
+    nodes.reverse()
+    return (np.array([glat[a] for a, _ in nodes]), np.array([glon[b] for _, b in nodes]))
+
+
 def _offset_m(path: FlownPath, lat0: float, lon0: float, lat1: float, lon1: float) -> float:
     """Largest distance (m) of the path's waypoints from the straight line start -> goal."""
     c = math.cos(math.radians(lat0))
@@ -204,6 +244,14 @@ def _point(problem: ReachProblem, grid: ReachGrid, fp: Any, res: Any, state: Any
                    np.array([lon0, lnd.lon]), alt)
     candidates.append(straight)
     clear = [c for c in candidates if c.clear and math.isfinite(c.arrival_altitude)]
+    if not clear and math.isfinite(T):
+        down = descend_reached(res.arrival, grid.lat, grid.lon, lnd.lat, lnd.lon)
+        if down is not None:
+            dla = np.concatenate([[lat0], down[0], [lnd.lat]])
+            dlo = np.concatenate([[lon0], down[1], [lnd.lon]])
+            found = front_candidates(glide, terrain, safety, dla, dlo, alt)
+            candidates += found
+            clear = [c for c in found if c.clear and math.isfinite(c.arrival_altitude)]
     warning = None
     if clear:
         best = max(clear, key=lambda c: c.arrival_altitude)

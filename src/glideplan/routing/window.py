@@ -292,6 +292,10 @@ class WindowCurrents:
         todo = window.inside & ~known
         LA, LO = np.meshgrid(window.lat, window.lon, indexing="ij")
         for k, (u_old, v_old) in self._cache.items():
+            fast = new._own_level(k)
+            if fast is not None:
+                new._cache[k] = fast
+                continue
             u = np.full(window.shape, np.nan)
             v = np.full(window.shape, np.nan)
             u[r0:r0 + ny, c0:c0 + nx] = u_old
@@ -326,15 +330,35 @@ class WindowCurrents:
         k = math.floor(f)
         return k, f - k
 
+    def _own_level(self, k: int) -> tuple[FloatArray, FloatArray] | None:
+        """Level k of a gridded field sampled on the whole window lattice at once
+        (`GriddedField.lattice_level`: the same bilinear values, ~10x faster), or None."""
+        from glideplan.fields.field import GriddedField
+
+        fld = self.field_
+        if not isinstance(fld, GriddedField) or self.levels is None:
+            return None
+        if fld.times.size != self.levels.size:
+            return None
+        u, v = fld.lattice_level(k, self.window.lat, self.window.lon)
+        out = ~self.window.inside
+        u[out] = np.nan
+        v[out] = np.nan
+        return u, v
+
     def level(self, k: int) -> tuple[FloatArray, FloatArray]:
         """(u, v) east/north m/s on the window at level k; NaN on land."""
         if k not in self._cache:
-            LA, LO = np.meshgrid(self.window.lat, self.window.lon, indexing="ij")
-            m = self.window.inside
-            u = np.full(m.shape, np.nan)
-            v = np.full(m.shape, np.nan)
-            uu, vv = self.field_.velocity(self.level_time(k), LA[m], LO[m])
-            u[m], v[m] = uu, vv
+            fast = self._own_level(k)
+            if fast is not None:
+                u, v = fast
+            else:
+                LA, LO = np.meshgrid(self.window.lat, self.window.lon, indexing="ij")
+                m = self.window.inside
+                u = np.full(m.shape, np.nan)
+                v = np.full(m.shape, np.nan)
+                uu, vv = self.field_.velocity(self.level_time(k), LA[m], LO[m])
+                u[m], v[m] = uu, vv
             self._cache[k] = (u, v)
             self.evaluations += 1
             if len(self._cache) > 64:  # least recently used first
