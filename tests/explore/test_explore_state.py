@@ -205,6 +205,8 @@ def test_labels_carry_units_and_angles_are_degrees(catalog):
     counts = ("n intervals", "max starts", "max refinements", "max iterations", "scheme",
               "formulation", "seeds", "synthesis starts", "polar name")
     for entry in catalog.entries:
+        if not entry.spec.function.__module__.startswith("glideplan."):
+            continue  # a planner some test registered (tests/core/test_planning.py)
         for p in entry.parameters:
             label = p.caption(entry.nondimensional)
             assert "_" not in label and "((" not in label, label
