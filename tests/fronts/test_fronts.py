@@ -237,3 +237,36 @@ def test_parallel_stages_equal_the_serial_ones() -> None:
         numba.set_num_threads(n_threads)
     assert np.array_equal(results[0].arrival, results[1].arrival)
     assert np.array_equal(results[0].state.phi, results[1].state.phi)
+
+
+def test_a_process_that_ran_a_front_can_fork(tmp_path) -> None:
+    """`run_batch` forks workers: after a parallel front in the parent, workers that run fronts
+    must not abort. (With NUMBA_THREADING_LAYER=omp this very script dies: GNU OpenMP aborts a
+    forked child -- "fork() called from a process already using GNU OpenMP"; the kernel
+    selects numba's fork-safe work queue.)"""
+    import os
+    import subprocess
+    import sys
+
+    script = tmp_path / "fork_after_front.py"
+    script.write_text(
+        "import numpy as np\n"
+        "from glideplan import run_batch\n"
+        "from glideplan.fronts import solver, LatLonGrid, FrontProblem, start_state, propagate\n"
+        "solver.PARALLEL_MIN_NODES = 0\n"
+        "def one(v):\n"
+        "    g = LatLonGrid(np.arange(-0.1, 0.1, 0.004), np.arange(-0.1, 0.1, 0.004))\n"
+        "    p = FrontProblem(g, speeds=[v])\n"
+        "    return propagate(p, start_state(p, 0.0, 0.0, 0.0), 3000.0).steps\n"
+        "if __name__ == '__main__':\n"
+        "    one(3.0)\n"
+        "    print(run_batch(one, [3.0, 4.0, 5.0, 6.0], processes=2, progress=False))\n"
+    )
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("NUMBA_NUM_THREADS", "NUMBA_THREADING_LAYER")}
+    env["NUMBA_NUM_THREADS"] = "2"
+    out = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                         env=env, timeout=300, check=False, cwd=tmp_path)
+    assert out.returncode == 0, out.stderr[-800:]
+    steps = [int(x) for x in out.stdout.strip().strip("[]").split(",")]
+    assert len(steps) == 4 and all(n > 0 for n in steps)

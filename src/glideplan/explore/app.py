@@ -29,8 +29,6 @@ from typing import Any
 import numpy as np
 import panel as pn
 from bokeh.events import Pan, PanEnd, PanStart
-from panel.io.document import hold
-from panel.io.state import set_curdoc
 
 from glideplan.explore.catalog import Catalog, PlannerEntry, build_catalog, planner_key
 from glideplan.explore.downloads import path_csv, solution_json, solution_png
@@ -52,6 +50,7 @@ from glideplan.explore.state import (
     state_to_query,
 )
 from glideplan.explore.texts import FastHtml, error_html, html_pane, strip_html, table_html
+from glideplan.explore.worker import SessionWorker
 
 __all__ = ["Explorer", "create_page"]
 
@@ -119,7 +118,7 @@ def _parse_view(text: str | None) -> tuple[float, float, float, float] | None:
     return (x0, y0, x1, y1) if ok else None
 
 
-class Explorer:
+class Explorer(SessionWorker):
     """One page: widgets, figures and the state they show (see the module docstring).
 
     `sync=True` plans in the calling thread and applies at once (benchmarks and tests
@@ -345,21 +344,6 @@ class Explorer:
         if event.new != self.state.planner:
             self._locked(lambda: self._switch_planner(event.new))
 
-    def _locked(self, fn: Callable[[], None]) -> None:
-        """Run `fn` holding the document's lock (Panel's widget callbacks do not hold it,
-        and Bokeh models may only change under it), its model changes sent as one message."""
-        if self._doc is None:
-            fn()
-        else:
-            self._doc.add_next_tick_callback(lambda: self._held(fn))
-
-    def _held(self, fn: Callable[[], None]) -> None:
-        """`fn` with the document's events held and sent together (one patch, one render)."""
-        if self._closed or self._doc is None:
-            return
-        with set_curdoc(self._doc), hold(self._doc):
-            fn()
-
     def _switch_planner(self, key: str) -> None:
         """Another planner: its inputs and defaults, the start and goal kept (as entered)."""
         entry = self.catalog.get(key)
@@ -544,40 +528,14 @@ class Explorer:
                 # (30 ms later: the browser paints the answer before it parses the rest)
                 self._doc.add_timeout_callback(lambda: self._held(self._add_candidates), 30)
             return
-        with self._lock:
-            self._pending = self.state
-            start = not self._running
-            self._running = True
         self._show_busy(True)
-        if start:
-            threading.Thread(target=self._work, daemon=True, name="glideplan-explore").start()
+        self._submit("glideplan-explore")
 
-    def _work(self) -> None:
-        while True:
-            with self._lock:
-                state, self._pending = self._pending, None
-                if state is None:
-                    self._running = False
-                    return
-            try:
-                result = self._compute(state)
-            except Exception as exc:  # a bug: show it on the page rather than lose the thread
-                result = (View(state, None, {"": f"internal error: {exc!r}"}), None)
-            with self._lock:
-                latest = self._pending is None
-            if latest:
-                self._schedule(lambda r=result: self._apply(*r))  # type: ignore[misc]
+    def _failed(self, state: ExploreState, message: str) -> tuple[View, Any]:
+        return (View(state, None, {"": message}), None)
 
-    def _schedule(self, fn: Callable[[], None]) -> None:
-        if self._doc is None:
-            fn()
-            return
-        if self._closed:
-            return  # the tab was closed while planning: nobody to show it to
-        try:
-            self._doc.add_next_tick_callback(lambda: self._held(fn))
-        except Exception:  # the session went away between the check and the call
-            self._closed = True
+    def _deliver(self, answer: tuple[View, Any]) -> None:
+        self._apply(*answer)
 
     def _add_candidates(self) -> None:
         """The shown answer's candidates: lines, table and the view fitted to them."""

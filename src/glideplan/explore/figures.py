@@ -85,6 +85,23 @@ def follow_url(fig: Any) -> None:
     fig.js_on_change("tags", CustomJS(code=URL_JS))
 
 
+def plain_figure(x_range: Any, y_range: Any, x_label: str, y_label: str, **extra: Any) -> Any:
+    """The explorer's figure: stretching, pan/zoom tools above, canvas drawn, on the ranges."""
+    return figure(
+        sizing_mode="stretch_both",
+        min_width=240,
+        min_height=240,
+        x_range=x_range,
+        y_range=y_range,
+        tools="pan,wheel_zoom,box_zoom,reset,save",
+        toolbar_location="above",
+        x_axis_label=x_label,
+        y_axis_label=y_label,
+        output_backend="canvas",
+        **extra,
+    )
+
+
 def empty_points() -> dict[str, list[Any]]:
     return {k: [] for k in POINT_COLUMNS}
 
@@ -98,19 +115,7 @@ class PlanFigures:
 
     def __init__(self) -> None:
         self.x_range, self.y_range = Range1d(start=-1.0, end=1.0), Range1d(start=-1.0, end=1.0)
-        fig = figure(
-            sizing_mode="stretch_both",
-            min_width=240,
-            min_height=240,
-            x_range=self.x_range,
-            y_range=self.y_range,
-            tools="pan,wheel_zoom,box_zoom,reset,save",
-            toolbar_location="above",
-            x_axis_label="x (m)",
-            y_axis_label="y (m)",
-            output_backend="canvas",
-            match_aspect=True,
-        )
+        fig = plain_figure(self.x_range, self.y_range, "x (m)", "y (m)", match_aspect=True)
         fig.background_fill_color = "#fbfcfe"
         fig.grid.grid_line_color = "#e3e9f0"
         fig.outline_line_color = "#c9d3de"

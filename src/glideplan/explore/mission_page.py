@@ -18,21 +18,26 @@ import io
 import math
 import pathlib
 import tempfile
-import threading
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 from urllib.parse import quote, urlencode
 
 import numpy as np
-import panel as pn
-from bokeh.models import ColumnDataSource, PointDrawTool, Range1d
-from bokeh.plotting import figure
-from panel.io.document import hold
-from panel.io.state import set_curdoc
+from bokeh.models import ColumnDataSource, Range1d
 
 from glideplan.errors import InvalidParameterError
-from glideplan.explore.figures import BLUE, GOAL, equal_scales, follow_url
+from glideplan.explore.figures import BLUE, GOAL
+from glideplan.explore.map_page import (
+    MapPage,
+    busy_html,
+    download_row,
+    finish_map,
+    map_figure,
+    page_layout,
+    strip_item,
+    text_inputs,
+)
 from glideplan.explore.state import one_line
 from glideplan.explore.texts import FastHtml, error_html, html_pane
 
@@ -103,8 +108,10 @@ def mission_view(state: MissionState, source: str) -> MissionView:
     return MissionView(state, plan, {})
 
 
-class MissionPage:
+class MissionPage(MapPage):
     """The mission map of one session (module docstring); `layout` is its Panel view."""
+
+    MODE = "mission"
 
     def __init__(
         self, query: Mapping[str, str] | None = None, route_path: str | None = None
@@ -112,13 +119,7 @@ class MissionPage:
         from glideplan.formats.readers import read_route
 
         query = dict(query or {})
-        self.on_mode: Callable[[str], None] | None = None
-        self._doc = pn.state.curdoc
-        self._lock = threading.Lock()
-        self._pending: MissionState | None = None
-        self._running = False
-        self._closed = False
-        self._syncing = False
+        self._start_session()
         self.view: MissionView | None = None
         self.file_error = ""
         path = pathlib.Path(route_path) if route_path else EXAMPLE_ROUTE
@@ -148,80 +149,26 @@ class MissionPage:
         self.state = state
         self.k = math.cos(math.radians(float(np.mean(state.lat))))
         self._build()
-        from glideplan.explore.app import _parse_view
-
-        linked = _parse_view(query.get("view"))
-        if linked is not None:  # a link's zoom (the browser grows a side to equal scales)
-            self.x_range.update(start=linked[0], end=linked[2])
-            self.y_range.update(start=linked[1], end=linked[3])
-        if self._doc is not None:
-            self._doc.on_session_destroyed(self._on_closed)
-        self.solve()
-
-    def _on_closed(self, _context: Any) -> None:
-        self._closed = True
+        self._finish_session(query)
 
     def _build(self) -> None:
-        from glideplan.explore.app import (
-            BODY_CSS,
-            LAYOUT_CSS,
-            MAIN_CSS,
-            MAP_MODES,
-            PLOT_CSS,
-            RIGHT_CSS,
-            ROOT_CSS,
-            SIDEBAR_CSS,
-            _TextInput,
-        )
-        from glideplan.explore.catalog import build_catalog
-
-        options = {e.label: e.key for e in build_catalog().entries}
-        options.update(MAP_MODES)
-        self.mode_select = pn.widgets.Select(
-            label="Planner", options=options, value="mission", sizing_mode="stretch_width"
-        )
-        self.mode_select.param.watch(self._on_mode, "value")
+        self.mode_select = self._mode_select()
         help_text = (
             f'<div class="gp-help">Route file <code>{html.escape(self.path.name)}</code> '
             f"({len(self.state.names)} waypoints). Drag a waypoint; the mission's Dubins legs "
             "(headings chosen at each waypoint) follow.</div>" + error_html(self.file_error)
         )
-        self.inputs: dict[str, Any] = {}
-        self.error_panes: dict[str, Any] = {}
-        for name, label in (("speed", "speed (m/s)"), ("radius", "turn radius (m)")):
-            w = _TextInput(
-                label=label,
-                value=getattr(self.state, name),
-                sizing_mode="stretch_width",
-                css_classes=[f"gp-input-{name}"],
-            )
-            w.param.watch(self._make_watcher(name), "value")
-            self.inputs[name] = w
-            self.error_panes[name] = html_pane(sizing_mode="stretch_width")
+        labels = {"speed": ("speed", "speed (m/s)"), "radius": ("radius", "turn radius (m)")}
+        self.inputs, self.error_panes = text_inputs(self.state, labels, self._make_watcher)
         self.general_error = html_pane(sizing_mode="stretch_width")
         self.strip = FastHtml()
         self.table = FastHtml()
-        self.downloads = pn.Row(
-            pn.widgets.FileDownload(
-                callback=self._json_file,
-                filename="glideplan-mission.json",
-                label="JSON",
-                color="primary",
-                width=92,
-                embed=False,
-            ),
-            pn.widgets.FileDownload(
-                callback=self._gpx_file,
-                filename="glideplan-mission.gpx",
-                label="GPX",
-                color="primary",
-                width=92,
-                embed=False,
-            ),
-            margin=(5, 0),
+        self.downloads = download_row(
+            (self._json_file, "glideplan-mission.json", "JSON"),
+            (self._gpx_file, "glideplan-mission.gpx", "GPX"),
         )
         self._figure()
-        sidebar = pn.Column(
+        sidebar = (
             self.mode_select,
             html_pane(help_text, sizing_mode="stretch_width"),
             self.inputs["speed"],
@@ -234,41 +181,22 @@ class MissionPage:
                 "</code>) and its track (GPX)</div>"
             ),
             self.downloads,
-            stylesheets=[SIDEBAR_CSS],
         )
-        self.fig.stylesheets = [PLOT_CSS]
-        right = pn.Column(self.table.pane, stylesheets=[RIGHT_CSS])
-        body = pn.FlexBox(pn.pane.Bokeh(self.fig), right, flex_wrap="wrap", stylesheets=[BODY_CSS])
-        main = pn.Column(self.strip.pane, body, stylesheets=[MAIN_CSS])
-        header = pn.Row(
-            html_pane(
-                '<div class="gp-title">glideplan explore: mission</div>'
-                '<div class="gp-sub">Waypoints of a route file, flown as Dubins legs</div>'
-            ),
-            styles={"background": "#1f3b5c", "border-radius": "6px"},
-            sizing_mode="stretch_width",
-            margin=(5, 5, 10, 5),
+        self.layout = page_layout(
+            sidebar,
+            self.fig,
+            self.strip,
+            [self.table.pane],
+            "mission",
+            "Waypoints of a route file, flown as Dubins legs",
         )
-        page = pn.FlexBox(sidebar, main, flex_wrap="wrap", stylesheets=[LAYOUT_CSS])
-        self.layout = pn.Column(header, page, sizing_mode="stretch_width", stylesheets=[ROOT_CSS])
 
     def _figure(self) -> None:
         lat, lon = np.array(self.state.lat), np.array(self.state.lon)
         pad = 0.15 * max(float(np.ptp(lat)), float(np.ptp(lon)) * self.k, 1e-3)
         self.x_range = Range1d(lon.min() - pad / self.k, lon.max() + pad / self.k)
         self.y_range = Range1d(lat.min() - pad, lat.max() + pad)
-        fig = figure(
-            sizing_mode="stretch_both",
-            min_width=240,
-            min_height=240,
-            x_range=self.x_range,
-            y_range=self.y_range,
-            tools="pan,wheel_zoom,box_zoom,reset,save",
-            toolbar_location="above",
-            x_axis_label="longitude (deg E)",
-            y_axis_label="latitude (deg N)",
-            output_backend="canvas",
-        )
+        fig = map_figure(self.x_range, self.y_range)
         fig.background_fill_color = "#eef5fb"
         fig.grid.grid_line_color = "#d9e3ee"
         self.legs_src = ColumnDataSource({"x": [], "y": []})
@@ -310,15 +238,7 @@ class MissionPage:
             text_font_size="11px",
             text_color="#2c3e50",
         )
-        draw = PointDrawTool(renderers=[pts], add=False, drag=True)  # type: ignore[list-item]
-        fig.add_tools(draw)
-        fig.toolbar.active_drag = draw
-        legend = fig.legend[0]
-        legend.location = "top_left"
-        legend.background_fill_alpha = 0.8
-        legend.label_text_font_size = "11px"
-        equal_scales(fig, self.x_range, self.y_range, self.k)
-        follow_url(fig)
+        finish_map(fig, pts, self.x_range, self.y_range, self.k)
         self.fig = fig
         self.points_src.on_change("data", self._on_points)
         self._draw_points()
@@ -356,22 +276,6 @@ class MissionPage:
 
         return watch
 
-    def _on_mode(self, event: Any) -> None:
-        if event.new != "mission" and self.on_mode is not None:
-            self._locked(lambda: self.on_mode(event.new) if self.on_mode else None)
-
-    def _locked(self, fn: Callable[[], None]) -> None:
-        if self._doc is None:
-            fn()
-        else:
-            self._doc.add_next_tick_callback(lambda: self._held(fn))
-
-    def _held(self, fn: Callable[[], None]) -> None:
-        if self._closed or self._doc is None:
-            return
-        with set_curdoc(self._doc), hold(self._doc):
-            fn()
-
     def push_url(self) -> None:
         self.strip.sync()
         self.table.sync()
@@ -383,49 +287,17 @@ class MissionPage:
         self.push_url()
         self.solve()
 
-    def solve(self) -> None:
-        """Plan the current state on the worker thread (latest state wins)."""
-        if self._doc is None:
-            self._apply(mission_view(self.state, self.path.name))
-            return
-        with self._lock:
-            self._pending = self.state
-            start = not self._running
-            self._running = True
-        self.strip.object = self._strip_html(self.view, stale=True)
-        if start:
-            threading.Thread(target=self._work, daemon=True, name="glideplan-mission").start()
+    def _compute(self, state: MissionState) -> MissionView:
+        return mission_view(state, self.path.name)
 
-    def _work(self) -> None:
-        while True:
-            with self._lock:
-                state, self._pending = self._pending, None
-                if state is None:
-                    self._running = False
-                    return
-            try:
-                view = mission_view(state, self.path.name)
-            except Exception as exc:  # a bug: show it rather than lose the thread
-                view = MissionView(state, None, {"": f"internal error: {exc!r}"})
-            with self._lock:
-                latest = self._pending is None
-            if latest and not self._closed and self._doc is not None:
-                try:
-                    self._doc.add_next_tick_callback(
-                        lambda v=view: self._held(lambda: self._apply(v))  # type: ignore[misc]
-                    )
-                except Exception:  # the session went away meanwhile
-                    self._closed = True
+    def _failed(self, state: MissionState, message: str) -> MissionView:
+        return MissionView(state, None, {"": message})
 
     def _apply(self, view: MissionView) -> None:
         if view.state != self.state:
             return
         self.view = view
-        errors = dict(view.errors or {})
-        for name, pane in self.error_panes.items():
-            pane.object = error_html(errors.get(name, ""))
-        self.general_error.object = error_html(errors.get("", ""))
-        self.strip.object = self._strip_html(view)
+        self._show_errors(view)
         p = view.plan
         if p is not None and p.ok:
             track = p.track()
@@ -436,12 +308,7 @@ class MissionPage:
         self.table.object = self._table_html(p)
 
     def _strip_html(self, view: MissionView | None, stale: bool = False) -> str:
-        def item(k: str, v: str, cls: str = "") -> str:
-            return (
-                f'<div class="gp-item"><span class="gp-k">{k}</span>'
-                f'<span class="gp-v {cls}">{v}</span></div>'
-            )
-
+        item = strip_item
         p = view.plan if view is not None else None
         cost = view.cost_text if view is not None else "n/a"
         status = (
@@ -450,22 +317,12 @@ class MissionPage:
             else (str(getattr(p.status, "value", p.status)) if p is not None else "")
         )
         dur = f"{p.total_duration_s / 60.0:.1f} min" if p is not None and p.ok else "&ndash;"
-        busy = (
-            (
-                '<div class="gp-item gp-computing"><span class="gp-busy">computing&hellip;'
-                "</span></div>"
-            )
-            if stale
-            else ""
-        )
-        return (
-            f'<div class="gp-strip{" gp-stale" if stale else ""}">'
-            + item("total length (m)", html.escape(cost), "gp-cost")
+        return busy_html(
+            item("total length (m)", html.escape(cost), "gp-cost")
             + item("duration", dur, "gp-word")
             + item("legs", str(len(p.legs)) if p is not None else "&ndash;", "gp-small")
-            + item("status", html.escape(status), "gp-small gp-status")
-            + busy
-            + "</div>"
+            + item("status", html.escape(status), "gp-small gp-status"),
+            stale,
         )
 
     def _table_html(self, p: Any) -> str:
@@ -486,8 +343,7 @@ class MissionPage:
         )
 
     def _messages(self) -> str:
-        errors = dict(self.view.errors or {}) if self.view is not None else {"": "no answer yet"}
-        return "; ".join(v for v in errors.values() if v) or "no mission"
+        return super()._messages() or "no mission"
 
     def _json_file(self) -> io.StringIO:
         from glideplan.jsonio import to_json

@@ -15,23 +15,27 @@ from __future__ import annotations
 
 import html
 import math
-import threading
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 from urllib.parse import quote, urlencode
 
 import numpy as np
-import panel as pn
-from bokeh.models import ColumnDataSource, PointDrawTool, Range1d
-from bokeh.plotting import figure
-from panel.io.document import hold
-from panel.io.state import set_curdoc
+from bokeh.models import ColumnDataSource, Range1d
 
 from glideplan.errors import InvalidParameterError
-from glideplan.explore.figures import START, equal_scales, follow_url
+from glideplan.explore.figures import START
+from glideplan.explore.map_page import (
+    MapPage,
+    busy_html,
+    finish_map,
+    map_figure,
+    page_layout,
+    strip_item,
+    text_inputs,
+)
 from glideplan.explore.state import one_line
-from glideplan.explore.texts import FastHtml, error_html, html_pane
+from glideplan.explore.texts import FastHtml, html_pane
 
 __all__ = ["ReachPage", "ReachState", "hillshade", "reach_view"]
 
@@ -123,21 +127,17 @@ def hillshade(z: np.ndarray, dx: float, dy: float, azimuth_deg: float = 315.0) -
     return np.clip(shade, 0.0, 1.0)
 
 
-class ReachPage:
+class ReachPage(MapPage):
     """The glide reach map of one session (module docstring); `layout` is its Panel view."""
+
+    MODE = "reach"
 
     def __init__(self, query: Mapping[str, str] | None = None) -> None:
         from glideplan.cli.glide import _polar
         from glideplan.reach.examples import example
 
         query = dict(query or {})
-        self.on_mode: Callable[[str], None] | None = None
-        self._doc = pn.state.curdoc
-        self._lock = threading.Lock()
-        self._pending: ReachState | None = None
-        self._running = False
-        self._closed = False
-        self._syncing = False
+        self._start_session()
         self.view: ReachView | None = None
         self.example = example("ridge")
         self.polar = _polar(self.example.polar_file, None, 0.0, 0.0, "--polar")
@@ -150,60 +150,21 @@ class ReachPage:
         )
         self.k = math.cos(math.radians(float(ex.start[0])))
         self._build()
-        from glideplan.explore.app import _parse_view
-
-        linked = _parse_view(query.get("view"))
-        if linked is not None:  # a link's zoom (the browser grows a side to equal scales)
-            self.x_range.update(start=linked[0], end=linked[2])
-            self.y_range.update(start=linked[1], end=linked[3])
-        if self._doc is not None:
-            self._doc.on_session_destroyed(self._on_closed)
-        self.solve()
-
-    def _on_closed(self, _context: Any) -> None:
-        self._closed = True
+        self._finish_session(query)
 
     def _build(self) -> None:
-        from glideplan.explore.app import (
-            BODY_CSS,
-            LAYOUT_CSS,
-            MAIN_CSS,
-            MAP_MODES,
-            PLOT_CSS,
-            ROOT_CSS,
-            SIDEBAR_CSS,
-            _TextInput,
-        )
-        from glideplan.explore.catalog import build_catalog
-
-        options = {e.label: e.key for e in build_catalog().entries}
-        options.update(MAP_MODES)
-        self.mode_select = pn.widgets.Select(
-            label="Planner", options=options, value="reach", sizing_mode="stretch_width"
-        )
-        self.mode_select.param.watch(self._on_mode, "value")
-        self.inputs: dict[str, Any] = {}
-        self.error_panes: dict[str, Any] = {}
+        self.mode_select = self._mode_select()
         labels = {
             "from": ("start", "from: lat (deg), lon (deg), altitude (m MSL)"),
             "wind": ("wind", "wind: speed (m/s), from (deg compass)"),
             "mc": ("mc", "MacCready setting (m/s)"),
             "safety": ("safety", "safety height above terrain (m)"),
         }
-        for name, (attr, label) in labels.items():
-            w = _TextInput(
-                label=label,
-                value=getattr(self.state, attr),
-                sizing_mode="stretch_width",
-                css_classes=[f"gp-input-{name}"],
-            )
-            w.param.watch(self._make_watcher(attr), "value")
-            self.inputs[name] = w
-            self.error_panes[name] = html_pane(sizing_mode="stretch_width")
+        self.inputs, self.error_panes = text_inputs(self.state, labels, self._make_watcher)
         self.general_error = html_pane(sizing_mode="stretch_width")
         self.strip = FastHtml()
         self._figure()
-        sidebar = pn.Column(
+        sidebar = (
             self.mode_select,
             html_pane(
                 '<div class="gp-help">Example <b>ridge</b>: '
@@ -212,41 +173,23 @@ class ReachPage:
             ),
             *[x for n in labels for x in (self.inputs[n], self.error_panes[n])],
             self.general_error,
-            stylesheets=[SIDEBAR_CSS],
         )
-        self.fig.stylesheets = [PLOT_CSS]
-        body = pn.FlexBox(pn.pane.Bokeh(self.fig), flex_wrap="wrap", stylesheets=[BODY_CSS])
-        main = pn.Column(self.strip.pane, body, stylesheets=[MAIN_CSS])
-        header = pn.Row(
-            html_pane(
-                '<div class="gp-title">glideplan explore: glide reach</div>'
-                '<div class="gp-sub">Where the glider can still glide to over terrain in '
-                "wind, each landable's path verified</div>"
-            ),
-            styles={"background": "#1f3b5c", "border-radius": "6px"},
-            sizing_mode="stretch_width",
-            margin=(5, 5, 10, 5),
+        self.layout = page_layout(
+            sidebar,
+            self.fig,
+            self.strip,
+            [],
+            "glide reach",
+            "Where the glider can still glide to over terrain in wind, each landable's path "
+            "verified",
         )
-        page = pn.FlexBox(sidebar, main, flex_wrap="wrap", stylesheets=[LAYOUT_CSS])
-        self.layout = pn.Column(header, page, sizing_mode="stretch_width", stylesheets=[ROOT_CSS])
 
     def _figure(self) -> None:
         t = self.example.terrain
         lat, lon = np.asarray(t.lat, dtype=float), np.asarray(t.lon, dtype=float)
         self.x_range = Range1d(start=float(lon.min()), end=float(lon.max()))
         self.y_range = Range1d(start=float(lat.min()), end=float(lat.max()))
-        fig = figure(
-            sizing_mode="stretch_both",
-            min_width=240,
-            min_height=240,
-            x_range=self.x_range,
-            y_range=self.y_range,
-            tools="pan,wheel_zoom,box_zoom,reset,save",
-            toolbar_location="above",
-            x_axis_label="longitude (deg E)",
-            y_axis_label="latitude (deg N)",
-            output_backend="canvas",
-        )
+        fig = map_figure(self.x_range, self.y_range)
         step = max(1, len(lon) // _SHADE_CELLS)
         z = np.asarray(t.z, dtype=float)[::step, ::step]
         la, lo = lat[::step], lon[::step]
@@ -318,16 +261,7 @@ class ReachPage:
             line_color="white",
             line_width=2,
         )
-        draw = PointDrawTool(renderers=[pts], add=False, drag=True)  # type: ignore[list-item]
-        fig.add_tools(draw)
-        fig.toolbar.active_drag = draw
-        legend = fig.legend[0]
-        legend.location = "top_left"
-        legend.background_fill_alpha = 0.8
-        legend.label_text_font_size = "11px"
-        legend.click_policy = "hide"
-        equal_scales(fig, self.x_range, self.y_range, self.k)
-        follow_url(fig)
+        finish_map(fig, pts, self.x_range, self.y_range, self.k, hide=True)
         self.fig = fig
         self.start_src.on_change("data", self._on_points)
         self._draw_start()
@@ -367,22 +301,6 @@ class ReachPage:
 
         return watch
 
-    def _on_mode(self, event: Any) -> None:
-        if event.new != "reach" and self.on_mode is not None:
-            self._locked(lambda: self.on_mode(event.new) if self.on_mode else None)
-
-    def _locked(self, fn: Callable[[], None]) -> None:
-        if self._doc is None:
-            fn()
-        else:
-            self._doc.add_next_tick_callback(lambda: self._held(fn))
-
-    def _held(self, fn: Callable[[], None]) -> None:
-        if self._closed or self._doc is None:
-            return
-        with set_curdoc(self._doc), hold(self._doc):
-            fn()
-
     def push_url(self) -> None:
         self.strip.sync()
         self.fig.tags = ["?" + self.state.query()]
@@ -393,49 +311,17 @@ class ReachPage:
         self.push_url()
         self.solve()
 
-    def solve(self) -> None:
-        """Compute the reach on the worker thread (latest state wins)."""
-        if self._doc is None:
-            self._apply(reach_view(self.example, self.polar, self.state))
-            return
-        with self._lock:
-            self._pending = self.state
-            start = not self._running
-            self._running = True
-        self.strip.object = self._strip_html(self.view, stale=True)
-        if start:
-            threading.Thread(target=self._work, daemon=True, name="glideplan-reach").start()
+    def _compute(self, state: ReachState) -> ReachView:
+        return reach_view(self.example, self.polar, state)
 
-    def _work(self) -> None:
-        while True:
-            with self._lock:
-                state, self._pending = self._pending, None
-                if state is None:
-                    self._running = False
-                    return
-            try:
-                view = reach_view(self.example, self.polar, state)
-            except Exception as exc:  # a bug: show it rather than lose the thread
-                view = ReachView(state, None, {"": f"internal error: {exc!r}"})
-            with self._lock:
-                latest = self._pending is None
-            if latest and not self._closed and self._doc is not None:
-                try:
-                    self._doc.add_next_tick_callback(
-                        lambda v=view: self._held(lambda: self._apply(v))  # type: ignore[misc]
-                    )
-                except Exception:  # the session went away meanwhile
-                    self._closed = True
+    def _failed(self, state: ReachState, message: str) -> ReachView:
+        return ReachView(state, None, {"": message})
 
     def _apply(self, view: ReachView) -> None:
         if view.state != self.state:
             return
         self.view = view
-        errors = dict(view.errors or {})
-        for name, pane in self.error_panes.items():
-            pane.object = error_html(errors.get(name, ""))
-        self.general_error.object = error_html(errors.get("", ""))
-        self.strip.object = self._strip_html(view)
+        self._show_errors(view)
         r = view.result
         if r is None:
             self.foot_src.data = {"xs": [], "ys": []}
@@ -465,12 +351,7 @@ class ReachPage:
         self.track_src.data = {"xs": tx, "ys": ty}
 
     def _strip_html(self, view: ReachView | None, stale: bool = False) -> str:
-        def item(k: str, v: str, cls: str = "") -> str:
-            return (
-                f'<div class="gp-item"><span class="gp-k">{k}</span>'
-                f'<span class="gp-v {cls}">{v}</span></div>'
-            )
-
+        item = strip_item
         r = view.result if view is not None else None
         if r is not None:
             n = sum(1 for p in r.points if p.reachable)
@@ -481,19 +362,9 @@ class ReachPage:
         else:
             cost, total, best = "n/a", "", "&ndash;"
             status = "bad input" if view is not None and view.errors else ""
-        busy = (
-            (
-                '<div class="gp-item gp-computing"><span class="gp-busy">computing&hellip;'
-                "</span></div>"
-            )
-            if stale
-            else ""
-        )
-        return (
-            f'<div class="gp-strip{" gp-stale" if stale else ""}">'
-            + item("reachable landables", f"{html.escape(cost)} {total}", "gp-cost")
+        return busy_html(
+            item("reachable landables", f"{html.escape(cost)} {total}", "gp-cost")
             + item("best margin", best, "gp-word")
-            + item("status", html.escape(status), "gp-small gp-status")
-            + busy
-            + "</div>"
+            + item("status", html.escape(status), "gp-small gp-status"),
+            stale,
         )

@@ -18,7 +18,6 @@ from __future__ import annotations
 import html
 import io
 import math
-import threading
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
@@ -26,13 +25,20 @@ from urllib.parse import quote, urlencode
 
 import numpy as np
 import panel as pn
-from bokeh.models import ColumnDataSource, PointDrawTool, Range1d
-from bokeh.plotting import figure
-from panel.io.document import hold
-from panel.io.state import set_curdoc
+from bokeh.models import ColumnDataSource, Range1d
 
 from glideplan.errors import InvalidParameterError
-from glideplan.explore.figures import GOAL, START, WIND, equal_scales, follow_url
+from glideplan.explore.figures import GOAL, START, WIND
+from glideplan.explore.map_page import (
+    MapPage,
+    busy_html,
+    download_row,
+    finish_map,
+    map_figure,
+    page_layout,
+    strip_item,
+    text_inputs,
+)
 from glideplan.explore.state import one_line
 from glideplan.explore.texts import FastHtml, error_html, html_pane
 
@@ -188,8 +194,10 @@ def isochrones(front: Any, until_s: float) -> tuple[dict[str, list[Any]], float]
     return out, step_h
 
 
-class RoutePage:
+class RoutePage(MapPage):
     """The route map of one session (module docstring); `layout` is its Panel view."""
+
+    MODE = "route"
 
     def __init__(
         self, query: Mapping[str, str] | None = None, field_path: str | None = None
@@ -197,12 +205,7 @@ class RoutePage:
         query = dict(query or {})
         self.field_path = field_path
         example = query.get("example") or (None if field_path else "double-gyre")
-        self.on_mode: Callable[[str], None] | None = None
-        self._doc = pn.state.curdoc
-        self._lock = threading.Lock()
-        self._pending: RouteState | None = None
-        self._running = False
-        self._closed = False
+        self._start_session()
         self.view: RouteView | None = None
         self.field_error = ""
         try:
@@ -224,15 +227,7 @@ class RoutePage:
             resolution=query.get("resolution", ""),
         )
         self._build()
-        from glideplan.explore.app import _parse_view
-
-        linked = _parse_view(query.get("view"))
-        if linked is not None:  # a link's zoom (the browser grows a side to equal scales)
-            self.x_range.update(start=linked[0], end=linked[2])
-            self.y_range.update(start=linked[1], end=linked[3])
-        if self._doc is not None:
-            self._doc.on_session_destroyed(self._on_closed)
-        self.solve()
+        self._finish_session(query)
 
     @staticmethod
     def _defaults(ext: Any) -> tuple[str, str]:
@@ -241,29 +236,9 @@ class RoutePage:
         a, b = ext.lon_min + 0.1 * w, ext.lon_min + 0.9 * w
         return f"{lat:.4f},{a:.4f}", f"{lat:.4f},{b:.4f}"
 
-    def _on_closed(self, _context: Any) -> None:
-        self._closed = True
-
     # ----- widgets and figure -----------------------------------------------------------------
     def _build(self) -> None:
-        from glideplan.explore.app import (
-            BODY_CSS,
-            LAYOUT_CSS,
-            MAIN_CSS,
-            MAP_MODES,
-            PLOT_CSS,
-            ROOT_CSS,
-            SIDEBAR_CSS,
-            _TextInput,
-        )
-        from glideplan.explore.catalog import build_catalog
-
-        options = {e.label: e.key for e in build_catalog().entries}
-        options.update(MAP_MODES)
-        self.mode_select = pn.widgets.Select(
-            label="Planner", options=options, value="route", sizing_mode="stretch_width"
-        )
-        self.mode_select.param.watch(self._on_mode, "value")
+        self.mode_select = self._mode_select()
         info = self.flow.describe()
         source = (
             f"built-in example <b>{html.escape(self.state.example)}</b>"
@@ -276,8 +251,6 @@ class RoutePage:
             "water (air) below.</div>" + error_html(self.field_error),
             sizing_mode="stretch_width",
         )
-        self.inputs: dict[str, Any] = {}
-        self.error_panes: dict[str, Any] = {}
         labels = {
             "from": ("start", "from: lat (deg), lon (deg)"),
             "to": ("goal", "to: lat (deg), lon (deg)"),
@@ -285,16 +258,7 @@ class RoutePage:
             "depart": ("depart", "depart (ISO 8601 UTC; empty: the field's first time)"),
             "resolution": ("resolution", "grid spacing (m; empty: ~200 cells across)"),
         }
-        for name, (attr, label) in labels.items():
-            w = _TextInput(
-                label=label,
-                value=getattr(self.state, attr),
-                sizing_mode="stretch_width",
-                css_classes=[f"gp-input-{name}"],
-            )
-            w.param.watch(self._make_watcher(attr), "value")
-            self.inputs[name] = w
-            self.error_panes[name] = html_pane(sizing_mode="stretch_width")
+        self.inputs, self.error_panes = text_inputs(self.state, labels, self._make_watcher)
         self.general_error = html_pane(sizing_mode="stretch_width")
         self.slider = pn.widgets.FloatSlider(
             label="currents at (h after departure)",
@@ -305,28 +269,13 @@ class RoutePage:
             sizing_mode="stretch_width",
         )
         self.slider.param.watch(self._on_slider, "value")
-        self.downloads = pn.Row(
-            pn.widgets.FileDownload(
-                callback=self._json_file,
-                filename="glideplan-route.json",
-                label="JSON",
-                color="primary",
-                width=92,
-                embed=False,
-            ),
-            pn.widgets.FileDownload(
-                callback=self._csv_file,
-                filename="glideplan-route.csv",
-                label="CSV",
-                color="primary",
-                width=92,
-                embed=False,
-            ),
-            margin=(5, 0),
+        self.downloads = download_row(
+            (self._json_file, "glideplan-route.json", "JSON"),
+            (self._csv_file, "glideplan-route.csv", "CSV"),
         )
         self.strip = FastHtml()
         self._figure()
-        sidebar = pn.Column(
+        sidebar = (
             self.mode_select,
             self.field_help,
             *[
@@ -341,41 +290,23 @@ class RoutePage:
                 "and its track (CSV)</div>"
             ),
             self.downloads,
-            stylesheets=[SIDEBAR_CSS],
         )
-        self.fig.stylesheets = [PLOT_CSS]
-        body = pn.FlexBox(pn.pane.Bokeh(self.fig), flex_wrap="wrap", stylesheets=[BODY_CSS])
-        main = pn.Column(self.strip.pane, body, stylesheets=[MAIN_CSS])
-        header = pn.Row(
-            html_pane(
-                '<div class="gp-title">glideplan explore: route</div>'
-                '<div class="gp-sub">The fastest route through currents or winds (front '
-                "propagation, refined, verified through the field)</div>"
-            ),
-            styles={"background": "#1f3b5c", "border-radius": "6px"},
-            sizing_mode="stretch_width",
-            margin=(5, 5, 10, 5),
+        self.layout = page_layout(
+            sidebar,
+            self.fig,
+            self.strip,
+            [],
+            "route",
+            "The fastest route through currents or winds (front propagation, refined, "
+            "verified through the field)",
         )
-        page = pn.FlexBox(sidebar, main, flex_wrap="wrap", stylesheets=[LAYOUT_CSS])
-        self.layout = pn.Column(header, page, sizing_mode="stretch_width", stylesheets=[ROOT_CSS])
 
     def _figure(self) -> None:
         ext = self.flow.extent
         pad_x, pad_y = 0.03 * (ext.lon_max - ext.lon_min), 0.03 * (ext.lat_max - ext.lat_min)
         self.x_range = Range1d(ext.lon_min - pad_x, ext.lon_max + pad_x)
         self.y_range = Range1d(ext.lat_min - pad_y, ext.lat_max + pad_y)
-        fig = figure(
-            sizing_mode="stretch_both",
-            min_width=240,
-            min_height=240,
-            x_range=self.x_range,
-            y_range=self.y_range,
-            tools="pan,wheel_zoom,box_zoom,reset,save",
-            toolbar_location="above",
-            x_axis_label="longitude (deg E)",
-            y_axis_label="latitude (deg N)",
-            output_backend="canvas",
-        )
+        fig = map_figure(self.x_range, self.y_range)
         fig.background_fill_color = "#eef5fb"
         fig.grid.grid_line_color = "#d9e3ee"
         self.land_src = ColumnDataSource({"image": [], "x": [], "y": [], "dw": [], "dh": []})
@@ -454,16 +385,7 @@ class RoutePage:
             text_font_size="12px",
             text_color="c",
         )
-        draw = PointDrawTool(renderers=[pts], add=False, drag=True)  # type: ignore[list-item]
-        fig.add_tools(draw)
-        fig.toolbar.active_drag = draw
-        legend = fig.legend[0]
-        legend.location = "top_left"
-        legend.background_fill_alpha = 0.8
-        legend.label_text_font_size = "11px"
-        legend.click_policy = "hide"
-        equal_scales(fig, self.x_range, self.y_range, self.k)
-        follow_url(fig)
+        finish_map(fig, pts, self.x_range, self.y_range, self.k, hide=True)
         self.fig = fig
         self.points_src.on_change("data", self._on_points)
         self._draw_land()
@@ -603,24 +525,8 @@ class RoutePage:
 
         return watch
 
-    def _on_mode(self, event: Any) -> None:
-        if event.new != "route" and self.on_mode is not None:
-            self._locked(lambda: self.on_mode(event.new) if self.on_mode else None)
-
     def _on_slider(self, event: Any) -> None:
         self._locked(self._draw_arrows)
-
-    def _locked(self, fn: Callable[[], None]) -> None:
-        if self._doc is None:
-            fn()
-        else:
-            self._doc.add_next_tick_callback(lambda: self._held(fn))
-
-    def _held(self, fn: Callable[[], None]) -> None:
-        if self._closed or self._doc is None:
-            return
-        with set_curdoc(self._doc), hold(self._doc):
-            fn()
 
     def push_url(self) -> None:
         self.strip.sync()
@@ -637,52 +543,17 @@ class RoutePage:
         self.solve()
 
     # ----- solving ----------------------------------------------------------------------------
-    def solve(self) -> None:
-        """Route the current state on the worker thread (latest state wins)."""
-        if self._doc is None:
-            self._apply(route_view(self.flow, self.state))
-            return
-        with self._lock:
-            self._pending = self.state
-            start = not self._running
-            self._running = True
-        self._show_stale()
-        if start:
-            threading.Thread(target=self._work, daemon=True, name="glideplan-route").start()
+    def _compute(self, state: RouteState) -> RouteView:
+        return route_view(self.flow, state)
 
-    def _work(self) -> None:
-        while True:
-            with self._lock:
-                state, self._pending = self._pending, None
-                if state is None:
-                    self._running = False
-                    return
-            try:
-                view = route_view(self.flow, state)
-            except Exception as exc:  # a bug: show it rather than lose the thread
-                view = RouteView(state, None, {"": f"internal error: {exc!r}"})
-            with self._lock:
-                latest = self._pending is None
-            if latest and not self._closed and self._doc is not None:
-                try:
-                    self._doc.add_next_tick_callback(
-                        lambda v=view: self._held(lambda: self._apply(v))  # type: ignore[misc]
-                    )
-                except Exception:  # the session went away meanwhile
-                    self._closed = True
-
-    def _show_stale(self) -> None:
-        self.strip.object = self._strip_html(self.view, stale=True)
+    def _failed(self, state: RouteState, message: str) -> RouteView:
+        return RouteView(state, None, {"": message})
 
     def _apply(self, view: RouteView) -> None:
         if view.state != self.state:
             return
         self.view = view
-        errors = dict(view.errors or {})
-        for name, pane in self.error_panes.items():
-            pane.object = error_html(errors.get(name, ""))
-        self.general_error.object = error_html(errors.get("", ""))
-        self.strip.object = self._strip_html(view)
+        self._show_errors(view)
         r = view.result
         if r is not None and r.lat.size:
             self.route_src.data = {"x": np.asarray(r.lon), "y": np.asarray(r.lat)}
@@ -711,12 +582,7 @@ class RoutePage:
             self.slider.param.update(end=end, step=_nice_step(end, 50))
 
     def _strip_html(self, view: RouteView | None, stale: bool = False) -> str:
-        def item(k: str, v: str, cls: str = "") -> str:
-            return (
-                f'<div class="gp-item"><span class="gp-k">{k}</span>'
-                f'<span class="gp-v {cls}">{v}</span></div>'
-            )
-
+        item = strip_item
         r = view.result if view is not None else None
         cost = view.cost_text if view is not None else "n/a"
         if view is not None and view.errors:
@@ -740,17 +606,8 @@ class RoutePage:
             if r is not None and r.straight_line_duration_s
             else "n/a"
         )
-        busy = (
-            (
-                '<div class="gp-item gp-computing"><span class="gp-busy">computing&hellip;'
-                "</span></div>"
-            )
-            if stale
-            else ""
-        )
-        return (
-            f'<div class="gp-strip{" gp-stale" if stale else ""}">'
-            + item("duration (s)", html.escape(cost), "gp-cost")
+        return busy_html(
+            item("duration (s)", html.escape(cost), "gp-cost")
             + item("duration", hours, "gp-word")
             + item("distance", dist, "gp-small")
             + item(
@@ -759,16 +616,11 @@ class RoutePage:
                 "gp-small gp-status" + ("" if ok else " gp-status-bad"),
             )
             + item("endpoint error", err, "gp-small gp-endpoint")
-            + item("straight line", straight, "gp-small")
-            + busy
-            + "</div>"
+            + item("straight line", straight, "gp-small"),
+            stale,
         )
 
     # ----- downloads --------------------------------------------------------------------------
-    def _messages(self) -> str:
-        errors = dict(self.view.errors or {}) if self.view is not None else {"": "no answer yet"}
-        return "; ".join(v for v in errors.values() if v)
-
     def _json_file(self) -> io.StringIO:
         from glideplan.jsonio import to_json
 
