@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 
+from glideplan.errors import InvalidParameterError
 from glideplan.geodesy import LocalProjection
 
 V = 0.5
@@ -72,3 +73,32 @@ def test_field_needs_time_and_no_wind(cli_error, tmp_path, current_file):
     line = cli_error("mission", "plan", str(far), "--speed", "1", "--radius", "10", "--field",
                      str(current_file))
     assert "glideplan: error:" in line
+
+
+def test_basin_scale_mission_through_a_field(tmp_path):
+    """A 3-waypoint mission of ~2,700 km (far beyond one local plane's ~490 km) through a
+    global still-water file: read without the one-plane limit and routed on the sphere, each
+    leg takes its great-circle distance / V (pyproj Geod on the routing sphere; tolerance
+    2e-3, the front's stated accuracy at the default grid, well below one cell per leg)."""
+    import pyproj
+
+    from glideplan.fields.io import open_field
+    from glideplan.fields.synthetic import global_dataset
+    from glideplan.formats import read_route
+    from glideplan.fronts import EARTH_RADIUS_M
+    from glideplan.missions.field_mission import plan_mission_in_field
+
+    path = tmp_path / "still.nc"
+    global_dataset(step_deg=1.0, lon_convention="0..360", kind="current").to_netcdf(path)
+    csv = tmp_path / "route.csv"
+    csv.write_text("name,lat,lon\nA,10.0,-40.0\nB,14.0,-28.0\nC,20.0,-18.0\n")
+    with pytest.raises(InvalidParameterError, match="too large for one local projection"):
+        read_route(csv)
+    route = read_route(csv, check_extent=False)
+    mission = plan_mission_in_field(route, open_field(path), speed=5.0, resolution=20_000.0)
+    assert mission.ok, mission.message
+    geod = pyproj.Geod(a=EARTH_RADIUS_M, b=EARTH_RADIUS_M)
+    lats, lons = [10.0, 14.0, 20.0], [-40.0, -28.0, -18.0]
+    for i, leg in enumerate(mission.legs):
+        _, _, d = geod.inv(lons[i], lats[i], lons[i + 1], lats[i + 1])
+        assert leg.duration_s == pytest.approx(d / 5.0, rel=2e-3)

@@ -197,7 +197,8 @@ def mission_plan(
                                 goto_number=goto_number, max_goto_waypoints=max_goto_waypoints,
                                 name=route.stem or "mission")
     with file_flag("ROUTE", route):
-        r = read_route(route)
+        # legs through a field are routed on the sphere: no one-plane size limit then
+        r = read_route(route, check_extent=field is None)
     print_warnings(r.warnings)
     if formats is not None and export is None:
         raise InvalidParameterError("--formats", formats, "needs --export DIR")

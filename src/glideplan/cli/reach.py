@@ -223,6 +223,29 @@ def _example_files(ex: Any, directory: pathlib.Path) -> tuple[pathlib.Path, ...]
     return (directory / ex.tile_name, directory / "fields.cup", directory / ex.polar_file.name)
 
 
+def _shared(ex: Any, start: Any, wind: Any, mc: float | None, safety_height: float | None,
+            resolution: float | None) -> tuple[float, float, float | None, Any, Any]:
+    """The options both commands take, the example's values where not given: MC (m/s),
+    safety height (m), resolution (m), start (lat, lon, alt) and wind (speed, FROM deg)."""
+    return (
+        float(_or(mc, ex, "mc", DEFAULT_MC)),
+        float(_or(safety_height, ex, "safety_height", DEFAULT_SAFETY_M)),
+        _or(resolution, ex, "resolution_m", None),
+        _or(start, ex, "start", None),
+        wind if wind is not None or ex is None else (ex.wind_speed_ms, ex.wind_from_deg),
+    )
+
+
+def _save_plot(result: Any, plot: pathlib.Path | None, json_out: bool) -> None:
+    """The result's figure into `plot` (if given), announced."""
+    if plot is not None:
+        from glideplan.cli.common import announce
+        from glideplan.plotting import save_figure
+
+        save_figure(result.plot(), str(plot))
+        announce(f"wrote {plot}", json_out)
+
+
 @glide_app.command("reach")
 def glide_reach_cmd(
     polar_file: PolarOpt = None,
@@ -275,11 +298,8 @@ def glide_reach_cmd(
     plot = check_figure_file(plot)
     check_output_file(geojson, "--geojson")
     check_output_file(kml, "--kml")
-    mc_v = float(_or(mc, ex, "mc", DEFAULT_MC))
-    safety_v = float(_or(safety_height, ex, "safety_height", DEFAULT_SAFETY_M))
-    resolution_v = _or(resolution, ex, "resolution_m", None)
-    start_v = _or(start, ex, "start", None)
-    wind_in = wind if wind is not None or ex is None else (ex.wind_speed_ms, ex.wind_from_deg)
+    mc_v, safety_v, resolution_v, start_v, wind_in = _shared(
+        ex, start, wind, mc, safety_height, resolution)
     if write_example_dir is not None:
         tile, cup, plr = _example_files(ex, write_example_dir)
         args = _flag_args(polar_file or plr, start_v, list(terrain or [tile]), wind_in, mc_v,
@@ -326,11 +346,7 @@ def glide_reach_cmd(
             with file_flag(flag, path):
                 write(path)
             announce(f"wrote {path}", json_out)
-    if plot is not None:
-        from glideplan.plotting import save_figure
-
-        save_figure(result.plot(), str(plot))
-        announce(f"wrote {plot}", json_out)
+    _save_plot(result, plot, json_out)
 
 
 @glide_app.command("turnback")
@@ -363,7 +379,6 @@ def glide_turnback_cmd(
     Try it without files: glideplan glide turnback --example ridge
     """
     from glideplan.cli.common import (
-        announce,
         check_figure_file,
         flag_names,
         print_json,
@@ -377,13 +392,10 @@ def glide_turnback_cmd(
     _required(course, "--course DEG", ex)
     _required(home, "--home LAT LON ELEV_M", ex)
     plot = check_figure_file(plot)
-    mc_v = float(_or(mc, ex, "mc", DEFAULT_MC))
-    safety_v = float(_or(safety_height, ex, "safety_height", DEFAULT_SAFETY_M))
-    resolution_v = _or(resolution, ex, "resolution_m", None)
-    start_v = _or(start, ex, "start", None)
+    mc_v, safety_v, resolution_v, start_v, wind_in = _shared(
+        ex, start, wind, mc, safety_height, resolution)
     course_v = float(_or(course, ex, "course_deg", None))
     home_v = home if home is not None else (ex.home.lat, ex.home.lon, ex.home.elevation_m)
-    wind_in = wind if wind is not None or ex is None else (ex.wind_speed_ms, ex.wind_from_deg)
     if write_example_dir is not None:
         tile, _, plr = _example_files(ex, write_example_dir)
         args = _flag_args(polar_file or plr, start_v, list(terrain or [tile]), wind_in, mc_v,
@@ -413,10 +425,6 @@ def glide_turnback_cmd(
     else:
         typer.echo(f"{result.status.value}: {result.message}")
     print_warnings(result.warnings)
-    if plot is not None:
-        from glideplan.plotting import save_figure
-
-        save_figure(result.plot(), str(plot))
-        announce(f"wrote {plot}", json_out)
+    _save_plot(result, plot, json_out)
     if not result.ok:
         raise PlanningError(f"turnback: {result.status.value}: {result.message}")

@@ -26,6 +26,7 @@ __all__ = [
     "download_row",
     "finish_map",
     "map_figure",
+    "named_points",
     "page_layout",
     "strip_item",
     "text_inputs",
@@ -164,6 +165,33 @@ def download_row(*buttons: tuple[Callable[[], Any], str, str]) -> Any:
 def map_figure(x_range: Any, y_range: Any) -> Any:
     """A lon/lat figure on the given ranges."""
     return plain_figure(x_range, y_range, "longitude (deg E)", "latitude (deg N)")
+
+
+def named_points(
+    fig: Any,
+    source: Any,
+    size: float,
+    fill: str,
+    text_color: str,
+    offset: tuple[float, float],
+    font_size: str,
+) -> Any:
+    """Points (`x`, `y` of `source`, white edged) labelled with its `name` column, the label
+    shifted by `offset` (x, y screen pixels); returns the points' renderer (to drag)."""
+    pts = fig.scatter(
+        "x", "y", source=source, size=size, fill_color=fill, line_color="white", line_width=2
+    )
+    fig.text(
+        "x",
+        "y",
+        "name",
+        source=source,
+        x_offset=offset[0],
+        y_offset=offset[1],
+        text_font_size=font_size,
+        text_color=text_color,
+    )
+    return pts
 
 
 def finish_map(

@@ -34,6 +34,7 @@ from glideplan.explore.map_page import (
     download_row,
     finish_map,
     map_figure,
+    named_points,
     page_layout,
     strip_item,
     text_inputs,
@@ -219,25 +220,7 @@ class MissionPage(MapPage):
             legend_label="mission track",
         )
         self.points_src = ColumnDataSource({"x": [], "y": [], "name": []})
-        pts = fig.scatter(
-            "x",
-            "y",
-            source=self.points_src,
-            size=13,
-            fill_color=GOAL,
-            line_color="white",
-            line_width=2,
-        )
-        fig.text(
-            "x",
-            "y",
-            "name",
-            source=self.points_src,
-            x_offset=9,
-            y_offset=-7,
-            text_font_size="11px",
-            text_color="#2c3e50",
-        )
+        pts = named_points(fig, self.points_src, 13, GOAL, "#2c3e50", (9, -7), "11px")
         finish_map(fig, pts, self.x_range, self.y_range, self.k)
         self.fig = fig
         self.points_src.on_change("data", self._on_points)

@@ -35,6 +35,7 @@ from glideplan.explore.map_page import (
     download_row,
     finish_map,
     map_figure,
+    named_points,
     page_layout,
     strip_item,
     text_inputs,
@@ -366,25 +367,7 @@ class RoutePage(MapPage):
             legend_label="route",
         )
         self.points_src = ColumnDataSource({"x": [], "y": [], "name": [], "c": []})
-        pts = fig.scatter(
-            "x",
-            "y",
-            source=self.points_src,
-            size=15,
-            fill_color="c",
-            line_color="white",
-            line_width=2,
-        )
-        fig.text(
-            "x",
-            "y",
-            "name",
-            source=self.points_src,
-            x_offset=10,
-            y_offset=-8,
-            text_font_size="12px",
-            text_color="c",
-        )
+        pts = named_points(fig, self.points_src, 15, "c", "c", (10, -8), "12px")
         finish_map(fig, pts, self.x_range, self.y_range, self.k, hide=True)
         self.fig = fig
         self.points_src.on_change("data", self._on_points)

@@ -93,9 +93,10 @@ def _bad(path: pathlib.Path, where: str, value: Any, rule: str) -> InvalidParame
     return InvalidParameterError(f"{path} {where}".strip(), value, rule)
 
 
-def read_route(path: str | pathlib.Path) -> Route:
+def read_route(path: str | pathlib.Path, *, check_extent: bool = True) -> Route:
     """The route in `path` (.csv, .gpx, .kml, .kmz, .geojson/.json) as a `Route`; what was
-    read despite a flaw is listed in its `warnings`."""
+    read despite a flaw is listed in its `warnings`. check_extent=False: no limit on the
+    route's size (`Route.from_geographic`; missions routed through a field)."""
     p = pathlib.Path(path)
     ext = p.suffix.lower()
     if ext not in ROUTE_EXTENSIONS:
@@ -139,7 +140,7 @@ def read_route(path: str | pathlib.Path) -> Route:
                                      labels=labels)
         else:
             route = Route.from_geographic(pts.names, pts.a, pts.b, pts.headings, source=str(p),
-                                          labels=labels)
+                                          labels=labels, check_extent=check_extent)
     except InvalidParameterError as exc:
         if str(p) in exc.name:
             raise

@@ -124,12 +124,15 @@ class Route:
         *,
         source: str = "route",
         labels: Sequence[str] = (),
+        check_extent: bool = True,
     ) -> Route:
         """A route in WGS84 degrees; headings as compass bearings (deg; NaN or None = free).
 
         The local plane is the azimuthal equidistant projection about the first waypoint; its
         scale distortion over the waypoints is checked (`LocalProjection.check_extent`) and
         stored, with the worst lat/lon -> local -> lat/lon round-trip error (deg).
+        check_extent=False keeps a route of any size (missions through a field route every
+        leg on the sphere; the plane then only places the local track, distortion stored).
         """
         la, lo = check_latlon(lat, lon, source)
         if la.ndim != 1 or la.size < 2:
@@ -137,7 +140,8 @@ class Route:
                 source, f"{la.size} waypoint(s)", "a route needs at least two waypoints"
             )
         proj = LocalProjection(float(la[0]), float(lo[0]))
-        distortion = proj.check_extent(la, lo)
+        distortion = proj.check_extent(la, lo) if check_extent else proj.scale_distortion(
+            la, lo)
         x, y = proj.to_local(la, lo)
         la2, lo2 = proj.to_geographic(x, y)
         dlon = np.abs((lo2 - lo + 180.0) % 360.0 - 180.0)

@@ -9,9 +9,7 @@ nodes) through the field with SciPy's `solve_ivp` (RK45, rtol 1e-8):
 
 with c the field's (east, north) velocity at the point's latitude/longitude, rotated into the
 local plane. The endpoint error is the distance (m) from where that lands to the goal.
-`straight_line_duration` holds the straight start-goal line with a crab angle:
-ds/dt = sqrt(V^2 - c_n^2) + c_t (c_t, c_n the along/cross components), None if |c_n| >= V,
-the along speed is <= 0, or the line crosses land.
+(The straight line with a crab angle is `routing.sphere.straight_line_duration`.)
 """
 
 from __future__ import annotations
@@ -29,7 +27,7 @@ from glideplan.fields.field import FlowField
 from glideplan.geodesy import LocalProjection
 from glideplan.routing.grid import local_rotation, rotate_to_local
 
-__all__ = ["FlownRoute", "integrate_headings", "local_current", "straight_line_duration"]
+__all__ = ["FlownRoute", "integrate_headings", "local_current"]
 
 FloatArray = NDArray[np.float64]
 
@@ -121,49 +119,3 @@ def integrate_headings(
     err = math.hypot(x[-1] - goal_xy[0], y[-1] - goal_xy[1])
     return FlownRoute(sol_t, x, y, land[0], None, err)
 
-
-def straight_line_duration(
-    field_: FlowField,
-    proj: LocalProjection,
-    speed: float,
-    t0: float,
-    goal_xy: tuple[float, float],
-    t_max: float,
-) -> float | None:
-    """Time (s) to hold the straight line to the goal with a crab angle (module docstring)."""
-    from scipy.integrate import solve_ivp
-
-    gx, gy = goal_xy
-    length = math.hypot(gx, gy)
-    d = np.array([gx, gy]) / length
-    nrm = np.array([-d[1], d[0]])
-
-    def rhs(t: float, s: FloatArray) -> FloatArray:
-        p = d * min(max(s[0], 0.0), length)
-        try:
-            cx, cy = local_current(field_, proj, t, p[0], p[1])
-        except InvalidParameterError:
-            raise _OffField("left the field") from None
-        c = np.array([cx[0], cy[0]])
-        if not np.all(np.isfinite(c)):
-            raise _OffField("land on the line")
-        cn, ct = float(c @ nrm), float(c @ d)
-        if abs(cn) >= speed:
-            raise _OffField("cross current too strong")
-        along = math.sqrt(speed * speed - cn * cn) + ct
-        if along <= 0.0:
-            raise _OffField("head current too strong")
-        return np.array([along])
-
-    def arrive(t: float, s: FloatArray) -> float:
-        return float(s[0] - length)
-
-    arrive.terminal = True  # type: ignore[attr-defined]
-    try:
-        sol = solve_ivp(rhs, (t0, t_max), np.zeros(1), rtol=1e-8, atol=1e-3,
-                        events=arrive, max_step=max((t_max - t0) / 200.0, 1e-6))
-    except _OffField:
-        return None
-    if sol.t_events[0].size == 0:
-        return None
-    return float(sol.t_events[0][0] - t0)
