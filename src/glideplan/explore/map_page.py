@@ -11,6 +11,7 @@ from __future__ import annotations
 import html
 import threading
 from collections.abc import Callable, Iterable, Mapping
+from dataclasses import replace
 from typing import Any
 
 import panel as pn
@@ -46,6 +47,7 @@ class MapPage(SessionWorker):
     general_error: Any
     x_range: Any
     y_range: Any
+    fig: Any
 
     def _start_session(self) -> None:
         self.on_mode: Callable[[str], None] | None = None
@@ -88,6 +90,38 @@ class MapPage(SessionWorker):
     def _on_mode(self, event: Any) -> None:
         if event.new != self.MODE and self.on_mode is not None:
             self._locked(lambda: self.on_mode(event.new) if self.on_mode else None)
+
+    def _make_watcher(self, attr: str) -> Callable[[Any], None]:
+        """A text input's watcher: the state with `attr` as typed (not while the page itself
+        sets the input)."""
+
+        def watch(event: Any) -> None:
+            if not self._syncing:
+                state = replace(self.state, **{attr: event.new})
+                self._locked(lambda: self.set_state(state))
+
+        return watch
+
+    def _texts(self) -> tuple[Any, ...]:
+        """The page's `FastHtml` texts."""
+        return (self.strip,)
+
+    def _redraw(self, old: Any) -> None:
+        """Redraw what depends on the state (it was `old`)."""
+        raise NotImplementedError
+
+    def push_url(self) -> None:
+        """The texts that changed while the browser built the page, and the state's query
+        into the browser's address."""
+        for text in self._texts():
+            text.sync()
+        self.fig.tags = ["?" + self.state.query()]
+
+    def set_state(self, state: Any) -> None:
+        old, self.state = self.state, state
+        self._redraw(old)
+        self.push_url()
+        self.solve()
 
     def _deliver(self, answer: Any) -> None:
         self._apply(answer)

@@ -18,7 +18,7 @@ import io
 import math
 import pathlib
 import tempfile
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 from urllib.parse import quote, urlencode
@@ -252,23 +252,11 @@ class MissionPage(MapPage):
         if state != self.state:
             self._locked(lambda: self.set_state(state))
 
-    def _make_watcher(self, name: str) -> Callable[[Any], None]:
-        def watch(event: Any) -> None:
-            state = replace(self.state, **{name: event.new})
-            self._locked(lambda: self.set_state(state))
+    def _texts(self) -> tuple[FastHtml, ...]:
+        return (self.strip, self.table)
 
-        return watch
-
-    def push_url(self) -> None:
-        self.strip.sync()
-        self.table.sync()
-        self.fig.tags = ["?" + self.state.query()]
-
-    def set_state(self, state: MissionState) -> None:
-        self.state = state
+    def _redraw(self, old: MissionState) -> None:
         self._draw_points()
-        self.push_url()
-        self.solve()
 
     def _compute(self, state: MissionState) -> MissionView:
         return mission_view(state, self.path.name)

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import html
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 from urllib.parse import quote, urlencode
@@ -293,23 +293,8 @@ class ReachPage(MapPage):
             self._syncing = False
         self._locked(lambda: self.set_state(state))
 
-    def _make_watcher(self, attr: str) -> Callable[[Any], None]:
-        def watch(event: Any) -> None:
-            if not self._syncing:
-                state = replace(self.state, **{attr: event.new})
-                self._locked(lambda: self.set_state(state))
-
-        return watch
-
-    def push_url(self) -> None:
-        self.strip.sync()
-        self.fig.tags = ["?" + self.state.query()]
-
-    def set_state(self, state: ReachState) -> None:
-        self.state = state
+    def _redraw(self, old: ReachState) -> None:
         self._draw_start()
-        self.push_url()
-        self.solve()
 
     def _compute(self, state: ReachState) -> ReachView:
         return reach_view(self.example, self.polar, state)

@@ -18,7 +18,7 @@ from __future__ import annotations
 import html
 import io
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 from urllib.parse import quote, urlencode
@@ -500,30 +500,14 @@ class RoutePage(MapPage):
             self._syncing = False
 
     # ----- state ------------------------------------------------------------------------------
-    def _make_watcher(self, attr: str) -> Callable[[Any], None]:
-        def watch(event: Any) -> None:
-            if not getattr(self, "_syncing", False):
-                state = replace(self.state, **{attr: event.new})
-                self._locked(lambda: self.set_state(state))
-
-        return watch
-
     def _on_slider(self, event: Any) -> None:
         self._locked(self._draw_arrows)
 
-    def push_url(self) -> None:
-        self.strip.sync()
-        self.fig.tags = ["?" + self.state.query()]
-
-    def set_state(self, state: RouteState) -> None:
-        depart_changed = state.depart != self.state.depart
-        self.state = state
+    def _redraw(self, old: RouteState) -> None:
         self._draw_points()
-        if depart_changed:
+        if self.state.depart != old.depart:
             self._draw_land()
             self._draw_arrows()
-        self.push_url()
-        self.solve()
 
     # ----- solving ----------------------------------------------------------------------------
     def _compute(self, state: RouteState) -> RouteView:
