@@ -715,6 +715,16 @@ CASES: dict[str, Case] = {
         2,
         "--mass=1e+300: must lie in (0, 100000] kg",
     ),
+    "route --land-clearance 1e9": Case(
+        (*ROUTE, "--land-clearance", "1e9"),
+        2,
+        "--land-clearance=1000000000.0: must be finite and in [0, 100000] m",
+    ),
+    "glide turnback --course 1e300": Case(
+        ("glide", "turnback", "--example", "ridge", "--course", "1e300"),
+        2,
+        "--course=1e+300: must lie in [-3600, 3600] deg",
+    ),
     "mission plan --speed 1e9": Case(
         (*MISSION[:3], "--speed", "1e9", "--radius", "150"),
         2,

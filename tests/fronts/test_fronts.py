@@ -270,3 +270,21 @@ def test_a_process_that_ran_a_front_can_fork(tmp_path) -> None:
     assert out.returncode == 0, out.stderr[-800:]
     steps = [int(x) for x in out.stdout.strip().strip("[]").split(",")]
     assert len(steps) == 4 and all(n > 0 for n in steps)
+
+
+def test_a_grown_grid_keeps_the_band_narrow() -> None:
+    """Growing the grid can widen the band (B follows the largest spacing): the old plateaus
+    must become the new +-B, or every old node counts as inside the band (a global still-air
+    route once took 80 s instead of 5 s that way)."""
+    lat = np.arange(40.0, 41.0 + 1e-9, 0.01)
+    g = LatLonGrid(lat, np.arange(0.0, 1.0 + 1e-9, 0.01))
+    prob = FrontProblem(g, speeds=[1.0])
+    res = propagate(prob, start_state(prob, 0.0, 40.5, 0.5), 4000.0)
+    band_before = int(np.count_nonzero(np.abs(res.state.phi) < prob.band))
+    wider = 1.05 * prob.band  # a grown grid reaching further south has wider cells
+    ny, nx = g.shape
+    grown = res.state.embedded((ny + 20, nx + 20), 10, 10, wider)
+    after = int(np.count_nonzero(np.abs(grown.phi) < wider))
+    # the same band (less the never-updated tails within 3 % of B, snapped like the kernel's)
+    assert 0.9 * band_before <= after <= band_before
+    assert np.array_equal(np.isfinite(grown.arrival), np.pad(np.isfinite(res.arrival), 10))

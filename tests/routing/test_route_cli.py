@@ -269,3 +269,22 @@ def test_unreachable_states_its_reason_and_draws_the_furthest_reach(files, run_c
     import matplotlib.image
 
     assert matplotlib.image.imread(png).ndim == 3
+
+
+def test_route_centred_on_180_plots(tmp_path, run_cli):
+    """40 S 178 E -> 39 S 178 W: the figure's frame is centred on 180 itself (the scale was
+    once computed at -180.05 deg and refused): solved, the figure written and read back."""
+    from glideplan.fields.synthetic import global_dataset
+
+    path = tmp_path / "global.nc"
+    global_dataset(step_deg=1.0, lon_convention="-180..180",
+                   times=[T0, T0 + np.timedelta64(2, "D")]).to_netcdf(path)
+    png = tmp_path / "am.png"
+    code, out, err = run_cli("route", "--field", str(path), "--from", "-40", "178", "--to",
+                             "-39", "-178", "--speed", "25", "--resolution", "10000", "--json",
+                             "--plot", str(png))
+    assert code == 0, err
+    assert json.loads(out)["status"] == "solved"
+    import matplotlib.image
+
+    assert matplotlib.image.imread(png).ndim == 3

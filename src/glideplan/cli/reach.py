@@ -395,6 +395,9 @@ def glide_turnback_cmd(
     mc_v, safety_v, resolution_v, start_v, wind_in = _shared(
         ex, start, wind, mc, safety_height, resolution)
     course_v = float(_or(course, ex, "course_deg", None))
+    from glideplan.validation import check_physical
+
+    course_v = check_physical("--course", course_v, "heading")
     home_v = home if home is not None else (ex.home.lat, ex.home.lon, ex.home.elevation_m)
     if write_example_dir is not None:
         tile, _, plr = _example_files(ex, write_example_dir)

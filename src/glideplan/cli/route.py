@@ -172,9 +172,10 @@ def route_command(
     if radius is not None and not (math.isfinite(radius) and radius > 0):
         raise InvalidParameterError("--radius", radius, "must be finite and > 0 (m)")
     if land_clearance is not None and not (math.isfinite(land_clearance)
-                                           and land_clearance >= 0):
+                                           and 0 <= land_clearance <= 100_000.0):
         raise InvalidParameterError("--land-clearance", land_clearance,
-                                    "must be finite and >= 0 (m)")
+                                    "must be finite and in [0, 100000] m (a clearance wider "
+                                    "than 100 km leaves no coastal water to route through)")
     if max_duration is not None and not (math.isfinite(max_duration) and max_duration > 0):
         raise InvalidParameterError("--max-duration", max_duration, "must be finite and > 0 (h)")
     from glideplan.validation import check_physical

@@ -207,7 +207,15 @@ class FrontState:
         ny, nx = self.phi.shape
         phi = np.full(shape, band)
         arr = np.full(shape, np.inf)
-        phi[row0:row0 + ny, col0:col0 + nx] = self.phi
+        # The band's half-width B follows the grid's largest spacing, which changes as the
+        # grid grows: the old plateaus (+-B_old, and tails snapped to them) become +-B, or
+        # every node of the old grid would count as inside the new band.
+        old = np.array(self.phi, dtype=float)
+        b_old = float(np.max(np.abs(old))) if old.size else band
+        snap = 0.97 * b_old
+        old[old >= snap] = band
+        old[old <= -snap] = -band
+        phi[row0:row0 + ny, col0:col0 + nx] = old
         arr[row0:row0 + ny, col0:col0 + nx] = self.arrival
         i, j = np.divmod(self.active, nx)
         act = ((i + row0) * shape[1] + (j + col0)).astype(np.int64)

@@ -46,9 +46,10 @@ def frame_scales(lat_mid: float, lon_mid: float) -> tuple[float, float]:
     ~1 / cos(lat_mid))."""
     from glideplan.geodesy import geodesic_distance_bearing
 
+    del lon_mid  # the ellipsoid is one of revolution: the lengths do not depend on longitude
     d, _ = geodesic_distance_bearing(
-        [lat_mid - 0.05, lat_mid], [lon_mid, lon_mid - 0.05],
-        [lat_mid + 0.05, lat_mid], [lon_mid, lon_mid + 0.05],
+        [lat_mid - 0.05, lat_mid], [0.0, -0.05],
+        [lat_mid + 0.05, lat_mid], [0.0, 0.05],
     )
     return float(d[0]) / 0.1, float(d[1]) / 0.1
 
@@ -135,7 +136,7 @@ def route_title(
                 answer += f" (the route takes {gain:.0%} less time)"
         else:
             answer += "; no straight-line crossing (land or too strong a current in the way)"
-        if result.message:
+        if result.message and result.message != "solved":
             answer += f". Note: {result.message}"
     else:
         reason = f" ({result.unreachable_reason})" if result.unreachable_reason else ""
@@ -375,6 +376,10 @@ def route_figure(
     ax.set_ylim(la0, la1)
     ax.set_aspect(m_lat / m_lon, adjustable="box")
     ax.set_xlabel("longitude (deg E)")
+    from matplotlib.ticker import FuncFormatter
+
+    # the frame is unwrapped about the route (continuous across 180): ticks read -180..180
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _p: f"{(v + 180.0) % 360.0 - 180.0:g}"))
     ax.set_ylabel("latitude (deg N)")
     ref_lat = la0 if start is None else start[0]
     ref_lon = lo0 if start is None else float(frame(start[1]))

@@ -23,6 +23,9 @@ from glideplan.errors import InvalidParameterError
 
 __all__ = ["RouteSettings"]
 
+#: The widest land clearance a route may ask for (m).
+MAX_LAND_CLEARANCE_M = 100_000.0
+
 
 @dataclass(frozen=True)
 class RouteSettings:
@@ -48,6 +51,11 @@ class RouteSettings:
             if not ok or val < 0 or (val == 0 and name != "land_clearance_m"):
                 rule = ">= 0 (m)" if name == "land_clearance_m" else "> 0"
                 raise InvalidParameterError(name, val, f"must be finite and {rule}")
+        if self.land_clearance_m is not None and self.land_clearance_m > MAX_LAND_CLEARANCE_M:
+            raise InvalidParameterError(
+                "land_clearance_m", self.land_clearance_m,
+                f"must be <= {MAX_LAND_CLEARANCE_M:g} m (a clearance wider than 100 km leaves "
+                "no coastal water to route through)")
         if not (math.isfinite(self.cfl) and 0 < self.cfl <= 1):
             raise InvalidParameterError("cfl", self.cfl, "must be in (0, 1]")
         if not (isinstance(self.cells, int) and self.cells >= 8):
