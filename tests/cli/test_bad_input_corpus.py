@@ -815,6 +815,17 @@ CASES: dict[str, Case] = {
         (*ROUTE[:-4], "--speed", "1e9"), 2, "--speed=1000000000.0: must lie in (0, 343] m/s"
     ),
     # ---- issue 19: start = goal is solved with zero cost (as `plan` answers it) ------------
+    "glide final start = goal, arrival heading (start heading free)": Case(
+        (*GLIDE[:9], "47.0", "8.0", "450", "--arrival-heading", "90"),
+        0,
+        "solved: distance 0.00 km, loss 0 m",
+        "out",
+    ),
+    "glide final start = goal, start heading differs from the arrival heading": Case(
+        (*GLIDE[:9], "47.0", "8.0", "450", "--arrival-heading", "90", "--start-heading", "0"),
+        2,
+        "must equal the arrival heading",
+    ),
     "glide final start = goal": Case(
         (
             "glide",

@@ -187,3 +187,20 @@ def test_unreachable_field_mission_to_dict():
     assert d["message"].startswith("leg 1 (A -> B)")
     assert d["legs"][0]["status"] == "unreachable"
     assert "the field is a test" in d["warnings"]
+
+
+def test_reader_warnings_are_in_the_mission_json(run_cli, tmp_path):
+    """A GeoJSON feature with null geometry is skipped with a warning: the warning is printed
+    once and is in `--json` `warnings` too (the JSON is the whole answer)."""
+    gj = tmp_path / "r.geojson"
+    gj.write_text(json.dumps({"type": "FeatureCollection", "features": [
+        {"type": "Feature", "geometry": None, "properties": {}},
+        {"type": "Feature", "properties": {}, "geometry": {
+            "type": "LineString", "coordinates": [[-70.70, 41.50], [-70.68, 41.51],
+                                                  [-70.66, 41.50]]}}]}))
+    code, out, err = run_cli("mission", "plan", str(gj), "--speed", "0.3", "--radius", "150",
+                             "--json")
+    assert code == 0, err
+    warned = [w for w in json.loads(out)["warnings"] if "null" in w]
+    assert len(warned) == 1
+    assert err.count("null") == 1

@@ -216,7 +216,7 @@ def mission_plan(
                 mission = plan_mission(r, speed=speed, radius=radius, objective=obj,
                                        wind_vector=vector, headings=headings,
                                        progress=progress)
-    print_warnings(mission.warnings)
+    print_warnings([w for w in mission.warnings if w not in r.warnings])  # those read: above
     if not mission.ok:
         raise PlanningError(_failure(mission))
     files: dict[str, Any] = {}

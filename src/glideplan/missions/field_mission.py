@@ -291,7 +291,7 @@ def plan_mission_in_field(
         } if len(flown) == len(legs) else None
     # what the user must see: the field's warnings (e.g. depth range extended to the surface,
     # held constant in time, regridded), the legs' routes', headings given but not enforced
-    warnings = list(flow.warnings)
+    warnings = list(route.warnings) + list(flow.warnings)
     for leg in legs:
         warnings += [w for w in leg.result.warnings if w not in warnings]
     warnings += [f"heading given at {name} is not enforced when routing through a field (the "

@@ -392,4 +392,5 @@ def plan_mission(
     return MissionPlan(
         route=route, headings=h, legs=tuple(legs), objective=objective, speed=speed,
         radius=radius, wind_vector=wind_vector, heading_plan=hp, stats=stats,
+        warnings=tuple(route.warnings),  # what reading the route file skipped or assumed
     )

@@ -28,8 +28,13 @@ def read_cup_landables(path: str | pathlib.Path) -> tuple[tuple[Landable, ...], 
             data = Reader().read(fp)
     except ParserError as exc:
         raise InvalidParameterError(str(p), str(p), f"not a SeeYou .cup file ({exc})") from None
-    except (UnicodeDecodeError, ValueError, IndexError) as exc:
-        raise InvalidParameterError(str(p), str(p), f"not a SeeYou .cup file ({exc})") from None
+    except UnicodeDecodeError:
+        raise InvalidParameterError(str(p), str(p), "not a SeeYou .cup file (not UTF-8 text: "
+                                    "a binary file?)") from None
+    except (ValueError, IndexError):
+        raise InvalidParameterError(str(p), str(p), "not a SeeYou .cup file (expected a header "
+                                    "'name,code,country,lat,lon,elev,style,...' and one "
+                                    "waypoint per line)") from None
     out: list[Landable] = []
     skipped = 0
     for k, wp in enumerate(data["waypoints"], start=1):

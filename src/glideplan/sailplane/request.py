@@ -155,9 +155,17 @@ def final_glide(
     gx, gy = (float(v) for v in proj.to_local(lat1, lon1))
     proj.check_extent(np.array([lat0, lat1]), np.array([lon0, lon1]))
     dist = math.hypot(gx, gy)
+    same_heading = start_heading is None or (arrival_heading is not None and abs(
+        math.remainder(float(start_heading) - float(arrival_heading), 360.0)) < 1e-9)
     if dist <= 0.0 and arrival_heading is not None:
-        raise InvalidParameterError(
-            "goal", goal, "must differ from the start position for an arrival heading")
+        if not same_heading:
+            raise InvalidParameterError(
+                "start_heading", start_heading,
+                "with the goal at the start position it must equal the arrival heading "
+                "(a turn on the spot is not a final glide)")
+        # start = goal, heading free or equal: the glider is there, on the arrival heading:
+        # solved with zero loss, as plan() answers a start = goal
+        arrival_heading = None
     track = math.atan2(gy, gx)
     sg = straight_final_glide(
         polar,
