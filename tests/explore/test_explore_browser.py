@@ -649,3 +649,38 @@ def test_every_request_stays_local(server: str, requests_seen: list[str]):
         if parsed.scheme == "data":
             continue
         assert parsed.hostname == "127.0.0.1", url
+
+
+def test_route_map_of_a_field_file(browser_context: Any, tmp_path: pathlib.Path, run_cli: Any):
+    """`explore --field FILE`: a Copernicus-like file with a rectangular headland (land from
+    its NaN mask), served from its server-side path; the route page's `gp-cost` equals
+    `glideplan route --field FILE --json`'s duration_s for the same points, speed and grid."""
+    from glideplan.explore.server import serve
+    from glideplan.fields.synthetic import copernicus_headland_dataset
+
+    path = tmp_path / "headland.nc"
+    copernicus_headland_dataset().to_netcdf(path)
+    frm, to = ("30.3", "-40.5"), ("30.3", "-40.0")
+    code, out, err = run_cli("route", "--field", str(path), "--from", *frm, "--to", *to,
+                             "--speed", "0.5", "--resolution", "1000", "--json")
+    assert code == 0, err
+    ref = json.loads(out)["duration_s"]
+    port = _free_port()
+    srv = serve(port, "127.0.0.1", show=False, threaded=True, field=str(path))
+    try:
+        deadline = time.monotonic() + 20.0
+        while time.monotonic() < deadline:
+            try:
+                socket.create_connection(("127.0.0.1", port), timeout=0.5).close()
+                break
+            except OSError:
+                time.sleep(0.1)
+        page = _open(browser_context, f"http://127.0.0.1:{port}/?planner=route"
+                     f"&from={frm[0]},{frm[1]}&to={to[0]},{to[1]}&speed=0.5&resolution=1000")
+        try:
+            shown = _wait_result(page, timeout=120.0)
+            assert shown == f"{ref:.10g}"
+        finally:
+            page.close()
+    finally:
+        srv.stop()
