@@ -27,7 +27,9 @@ def _fly(result, fld, speed: float) -> float:
     """Independent re-integration (DOP853, rtol 1e-10, not verify's RK45) of the reported
     heading controls through the field on the sphere: dlat/dt = (V cos chi + v) / R,
     dlon/dt = (V sin chi + u) / (R cos lat), chi the compass heading linear in time between
-    track nodes; returns the great-circle distance (m) from the goal where it ends."""
+    track nodes (integrated node to node: a held leg's heading switches within a
+    millisecond at its vertex); returns the great-circle distance (m) from the goal where it
+    ends."""
     from scipy.integrate import solve_ivp
 
     chi = np.unwrap(np.radians(np.asarray(result.heading_deg, dtype=float)))
@@ -40,10 +42,15 @@ def _fly(result, fld, speed: float) -> float:
         return [(speed * math.cos(h) + float(v)) / R,
                 (speed * math.sin(h) + float(u)) / (R * math.cos(z[0]))]
 
-    sol = solve_ivp(rhs, (t[0], t[-1]), np.radians(START), method="DOP853", rtol=1e-10,
-                    atol=1e-12, max_step=(t[-1] - t[0]) / 200.0)
-    assert sol.success
-    lat, lon = np.degrees(sol.y[:, -1])
+    z = np.radians(START)
+    for a, b in zip(t[:-1], t[1:], strict=True):
+        if b <= a:
+            continue
+        sol = solve_ivp(rhs, (a, b), z, method="DOP853", rtol=1e-10, atol=1e-12,
+                        max_step=(t[-1] - t[0]) / 200.0)
+        assert sol.success
+        z = sol.y[:, -1]
+    lat, lon = np.degrees(z)
     return float(gc_distance(lat, lon, *GOAL))
 
 
