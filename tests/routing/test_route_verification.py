@@ -9,6 +9,7 @@ slower than its 0.3 m/s current, is the case where open-loop controls drift far 
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 
@@ -43,7 +44,7 @@ def _fly(result, fld, speed: float) -> float:
                 (speed * math.sin(h) + float(u)) / (R * math.cos(z[0]))]
 
     z = np.radians(START)
-    for a, b in zip(t[:-1], t[1:], strict=True):
+    for a, b in itertools.pairwise(t):
         if b <= a:
             continue
         sol = solve_ivp(rhs, (a, b), z, method="DOP853", rtol=1e-10, atol=1e-12,
