@@ -72,19 +72,24 @@ def _free_port() -> int:
         return int(s.getsockname()[1])
 
 
+def _wait_listening(port: int, seconds: float = 20.0) -> None:
+    """Until the server accepts connections on 127.0.0.1:port (or `seconds` pass)."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        try:
+            socket.create_connection(("127.0.0.1", port), timeout=0.5).close()
+            return
+        except OSError:
+            time.sleep(0.1)
+
+
 @pytest.fixture(scope="module")
 def server() -> Iterator[str]:
     from glideplan.explore.server import serve
 
     port = _free_port()
     srv = serve(port, "127.0.0.1", show=False, threaded=True)
-    deadline = time.monotonic() + 20.0
-    while time.monotonic() < deadline:
-        try:
-            socket.create_connection(("127.0.0.1", port), timeout=0.5).close()
-            break
-        except OSError:
-            time.sleep(0.1)
+    _wait_listening(port)
     yield f"http://127.0.0.1:{port}"
     srv.stop()
 
@@ -668,13 +673,7 @@ def test_route_map_of_a_field_file(browser_context: Any, tmp_path: pathlib.Path,
     port = _free_port()
     srv = serve(port, "127.0.0.1", show=False, threaded=True, field=str(path))
     try:
-        deadline = time.monotonic() + 20.0
-        while time.monotonic() < deadline:
-            try:
-                socket.create_connection(("127.0.0.1", port), timeout=0.5).close()
-                break
-            except OSError:
-                time.sleep(0.1)
+        _wait_listening(port)
         page = _open(browser_context, f"http://127.0.0.1:{port}/?planner=route"
                      f"&from={frm[0]},{frm[1]}&to={to[0]},{to[1]}&speed=0.5&resolution=1000")
         try:
