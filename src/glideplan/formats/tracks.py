@@ -44,6 +44,9 @@ def _checked(lat: ArrayLike, lon: ArrayLike, name: str) -> tuple[NDArray[np.floa
                                                                  NDArray[np.float64]]:
     la = np.atleast_1d(np.asarray(lat, dtype=float))
     lo = np.atleast_1d(np.asarray(lon, dtype=float))
+    if la.ndim == 1 and la.shape == lo.shape and la.size == 1:
+        # a zero-length track (start = goal): RFC 7946 lines need two positions
+        la, lo = np.repeat(la, 2), np.repeat(lo, 2)
     if la.ndim != 1 or la.shape != lo.shape or la.size < 2:
         raise InvalidParameterError(name, la.shape,
                                     "a line needs lat and lon of equal length >= 2")

@@ -129,7 +129,7 @@ def route_title(
                   f"({result.method})")
         if result.endpoint_error_m is not None:
             answer += f", verified endpoint error {result.endpoint_error_m:.3g} m"
-        if straight is not None and math.isfinite(straight):
+        if straight is not None and math.isfinite(straight) and straight > 0.0:
             gain = 1.0 - result.duration_s / straight
             answer += f"; straight line with crabbing {straight / 3600:.2f} h"
             if gain > 0.0:

@@ -201,10 +201,9 @@ def _track(problem: Any, cand: Any) -> Track:
     from glideplan.geodesy import LocalProjection
 
     lat, lon = np.asarray(cand.lat, dtype=float), np.asarray(cand.lon, dtype=float)
-    try:
-        x, y = LocalProjection(*problem.start).to_local(lat, lon)
-    except InvalidParameterError:  # pragma: no cover - start beyond 89.9 deg is refused
-        x = y = np.full(lat.size, math.nan)
+    # The track's longitudes are unwrapped about the start (continuous across 180 deg, so
+    # below -180 going west): the projection takes them wrapped.
+    x, y = LocalProjection(*problem.start).to_local(lat, (lon + 180.0) % 360.0 - 180.0)
     heading = math.pi / 2 - np.asarray(cand.chi, dtype=float)
     return Track(np.asarray(cand.t, dtype=float) - problem.t0, x, y, heading, lat=lat, lon=lon)
 
