@@ -19,7 +19,7 @@ from glideplan.routing.sphere import gc_distance
 
 
 def test_route_west_across_180_has_finite_plane_track_and_a_flyable_glider_path():
-    start, goal = (-17.0, -179.8), (-17.0, 179.6)
+    start, goal = (-17.0, -179.95), (-17.0, 179.9)
     flow = UniformField(0.0, 0.0)
     r = route(flow, start, goal, 1.0)
     assert r.ok, r.message
@@ -44,3 +44,12 @@ def test_start_equal_goal_plots_and_exports(run_cli, tmp_path):
     geom = json.loads(gj.read_text())["features"][0]["geometry"]
     assert geom["type"] == "LineString"
     assert geom["coordinates"][0] == geom["coordinates"][-1] == [-39.8, 30.45]
+
+
+def test_route_over_the_pole_names_the_latitude_limit():
+    """(80 N, 0) -> (80 N, 180): the great circle passes the pole (90 deg, closed form: the
+    two meridians 0 and 180 form one great circle); the router's lattice stops at 85 deg."""
+    r = route(UniformField(0.0, 0.0), (80.0, 0.0), (80.0, 180.0), 1.0, max_duration=48 * 3600.0)
+    assert r.status == "unreachable"
+    assert r.unreachable_reason == "polar_limit"
+    assert "90.0 deg latitude" in r.message and "85" in r.message

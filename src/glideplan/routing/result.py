@@ -34,7 +34,7 @@ __all__ = ["UNREACHABLE_REASONS", "FrontMap", "RouteResult"]
 FloatArray = NDArray[np.float64]
 
 UNREACHABLE_REASONS = ("front_stopped", "field_extent", "time_span", "max_duration",
-                       "window_limit")
+                       "window_limit", "polar_limit")
 
 
 @dataclass(frozen=True, eq=False)

@@ -125,6 +125,15 @@ def route(
         why = fo.unreachable_reason or "front_stopped"
         msg = _unreachable_message(why, problem, fo.closest_m,
                                    rg.clearance_m if rg.coast_xyz.shape[0] else 0.0)
+        from glideplan.routing.window import MAX_LAT_DEG
+
+        top = _great_circle_max_lat(problem.start, problem.goal)
+        if top > MAX_LAT_DEG:
+            why = "polar_limit"
+            msg = (f"the great circle from start to goal passes {top:.1f} deg latitude and "
+                   f"routes are computed within +-{MAX_LAT_DEG:g} deg (the lat/lon lattice "
+                   f"degenerates at the poles): {msg}; plan via waypoints below "
+                   f"{MAX_LAT_DEG:g} deg")
         return RouteResult(status=Status.UNREACHABLE, message=msg, warnings=tuple(warnings),
                            straight_line_duration_s=straight, best_distance_m=fo.closest_m,
                            unreachable_reason=why, stats=stats, **common)
@@ -206,6 +215,21 @@ def _track(problem: Any, cand: Any) -> Track:
     x, y = LocalProjection(*problem.start).to_local(lat, (lon + 180.0) % 360.0 - 180.0)
     heading = math.pi / 2 - np.asarray(cand.chi, dtype=float)
     return Track(np.asarray(cand.t, dtype=float) - problem.t0, x, y, heading, lat=lat, lon=lon)
+
+
+def _great_circle_max_lat(start: tuple[float, float], goal: tuple[float, float]) -> float:
+    """Largest |latitude| (deg) on the great circle between two points (181 samples by
+    spherical linear interpolation of their unit vectors)."""
+    la, lo = np.radians([start[0], goal[0]]), np.radians([start[1], goal[1]])
+    p = np.stack([np.cos(la) * np.cos(lo), np.cos(la) * np.sin(lo), np.sin(la)], axis=1)
+    omega = math.acos(min(1.0, max(-1.0, float(p[0] @ p[1]))))
+    if omega < 1e-12:
+        return float(abs(start[0]))
+    if omega > math.pi - 1e-9:  # antipodes: every meridian plane, one through a pole
+        return 90.0
+    f = np.linspace(0.0, 1.0, 181)[:, None]
+    pts = (np.sin((1.0 - f) * omega) * p[0] + np.sin(f * omega) * p[1]) / math.sin(omega)
+    return float(np.degrees(np.max(np.abs(np.arcsin(np.clip(pts[:, 2], -1.0, 1.0))))))
 
 
 def _unreachable_message(why: str, problem: Any, closest: float, clearance: float) -> str:
