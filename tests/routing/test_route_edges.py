@@ -36,7 +36,7 @@ def test_route_west_across_180_has_finite_plane_track_and_a_flyable_glider_path(
 
 def test_start_equal_goal_plots_and_exports(run_cli, tmp_path):
     png, gj = tmp_path / "r.png", tmp_path / "r.geojson"
-    code, out, err = run_cli("route", "--example", "double-gyre", "--from", "30.45", "-39.8",
+    code, _out, err = run_cli("route", "--example", "double-gyre", "--from", "30.45", "-39.8",
                              "--to", "30.45", "-39.8", "--speed", "0.5", "--plot", str(png),
                              "--geojson", str(gj))
     assert code == 0, err
