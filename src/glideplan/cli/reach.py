@@ -38,8 +38,10 @@ WriteExampleOpt = Annotated[
 ]
 TerrainOpt = Annotated[
     list[pathlib.Path] | None,
-    typer.Option("--terrain", metavar="FILE",
-                 help="Terrain: SRTM .hgt or GeoTIFF (repeat for several tiles; merged).",
+    typer.Option("--terrain", metavar="FILE|DIR",
+                 help="Terrain: SRTM .hgt (also zipped .zip or gzipped .hgt.gz), GeoTIFF "
+                      "(any CRS: UTM and others are reprojected to lat/lon), a folder of "
+                      "them, or a quoted glob; repeat for several (all merged).",
                  show_default=False),
 ]
 WindOpt = Annotated[
@@ -106,10 +108,13 @@ def _terrain(files: list[pathlib.Path] | None, voids: str | None, required: bool
         if required:
             from glideplan.cli.common import usage_error
 
-            usage_error("--terrain FILE is required (SRTM .hgt or GeoTIFF)")
+            usage_error("--terrain FILE is required (SRTM .hgt or GeoTIFF, or a folder)")
         return None
+    import glob
+
     for f in files:
-        check_input_file(f, "--terrain")
+        if not f.is_dir() and not (glob.has_magic(str(f)) and not f.exists()):
+            check_input_file(f, "--terrain")  # folders and patterns: read_terrain checks
     mode = "refuse" if voids is None else voids
     with flag_names(voids="--fill-voids"):
         if len(files) == 1:
