@@ -320,8 +320,10 @@ def glide_reach_cmd(
         check_input_file(landables, "--landables")
         from glideplan.reach.landables import read_cup_landables
 
+        notes: list[str] = []
         with file_flag("--landables", landables):
-            lands, skipped = read_cup_landables(landables)
+            lands, skipped = read_cup_landables(landables, t, notes)
+        print_warnings([f"--landables {n}" for n in notes])
         if skipped:
             print_warnings([f"--landables: {skipped} waypoint(s) are not landable (SeeYou "
                             "style not 2-5) and were skipped"])
