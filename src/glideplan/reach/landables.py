@@ -89,7 +89,7 @@ def _waypoints(text: str, source: str) -> list[tuple[int, dict[str, Any]]]:
 
     reader = Reader()
     rows = csv.reader(io.StringIO(text, newline=""))
-    out = []
+    out: list[tuple[int, dict[str, Any]]] = []
     while True:
         try:
             fields = next(rows)
