@@ -499,7 +499,7 @@ def _overlap_area(a: Any, b: Any) -> float:
 
 
 def place_labels(ax: Any, points: list[tuple[float, float]], texts: list[str], *,
-                 obstacles: Sequence[Any] = (), gap_pt: float = 6.0, gid: str = "label",
+                 obstacles: Sequence[Any] = (), gap_pt: float = 7.0, gid: str = "label",
                  **text_kw: Any) -> list[Any]:
     """Labels that do not collide, placed greedily in the given order: for each point (data
     coordinates) the 8 offsets of `_LABEL_OFFSETS` (NE first) at `gap_pt` points are tried,

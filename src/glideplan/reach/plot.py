@@ -190,8 +190,7 @@ def plot_reach(result: ReachResult, ax: Any = None, *, paths: bool = True) -> An
     ax.apply_aspect()
     add_scale_bar(ax)
     add_north_arrow(ax)
-    fig.canvas.draw()  # final positions for measuring the labels
-    renderer = fig.canvas.get_renderer()
+    renderer = fig.canvas.get_renderer()  # (limits, aspect and layout are final)
     pts = [(p.landable.lon, p.landable.lat) for p in result.points]
     furniture = [a.get_window_extent(renderer) for a in (*ax.texts, *ax.lines)
                  if a.get_gid() in ("scale_bar", "scale_bar_label", "north_arrow")]
