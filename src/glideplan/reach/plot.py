@@ -98,10 +98,13 @@ def _wind_arrow(ax: Any, wind: tuple[float, float], lat: float) -> None:
     if speed == 0:
         ax.text(0.03, 0.97, "no wind", **kw)
         return
+    from matplotlib.transforms import offset_copy
+
     u, v = wind[0] / speed, wind[1] / speed
-    ax.annotate("", xy=(0.09, 0.84), xycoords="axes fraction", xytext=(-22 * u, -22 * v),
+    tip = offset_copy(ax.transAxes, ax.get_figure(), x=11 * u, y=11 * v, units="points")
+    ax.annotate("", xy=(0.1, 0.83), xycoords=tip, xytext=(-22 * u, -22 * v),
                 textcoords="offset points", gid="wind_arrow", zorder=20,
-                arrowprops={"arrowstyle": "-|>", "color": "navy", "lw": 2})
+                arrowprops={"arrowstyle": "-|>", "color": "navy", "lw": 2})  # centred there
     frm = (math.degrees(math.atan2(-wind[0], -wind[1])) + 360.0) % 360.0
     ax.text(0.03, 0.97, f"wind {speed:.3g} m/s from {frm:.0f}°", color="navy",
             bbox={"boxstyle": "round", "fc": "white", "alpha": 0.7, "lw": 0}, **kw)
