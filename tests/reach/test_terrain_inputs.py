@@ -127,8 +127,9 @@ def _relief(lat, lon):
     return 800 + AMP * (np.sin(k * y) + np.sin(k * x))
 
 
-def _write_utm(path, n=300, nodata_block=False):
-    """The reference sampled at the pixel centres of an n x n, 30 m UTM 32N (EPSG:32632) grid."""
+def _write_utm(path, n=200, nodata_block=False):
+    """The reference sampled at the pixel centres of an n x n, 30 m UTM 32N (EPSG:32632) grid
+    centred on (LAT0, LON0)."""
     import rasterio
     from affine import Affine
     from pyproj import Transformer
@@ -156,7 +157,7 @@ def test_utm_geotiff_reprojected_within_the_bilinear_bound(tmp_path):
     Bilinear interpolation on an h_x x h_y cell errs by at most (h_x^2 + h_y^2)/8 max|f_ss|
     (f_ss: second derivative along a grid axis). For f = A (sin k x + sin k y), along any
     unit direction u, f_uu = -A k^2 (u_x^2 sin k x + u_y^2 sin k y), so |f_uu| <= A k^2; the
-    UTM metre differs from the local metre by < 1 % here (scale 0.9996, cos(lat) over 9 km),
+    UTM metre differs from the local metre by < 1 % here (scale 0.9996, cos(lat) over 6 km),
     which the factor 1.02 covers (on k^2). Float32 storage adds < 1e-3 m."""
     t = read_terrain([_write_utm(tmp_path / "utm.tif")])
     assert any("reprojected from EPSG:32632" in w for w in t.warnings)
@@ -171,7 +172,7 @@ def test_utm_geotiff_reprojected_within_the_bilinear_bound(tmp_path):
     # number of samples per degree)
     east_m, north_m = t.spacing_m
     assert east_m == pytest.approx(H, rel=2e-3) and north_m == pytest.approx(H, rel=2e-3)
-    # the 9 km square (rotated ~1 deg) covers most of its lat/lon bounding box; nodes outside
+    # the 6 km square (rotated ~1 deg) covers most of its lat/lon bounding box; nodes outside
     # it are NaN (outside the terrain), never extrapolated
     assert 0.9 < ok.mean() < 1.0
     assert not np.isfinite(t.elevation(LAT0 + 0.06, LON0)).any()
@@ -198,3 +199,39 @@ def test_a_tiff_without_georeferencing_is_refused(tmp_path):
     with pytest.raises(InvalidParameterError) as e:
         read_terrain([p])
     assert str(p) in str(e.value) and "coordinate reference system" in str(e.value)
+
+
+# ----- from the command line ------------------------------------------------------------------
+def test_cli_terrain_folder_end_to_end(run_cli, polar_file, tmp_path):
+    """--terrain FOLDER (a GeoTIFF and a stray text file in it): read and solved."""
+    import json
+
+    from glideplan.terrain.geotiff import write_geotiff
+
+    n = 41
+    lat = 46.0 + 0.2 * np.arange(n) / (n - 1)
+    lon = 7.0 + 0.3 * np.arange(n) / (n - 1)
+    d = tmp_path / "dem"
+    d.mkdir()
+    write_geotiff(d / "dem.tif", lat, lon, np.full((n, n), 400.0))
+    (d / "readme.txt").write_text("source: synthetic")
+    base = ("glide", "reach", "--polar", str(polar_file), "--from", "46.1", "7.15", "700",
+            "--json")
+    code, out, err = run_cli(*base, "--terrain", str(d))
+    assert code == 0, err
+    a = json.loads(out)
+    assert a["status"] == "solved" and a["start"]["ground_m"] == pytest.approx(400.0)
+
+
+@pytest.mark.parametrize("kind", ["empty", "bad name"])
+def test_cli_terrain_folder_errors_in_one_line(cli_error, polar_file, tmp_path, kind):
+    d = tmp_path / "tiles"
+    d.mkdir()
+    if kind == "bad name":
+        (d / "tile7.hgt").write_bytes(b"\0" * 2 * N3 * N3)
+    line = cli_error("glide", "reach", "--polar", str(polar_file), "--from", "46.1", "7.15",
+                     "700", "--terrain", str(d))
+    expect = (f"--terrain {d}/tile7.hgt='tile7.hgt': an SRTM tile must be named by its "
+              "south-west corner" if kind == "bad name" else
+              f"--terrain {d}='{d}': the folder holds no terrain file")
+    assert expect in line, line

@@ -117,7 +117,7 @@ def _terrain(files: list[pathlib.Path] | None, voids: str | None, required: bool
             check_input_file(f, "--terrain")  # folders and patterns: read_terrain checks
     mode = "refuse" if voids is None else voids
     with flag_names(voids="--fill-voids"):
-        if len(files) == 1:
+        if len(files) == 1 and files[0].is_file():
             with file_flag("--terrain", files[0]):
                 return read_terrain(files, voids=mode)
         try:
