@@ -9,14 +9,16 @@ reprojected to WGS84 lat/lon, its voids filled (or refused) first in its own gri
 lat/lon grid keeps the source's ground spacing h (m) at the mid latitude phi_m:
 dlat = h_y / R, dlon = h_x / (R cos phi_m) (radians), rounded to a whole number of samples
 per degree with nodes at whole multiples of the step (adjacent tiles of one source then
-share a lattice and merge). Each lat/lon node is carried into the source CRS exactly
-(rasterio.warp.transform, i.e. PROJ) and the source samples are interpolated there
-bilinearly (scipy.ndimage.map_coordinates, order 1). Bilinear because elevations are a
-continuous field: it stays within the 4 surrounding samples (no overshoot, unlike cubic; no
-half-pixel staircase, unlike nearest) and errs by at most (h_x^2 + h_y^2)/8 max|d2z/ds2|.
-GDAL's warper (rasterio.warp.reproject, bilinear) was measured 4x over that bound on a
-smooth UTM test surface (its 1/8-pixel approximate transformer, and a widened kernel when
-the destination is a little coarser than the source), hence the exact per-node transform.
+share a lattice and merge). Each lat/lon node is carried into the source CRS
+(rasterio.warp.transform, i.e. PROJ: exactly on every 8th node, bilinearly between, which is
+checked to within 1e-3 source pixel at the coarse cells' centres, else exact everywhere) and
+the source samples are interpolated there bilinearly (scipy.ndimage.map_coordinates,
+order 1). Bilinear because elevations are a continuous field: it stays within the 4
+surrounding samples (no overshoot, unlike cubic; no half-pixel staircase, unlike nearest)
+and errs by at most (h_x^2 + h_y^2)/8 max|d2z/ds2|. GDAL's warper (rasterio.warp.reproject,
+bilinear) was measured 4x over that bound on a smooth UTM test surface (its 1/8-pixel
+approximate transformer, and a kernel widened when the destination is a little coarser
+than the source), hence the transform checked to 1e-3 pixel and scipy's interpolation.
 Nodes outside the source's pixel centres are NaN (outside the terrain), never extrapolated.
 """
 
@@ -124,26 +126,56 @@ def _reprojected(p: pathlib.Path, ds: Any, z: np.ndarray, nodata: np.ndarray,
     return Terrain(lat, lon, out, (str(p),), tuple(w for w in (warning, note) if w))
 
 
-def _bilinear_at(z: np.ndarray, ds: Any, lat: np.ndarray, lon: np.ndarray,
-                 block: int = 250_000) -> np.ndarray:
-    """z (the source grid of `ds`) at the lat/lon nodes (ny, nx), bilinear; NaN outside the
-    source's pixel centres. Rows are done in blocks of about `block` nodes (memory)."""
+def _source_pixels(ds: Any, lat: np.ndarray, lon: np.ndarray, stride: int = 8
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Where the lat/lon nodes fall in the source: PROJ's exact transformation
+    (rasterio.warp.transform) of every `stride`-th node, the coarse grids' (row, col)
+    pixel-centre indices, and the coarse positions (ci, cj) of every fine row and column.
+    Between coarse nodes the indices are bilinear in (ci, cj); that is checked at the coarse
+    cells' centres and the stride is dropped to 1 (all exact) if it errs by 1e-3 pixel."""
     from rasterio.warp import transform
-    from scipy.ndimage import map_coordinates
 
     inv = ~ds.transform
+
+    def exact(la: np.ndarray, lo: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        xs, ys = transform("EPSG:4326", ds.crs, lo.ravel(), la.ravel())
+        col, row = inv @ (np.asarray(xs), np.asarray(ys))
+        return (np.asarray(row).reshape(la.shape) - 0.5, np.asarray(col).reshape(la.shape) - 0.5)
+
+    ii = np.unique(np.r_[np.arange(0, lat.size, stride), lat.size - 1])
+    jj = np.unique(np.r_[np.arange(0, lon.size, stride), lon.size - 1])
+    fy, fx = exact(*np.meshgrid(lat[ii], lon[jj], indexing="ij"))
+    if stride > 1 and ii.size > 1 and jj.size > 1:  # check half-way between coarse nodes
+        mla = 0.5 * (lat[ii[:-1]] + lat[ii[1:]])
+        mlo = 0.5 * (lon[jj[:-1]] + lon[jj[1:]])
+        ey, ex = exact(*np.meshgrid(mla, mlo, indexing="ij"))
+        iy = 0.25 * (fy[:-1, :-1] + fy[1:, :-1] + fy[:-1, 1:] + fy[1:, 1:])
+        ix = 0.25 * (fx[:-1, :-1] + fx[1:, :-1] + fx[:-1, 1:] + fx[1:, 1:])
+        if max(np.max(np.abs(iy - ey)), np.max(np.abs(ix - ex))) > 1e-3:
+            return _source_pixels(ds, lat, lon, 1)
+    ci = np.interp(np.arange(lat.size), ii, np.arange(ii.size))
+    cj = np.interp(np.arange(lon.size), jj, np.arange(jj.size))
+    return fy, fx, ci, cj
+
+
+def _bilinear_at(z: np.ndarray, ds: Any, lat: np.ndarray, lon: np.ndarray,
+                 block: int = 500_000) -> np.ndarray:
+    """z (the source grid of `ds`) at the lat/lon nodes (ny, nx), bilinear; NaN outside the
+    source's pixel centres. Rows are done in blocks of about `block` nodes (memory)."""
+    from scipy.ndimage import map_coordinates
+
+    fy_c, fx_c, ci, cj = _source_pixels(ds, lat, lon)
     out = np.full((lat.size, lon.size), np.nan, dtype=np.float32)
     rows = max(1, block // lon.size)
     zf = np.asarray(z, dtype=np.float64)
     for r0 in range(0, lat.size, rows):
-        la, lo = np.meshgrid(lat[r0:r0 + rows], lon, indexing="ij")
-        xs, ys = transform("EPSG:4326", ds.crs, lo.ravel(), la.ravel())
-        col, row = inv @ (np.asarray(xs), np.asarray(ys))
-        fx, fy = col - 0.5, row - 0.5  # pixel-centre index coordinates
+        gi, gj = np.meshgrid(ci[r0:r0 + rows], cj, indexing="ij")
+        fy = map_coordinates(fy_c, [gi, gj], order=1, mode="nearest")
+        fx = map_coordinates(fx_c, [gi, gj], order=1, mode="nearest")
         inside = (fx >= 0) & (fx <= z.shape[1] - 1) & (fy >= 0) & (fy <= z.shape[0] - 1)
         v = map_coordinates(zf, [np.where(inside, fy, 0), np.where(inside, fx, 0)], order=1,
                             mode="nearest")
-        out[r0:r0 + rows] = np.where(inside, v, np.nan).reshape(la.shape)
+        out[r0:r0 + rows] = np.where(inside, v, np.nan)
     return out
 
 
