@@ -460,6 +460,8 @@ def add_scale_bar(ax: Any, *, geographic: bool = True, loc: tuple[float, float] 
     bx, by = x0 + loc[0] * (x1 - x0), y0 + loc[1] * (y1 - y0)
     per_unit = metres_per_degree_lon(by) if geographic else 1.0  # metres per x unit
     width_m = abs(x1 - x0) * per_unit
+    if not width_m > 0 or not math.isfinite(width_m):  # a pole, or empty axes: no bar
+        return 0.0
     length_m = nice_length(max(fraction * width_m, 1e-3))
     span = length_m / per_unit
     halo = [pe.withStroke(linewidth=5, foreground="white")]
