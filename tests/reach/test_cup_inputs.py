@@ -137,5 +137,7 @@ def test_cli_empty_elevation_from_terrain_with_a_warning(run_cli, polar_file, tm
                              "--json")
     assert code == 0, err
     assert "Wiese Müller): no elevation in the file; the terrain's 400 m is used" in err
-    pt = json.loads(out)["points"][0]
+    data = json.loads(out)
+    pt = data["points"][0]
     assert pt["name"] == "Wiese Müller" and pt["elevation_m"] == pytest.approx(400.0)
+    assert any("Wiese Müller): no elevation in the file" in w for w in data["warnings"])

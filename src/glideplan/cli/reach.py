@@ -316,14 +316,13 @@ def glide_reach_cmd(
     p = _polar(polar_file or ex.polar_file, mass, ballast, bugs)
     t = _terrain(terrain, fill_voids, required=True) if terrain else ex.terrain
     lands: Any = () if ex is None else ex.landables
+    notes: list[str] = []  # the .cup reader's (elevations taken from the terrain)
     if landables is not None:
         check_input_file(landables, "--landables")
         from glideplan.reach.landables import read_cup_landables
 
-        notes: list[str] = []
         with file_flag("--landables", landables):
             lands, skipped = read_cup_landables(landables, t, notes)
-        print_warnings([f"--landables {n}" for n in notes])
         if skipped:
             print_warnings([f"--landables: {skipped} waypoint(s) are not landable (SeeYou "
                             "style not 2-5) and were skipped"])
@@ -334,6 +333,11 @@ def glide_reach_cmd(
         result = glide_reach(t, (start_v[0], start_v[1], start_v[2]), p, landables=lands,
                              mc=mc_v, wind=w, safety_height=safety_v,
                              safety_glide_ratio=safety_glide_ratio, resolution_m=resolution_v)
+    if notes:  # into the result's warnings (JSON too)
+        import dataclasses
+
+        result = dataclasses.replace(result, warnings=(*(f"--landables {n}" for n in notes),
+                                                       *result.warnings))
     if json_out:
         print_json(result.to_dict())
     else:
