@@ -88,16 +88,19 @@ def test_merge_refuses_mixed_resolutions():
         merge_tiles([a, b])
 
 
-def test_geotiff_must_be_wgs84(tmp_path):
+def test_geotiff_in_web_mercator_is_reprojected(tmp_path):
+    """A raster not in WGS84 lat/lon is reprojected (tests/reach/test_terrain_inputs.py checks
+    the accuracy on a UTM tile); it says so in the warnings."""
     import rasterio
     from affine import Affine
 
     p = tmp_path / "merc.tif"
     with rasterio.open(p, "w", driver="GTiff", height=4, width=4, count=1, dtype="float32",
                        crs="EPSG:3857", transform=Affine(100.0, 0.0, 0.0, 0.0, -100.0, 0.0)) as ds:
-        ds.write(np.zeros((4, 4), np.float32), 1)
-    with pytest.raises(InvalidParameterError, match="EPSG:4326"):
-        read_geotiff(p)
+        ds.write(np.full((4, 4), 250.0, np.float32), 1)
+    t = read_geotiff(p)
+    assert "reprojected from EPSG:3857" in t.warnings[0]
+    assert np.nanmax(np.abs(t.z - 250.0)) == 0.0 and np.isfinite(t.z).any()
 
 
 def test_pooled_max_never_understates_the_terrain():

@@ -38,8 +38,10 @@ WriteExampleOpt = Annotated[
 ]
 TerrainOpt = Annotated[
     list[pathlib.Path] | None,
-    typer.Option("--terrain", metavar="FILE",
-                 help="Terrain: SRTM .hgt or GeoTIFF (repeat for several tiles; merged).",
+    typer.Option("--terrain", metavar="FILE|DIR",
+                 help="Terrain: SRTM .hgt (also zipped .zip or gzipped .hgt.gz), GeoTIFF "
+                      "(any CRS: UTM and others are reprojected to lat/lon), a folder of "
+                      "them, or a quoted glob; repeat for several (all merged).",
                  show_default=False),
 ]
 WindOpt = Annotated[
@@ -106,13 +108,16 @@ def _terrain(files: list[pathlib.Path] | None, voids: str | None, required: bool
         if required:
             from glideplan.cli.common import usage_error
 
-            usage_error("--terrain FILE is required (SRTM .hgt or GeoTIFF)")
+            usage_error("--terrain FILE is required (SRTM .hgt or GeoTIFF, or a folder)")
         return None
+    import glob
+
     for f in files:
-        check_input_file(f, "--terrain")
+        if not f.is_dir() and not (glob.has_magic(str(f)) and not f.exists()):
+            check_input_file(f, "--terrain")  # folders and patterns: read_terrain checks
     mode = "refuse" if voids is None else voids
     with flag_names(voids="--fill-voids"):
-        if len(files) == 1:
+        if len(files) == 1 and files[0].is_file():
             with file_flag("--terrain", files[0]):
                 return read_terrain(files, voids=mode)
         try:
@@ -311,12 +316,13 @@ def glide_reach_cmd(
     p = _polar(polar_file or ex.polar_file, mass, ballast, bugs)
     t = _terrain(terrain, fill_voids, required=True) if terrain else ex.terrain
     lands: Any = () if ex is None else ex.landables
+    notes: list[str] = []  # the .cup reader's (elevations taken from the terrain)
     if landables is not None:
         check_input_file(landables, "--landables")
         from glideplan.reach.landables import read_cup_landables
 
         with file_flag("--landables", landables):
-            lands, skipped = read_cup_landables(landables)
+            lands, skipped = read_cup_landables(landables, t, notes)
         if skipped:
             print_warnings([f"--landables: {skipped} waypoint(s) are not landable (SeeYou "
                             "style not 2-5) and were skipped"])
@@ -327,6 +333,11 @@ def glide_reach_cmd(
         result = glide_reach(t, (start_v[0], start_v[1], start_v[2]), p, landables=lands,
                              mc=mc_v, wind=w, safety_height=safety_v,
                              safety_glide_ratio=safety_glide_ratio, resolution_m=resolution_v)
+    if notes:  # into the result's warnings (JSON too)
+        import dataclasses
+
+        result = dataclasses.replace(result, warnings=(*(f"--landables {n}" for n in notes),
+                                                       *result.warnings))
     if json_out:
         print_json(result.to_dict())
     else:

@@ -1,7 +1,15 @@
 """Figures of a glide reach (map) and a turn-back point (map and altitude profile).
 
 Map axes are longitude/latitude in degrees with the aspect 1 / cos(lat) (metres equal in
-both directions). Hillshade: Matplotlib's LightSource (sun from the north-west, 45 deg).
+both directions), north up. The terrain is coloured by height (hypsometric: green lowlands,
+tan and brown slopes, grey rock, white summits, over the terrain's own range) and shaded
+(Matplotlib's LightSource, sun from the north-west at 45 deg, "soft" blend), with contour
+lines at a round interval; a colour bar gives the elevation in m. A km scale bar, a north
+arrow and the wind arrow (pointing where the wind blows) sit in the corners. Landables are
+coloured by their arrival margin; out of reach: a red cross labelled with how much height
+is missing ("-240 m"); on missing terrain: a hollow grey circle labelled "no terrain".
+Labels are placed greedily so that they collide with no other label or marker
+(`glideplan.plotting.place_labels`).
 """
 
 from __future__ import annotations
@@ -16,82 +24,154 @@ if TYPE_CHECKING:
     from glideplan.reach.turnback import TurnbackResult
     from glideplan.terrain.grid import Terrain
 
-__all__ = ["plot_reach", "plot_turnback"]
+__all__ = ["hypsometric_cmap", "plot_reach", "plot_turnback"]
 
 _MAX_SHADE = 1200  # terrain samples per side drawn (strided beyond)
+_MAX_CONTOUR = 400  # samples per side contoured
+#: Hypsometric tints (fraction of the elevation range, colour): green - tan - brown - white.
+_HYPSO = ((0.0, "#3d7a3a"), (0.12, "#74a95a"), (0.3, "#c8cf8a"), (0.45, "#d8b878"),
+          (0.6, "#a8794b"), (0.75, "#86644e"), (0.88, "#b9b1aa"), (1.0, "#ffffff"))
+_NO_DATA_RGBA = (0.82, 0.82, 0.82, 1.0)
+_FOOTPRINT_EDGE = "#b0006e"  # magenta: apart from every terrain tint
 
 
-def _hillshade(ax: Any, terrain: Terrain) -> None:
-    from matplotlib.colors import LightSource
+def hypsometric_cmap() -> Any:
+    """The terrain colour map (low green, tan, brown, grey rock, white top)."""
+    from matplotlib.colors import LinearSegmentedColormap
+
+    return LinearSegmentedColormap.from_list("glideplan_hypsometric", list(_HYPSO))
+
+
+def _terrain_image(ax: Any, terrain: Terrain) -> tuple[Any, Any]:
+    """Draw the tinted, shaded terrain and its contours; (ScalarMappable for the colour bar,
+    the contour set or None)."""
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import LightSource, Normalize
+    from matplotlib.ticker import MaxNLocator
 
     step = max(1, math.ceil(max(terrain.shape) / _MAX_SHADE))
     z = np.asarray(terrain.z[::step, ::step], dtype=float)
-    z = np.where(np.isfinite(z), z, np.nanmin(z) if np.any(np.isfinite(z)) else 0.0)
+    nodata = ~np.isfinite(z)
+    lo = float(np.nanmin(z)) if not nodata.all() else 0.0
+    hi = float(np.nanmax(z)) if not nodata.all() else 1.0
+    norm = Normalize(lo, max(hi, lo + 100.0))  # a flat tile is not stretched to full range
+    cmap = hypsometric_cmap()
+    zf = np.where(nodata, lo, z)
     dx, dy = terrain.spacing_m
     ls = LightSource(azdeg=315, altdeg=45)
-    shade = ls.hillshade(z[::-1], vert_exag=1.0, dx=dx * step, dy=dy * step)
+    rgb = ls.shade(zf[::-1], cmap=cmap, norm=norm, blend_mode="soft", vert_exag=1.0,
+                   dx=dx * step, dy=dy * step)
+    rgb[nodata[::-1]] = _NO_DATA_RGBA
     s, n, w, e = terrain.extent
-    ax.imshow(shade, cmap="gray", vmin=0.0, vmax=1.0, extent=(w, e, s, n), origin="upper",
-              alpha=0.8,
-              interpolation="bilinear", zorder=0)
+    ax.imshow(rgb, extent=(w, e, s, n), origin="upper", interpolation="bilinear", zorder=0)
+    cs = None
+    levels = np.asarray(MaxNLocator(nbins=8, steps=[1, 2, 2.5, 5, 10]).tick_values(
+        lo, max(hi, lo + 100.0)), dtype=np.float64)
+    levels = levels[(levels > lo) & (levels < hi)]
+    if levels.size:
+        c = max(1, math.ceil(max(terrain.shape) / _MAX_CONTOUR))
+        cs = ax.contour(terrain.lon[::c], terrain.lat[::c],
+                        np.ma.masked_invalid(np.asarray(terrain.z[::c, ::c], dtype=float)),
+                        levels=levels, colors="0.2", linewidths=0.4, alpha=0.55, zorder=1)
+    return plt.cm.ScalarMappable(norm=norm, cmap=cmap), cs
+
+
+def _elevation_colorbar(ax: Any, sm: Any, cs: Any) -> Any:
+    """The terrain's colour bar (m), with the contour levels drawn on it."""
+    fig = ax.get_figure()
+    cb = fig.colorbar(sm, ax=ax, shrink=0.75, pad=0.02)
+    label = "terrain elevation (m)"
+    if cs is not None and len(cs.levels) > 1:
+        label += f", contours every {cs.levels[1] - cs.levels[0]:g} m"
+        cb.add_lines(cs.levels, ["0.2"] * len(cs.levels), [0.6] * len(cs.levels))
+    cb.set_label(label, fontsize=8)
+    cb.ax.tick_params(labelsize=7)
+    return cb
 
 
 def _wind_arrow(ax: Any, wind: tuple[float, float], lat: float) -> None:
+    """An arrow in the top-left corner pointing where the wind blows (display space, so its
+    direction is true on an equal-metre map), and its speed and FROM direction."""
+    del lat  # the map's aspect makes display directions true
     speed = math.hypot(*wind)
+    kw = {"transform": ax.transAxes, "va": "top", "fontsize": 8, "zorder": 20}
     if speed == 0:
-        ax.text(0.03, 0.97, "no wind", transform=ax.transAxes, va="top", fontsize=8)
+        ax.text(0.03, 0.97, "no wind", **kw)
         return
-    c = math.cos(math.radians(lat))
+    from matplotlib.transforms import offset_copy
+
     u, v = wind[0] / speed, wind[1] / speed
-    ax.annotate("", xy=(0.1 + 0.06 * u / max(c, 0.2) * c, 0.88 + 0.06 * v),
-                xytext=(0.1, 0.88), xycoords="axes fraction",
-                arrowprops={"arrowstyle": "->", "color": "navy", "lw": 2})
+    tip = offset_copy(ax.transAxes, ax.get_figure(), x=11 * u, y=11 * v, units="points")
+    ax.annotate("", xy=(0.1, 0.83), xycoords=tip, xytext=(-22 * u, -22 * v),
+                textcoords="offset points", gid="wind_arrow", zorder=20,
+                arrowprops={"arrowstyle": "-|>", "color": "navy", "lw": 2})  # centred there
     frm = (math.degrees(math.atan2(-wind[0], -wind[1])) + 360.0) % 360.0
-    ax.text(0.03, 0.97, f"wind {speed:.3g} m/s from {frm:.0f}°", transform=ax.transAxes,
-            va="top", fontsize=8, color="navy")
+    ax.text(0.03, 0.97, f"wind {speed:.3g} m/s from {frm:.0f}°", color="navy",
+            bbox={"boxstyle": "round", "fc": "white", "alpha": 0.7, "lw": 0}, **kw)
 
 
-def plot_reach(result: ReachResult, ax: Any = None, *, paths: bool = True) -> Any:
-    """Hillshade, the footprint (green), landables coloured by arrival margin (red-green,
-    crosses where out of reach), the flown paths, the start and the wind."""
-    import matplotlib.pyplot as plt
+def _footprint(ax: Any, result: ReachResult) -> None:
     from matplotlib.patches import PathPatch
     from matplotlib.path import Path as MplPath
 
-    if ax is None:
-        _, ax = plt.subplots(figsize=(8, 7))
-    _hillshade(ax, result.terrain)
     for poly in result.footprint:
         verts = np.vstack(poly)
         codes = np.concatenate([[MplPath.MOVETO] + [MplPath.LINETO] * (len(r) - 2)
                                 + [MplPath.CLOSEPOLY] for r in poly])
-        ax.add_patch(PathPatch(MplPath(verts, codes), facecolor=(0.1, 0.8, 0.2, 0.25),
-                               edgecolor="green", lw=1.2, zorder=2))
-    lat0, lon0, alt = result.start
-    ax.plot(lon0, lat0, marker="^", color="k", ms=9, zorder=6, label=f"start {alt:.0f} m")
+        ax.add_patch(PathPatch(MplPath(verts, codes), facecolor=(0.69, 0.0, 0.43, 0.10),
+                               edgecolor=_FOOTPRINT_EDGE, lw=1.6, zorder=2))
+
+
+def _landables(ax: Any, result: ReachResult, paths: bool) -> tuple[list[str], Any, float]:
+    """Draw the landables (and their paths); (their labels, the margin colour map, its top)."""
+    import matplotlib.pyplot as plt
+
     margins = [p.arrival_margin_m if p.reachable and p.arrival_margin_m is not None else np.nan
                for p in result.points]
     finite = [m for m in margins if np.isfinite(m)]
-    vmax = max(finite) if finite else 1.0
+    vmax = max(max(finite) if finite else 1.0, 1.0)
     cmap = plt.get_cmap("RdYlGn")
+    labels = []
     for p, m in zip(result.points, margins, strict=True):
         lnd = p.landable
         if paths and p.path is not None and p.reachable:
             ax.plot(p.path.lon, p.path.lat, color="tab:blue", lw=1.2, zorder=4)
-        if np.isfinite(m):
-            ax.scatter([lnd.lon], [lnd.lat], c=[m], cmap=cmap, vmin=0.0, vmax=max(vmax, 1.0),
-                       s=60, edgecolors="k", zorder=7)
-            label = f"{lnd.name} +{m:.0f} m"
+        short = getattr(p, "short_by_m", None)
+        if getattr(p, "terrain_missing", False):
+            ax.scatter([lnd.lon], [lnd.lat], s=60, facecolors="none", edgecolors="0.45",
+                       linewidths=1.8, zorder=7, gid="landable_no_terrain")
+            labels.append(f"{lnd.name}: no terrain")
+        elif np.isfinite(m):
+            ax.scatter([lnd.lon], [lnd.lat], c=[m], cmap=cmap, vmin=0.0, vmax=vmax, s=60,
+                       edgecolors="k", zorder=7, gid="landable_reachable")
+            labels.append(f"{lnd.name} +{m:.0f} m")
         else:
-            ax.plot(lnd.lon, lnd.lat, marker="x", color="red", ms=8, mew=2, zorder=7)
-            label = f"{lnd.name} (out of reach)"
-        ax.annotate(label, (lnd.lon, lnd.lat), xytext=(4, 4), textcoords="offset points",
-                    fontsize=7, zorder=8)
-    if finite:
-        sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(0.0, max(vmax, 1.0)))
-        ax.get_figure().colorbar(sm, ax=ax, shrink=0.7,
-                                 label="arrival margin over safety height (m)")
-    _wind_arrow(ax, result.glide.wind, lat0)
+            ax.plot(lnd.lon, lnd.lat, marker="x", color="red", ms=8, mew=2, zorder=7,
+                    gid="landable_out_of_reach")
+            labels.append(f"{lnd.name} -{short:.0f} m" if short is not None
+                          and math.isfinite(short) else f"{lnd.name} (out of reach)")
+    return labels, (cmap if finite else None), vmax
+
+
+def plot_reach(result: ReachResult, ax: Any = None, *, paths: bool = True) -> Any:
+    """The map of a glide reach (module docstring): tinted, shaded terrain with contours
+    and its colour bar, the footprint (magenta), landables coloured by arrival margin
+    (red-green; crosses out of reach, hollow grey on missing terrain) with labels that do
+    not collide, the flown paths, the start, the wind, a km scale bar and a north arrow."""
+    import matplotlib.patheffects as pe
+    import matplotlib.pyplot as plt
+
+    from glideplan.plotting import add_north_arrow, add_scale_bar, marker_boxes, place_labels
+
+    own = ax is None
+    if own:
+        _, ax = plt.subplots(figsize=(9, 7.5))
+    fig = ax.get_figure()
+    sm, cs = _terrain_image(ax, result.terrain)
+    _footprint(ax, result)
+    lat0, lon0, alt = result.start
+    ax.plot(lon0, lat0, marker="^", color="k", ms=9, zorder=6, label=f"start {alt:.0f} m")
+    labels, cmap, vmax = _landables(ax, result, paths)
     s, n, w, e = result.terrain.extent
     ax.set_xlim(w, e)
     ax.set_ylim(s, n)
@@ -101,6 +181,27 @@ def plot_reach(result: ReachResult, ax: Any = None, *, paths: bool = True) -> An
     g = result.glide
     ax.set_title(f"glide reach from {alt:.0f} m, {g.polar.name}, MC {g.mc:g} m/s, safety "
                  f"{result.safety_height:g} m\n{result.message}", fontsize=9)
+    _elevation_colorbar(ax, sm, cs)
+    if cmap is not None:
+        mm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(0.0, vmax))
+        cb = fig.colorbar(mm, ax=ax, shrink=0.75, pad=0.02)
+        cb.set_label("arrival margin over safety height (m)", fontsize=8)
+        cb.ax.tick_params(labelsize=7)
+    _wind_arrow(ax, g.wind, lat0)
+    if own:
+        fig.tight_layout()
+    ax.apply_aspect()
+    add_scale_bar(ax)
+    add_north_arrow(ax)
+    renderer = fig.canvas.get_renderer()  # (limits, aspect and layout are final)
+    pts = [(p.landable.lon, p.landable.lat) for p in result.points]
+    furniture = [a.get_window_extent(renderer) for a in (*ax.texts, *ax.lines)
+                 if a.get_gid() in ("scale_bar", "scale_bar_label", "north_arrow")]
+    furniture += [t.get_window_extent(renderer) for t in ax.texts if t.get_gid() is None]
+    obstacles = marker_boxes(ax, [*pts, (lon0, lat0)], 5.0) + furniture
+    halo = [pe.withStroke(linewidth=2.5, foreground="white", alpha=0.85)]
+    place_labels(ax, pts, labels, obstacles=obstacles, gid="landable_label", fontsize=7,
+                 zorder=8, path_effects=halo)
     return ax
 
 
@@ -122,8 +223,7 @@ def plot_turnback(result: TurnbackResult, ax: Any = None) -> Any:
                                for v in (f.lat.min(), f.lat.max())]
     lons = [lon0, home.lon] + [float(v) for f, _, _ in pieces if f is not None
                                for v in (f.lon.min(), f.lon.max())]
-    if result.terrain is not None:
-        _hillshade(ax_map, result.terrain)
+    tinted = _terrain_image(ax_map, result.terrain) if result.terrain is not None else None
     for f, colour, label in pieces:
         if f is not None:
             ax_map.plot(f.lon, f.lat, color=colour, lw=1.5, label=label)
@@ -140,6 +240,13 @@ def plot_turnback(result: TurnbackResult, ax: Any = None) -> Any:
     ax_map.set_ylabel("latitude (deg)")
     _wind_arrow(ax_map, result.glide.wind, lat0)
     ax_map.legend(fontsize=7, loc="lower right")
+    if tinted is not None:
+        _elevation_colorbar(ax_map, *tinted)
+    from glideplan.plotting import add_north_arrow, add_scale_bar
+
+    ax_map.apply_aspect()
+    add_scale_bar(ax_map)
+    add_north_arrow(ax_map)
     ax_map.get_figure().suptitle(result.message, fontsize=9)
     if ax_prof is not None:
         s0 = 0.0

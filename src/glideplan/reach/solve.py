@@ -317,7 +317,7 @@ def glide_reach(
     if isinstance(landables, (str, pathlib.Path)):
         from glideplan.reach.landables import read_cup_landables
 
-        landables, skipped = read_cup_landables(landables)
+        landables, skipped = read_cup_landables(landables, terrain, warnings)
         if skipped:
             warnings.append(f"{skipped} waypoint(s) of the .cup file are not landable "
                             "(SeeYou style not 2-5) and were skipped")

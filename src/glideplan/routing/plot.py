@@ -386,6 +386,10 @@ def route_figure(
     ref = "the frame's corner" if start is None else "start"
 
     add_km_axes(ax, ref_lat, ref_lon, m_lat, m_lon, f"km east of {ref}", f"km north of {ref}")
+    from glideplan.plotting import add_north_arrow, add_scale_bar
+
+    add_scale_bar(ax)  # (limits and aspect are final: adjustable "box")
+    add_north_arrow(ax)
     ax.grid(True, lw=0.4, alpha=0.5)
     ax.set_title(route_title(result, field_, start, goal, speed, inferred, glider),
                  fontsize=9, loc="left", pad=30)

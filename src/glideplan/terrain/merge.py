@@ -1,5 +1,9 @@
 """Several DEM tiles on one lat/lon grid: `merge_tiles`, and `read_terrain` for a file list.
 
+`read_terrain` takes terrain as people keep it: files (`.hgt`, `.hgt.gz`, `.zip` of `.hgt`s,
+GeoTIFF `.tif`/`.tiff` in any CRS), folders (every such file directly in it) and glob patterns
+(`tiles/N4*.hgt`, for a shell that did not expand them); see `terrain_files`.
+
 Tiles must share one sample step (within 1e-6 of a step) and sit on one lattice (their
 nodes' offsets are whole steps apart); the merged grid spans the union of their extents.
 Where tiles overlap (SRTM tiles repeat their neighbours' edge rows) the first tile's sample
@@ -17,7 +21,11 @@ import numpy as np
 from glideplan.errors import InvalidParameterError
 from glideplan.terrain.grid import Terrain
 
-__all__ = ["merge_tiles", "read_terrain"]
+__all__ = ["TERRAIN_SUFFIXES", "merge_tiles", "read_terrain", "terrain_files"]
+
+#: File names read as terrain (lower case), as a folder is searched for them.
+TERRAIN_SUFFIXES = (".hgt", ".hgt.gz", ".hgt.zip", ".zip", ".tif", ".tiff")
+_KINDS = "SRTM .hgt (also .hgt.gz, or .zip holding .hgt tiles) or GeoTIFF (.tif, .tiff)"
 
 
 def _offset(value: float, origin: float, step: float, what: str) -> int:
@@ -74,20 +82,55 @@ def merge_tiles(tiles: Sequence[Terrain]) -> Terrain:
     return Terrain(lat, lon, z, tuple(sources), tuple(warnings))
 
 
-def read_terrain(paths: Sequence[str | pathlib.Path], *, voids: str = "refuse") -> Terrain:
-    """Read `.hgt` and GeoTIFF (`.tif`, `.tiff`) files and merge them (`merge_tiles`)."""
-    from glideplan.terrain.geotiff import read_geotiff
-    from glideplan.terrain.hgt import read_hgt
+def _is_terrain_name(name: str) -> bool:
+    return name.lower().endswith(TERRAIN_SUFFIXES)
 
-    tiles = []
+
+def terrain_files(paths: Sequence[str | pathlib.Path]) -> list[pathlib.Path]:
+    """The terrain files `paths` name, each once, in order: a file as given (its kind is
+    checked when read), a folder's terrain files (sorted; other files ignored), a glob
+    pattern's matches. An empty folder, a pattern matching nothing or a missing file is an
+    `InvalidParameterError` naming it."""
+    import glob
+
+    out: list[pathlib.Path] = []
     for path in paths:
         p = pathlib.Path(path)
-        suffix = p.suffix.lower()
-        if suffix == ".hgt":
-            tiles.append(read_hgt(p, voids=voids))
-        elif suffix in (".tif", ".tiff"):
+        if p.is_dir():
+            found = sorted(f for f in p.iterdir() if f.is_file() and _is_terrain_name(f.name))
+            if not found:
+                raise InvalidParameterError(
+                    str(p), str(p), f"the folder holds no terrain file ({_KINDS})")
+        elif p.exists():
+            found = [p]
+        elif glob.has_magic(str(p)):
+            found = sorted(pathlib.Path(f) for f in glob.glob(str(p))
+                           if pathlib.Path(f).is_file())
+            if not found:
+                raise InvalidParameterError(str(p), str(p), "the pattern matches no file")
+        else:
+            raise InvalidParameterError(str(p), str(p), "no such file or folder")
+        out += [f for f in found if f.resolve() not in {g.resolve() for g in out}]
+    if not out:
+        raise InvalidParameterError("terrain", [], "needs at least one file or folder")
+    return out
+
+
+def read_terrain(paths: Sequence[str | pathlib.Path], *, voids: str = "refuse") -> Terrain:
+    """Read terrain files and folders (`terrain_files`) and merge them (`merge_tiles`).
+
+    `voids`: "refuse" (an error naming the file), "nearest" or "linear" (filled, warned).
+    """
+    from glideplan.terrain.geotiff import read_geotiff
+    from glideplan.terrain.hgt import read_hgt_tiles
+
+    tiles = []
+    for p in terrain_files(paths):
+        name = p.name.lower()
+        if name.endswith((".hgt", ".hgt.gz", ".zip")):
+            tiles += read_hgt_tiles(p, voids=voids)
+        elif name.endswith((".tif", ".tiff")):
             tiles.append(read_geotiff(p, voids=voids))
         else:
-            raise InvalidParameterError(
-                str(p), str(p), "terrain files are SRTM .hgt or GeoTIFF (.tif, .tiff)")
+            raise InvalidParameterError(str(p), str(p), f"terrain files are {_KINDS}")
     return merge_tiles(tiles)
