@@ -51,9 +51,11 @@ def corridor_geojson(res: Any) -> dict[str, Any]:
 def _settings(resolution: float | None, land_clearance: float | None,
               max_duration: float | None) -> Any:
     from glideplan.routing import RouteSettings
+    from glideplan.routing.ensemble import BATCH_CELLS
 
     return RouteSettings(resolution=resolution, land_clearance_m=land_clearance,
-                         max_duration=None if max_duration is None else max_duration * 3600.0)
+                         max_duration=None if max_duration is None else max_duration * 3600.0,
+                         cells=BATCH_CELLS)
 
 
 def _departures(depart_range: tuple[str, str, float], flow: Any) -> Any:

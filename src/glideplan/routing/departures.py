@@ -10,7 +10,8 @@ departure) pair in parallel on `glideplan.batch.run_batch` and ranks the departu
   current field an earlier departure never arrives later (the FIFO property of Zermelo's
   problem), so it would always pick the first departure.
 - an ensemble: the highest p_arrival, then the shortest P50 (same tolerance; the mean
-  duration of the arriving members when fewer than half arrive), then the earliest; only the best departure's route to fly is chosen (the closed loop of
+  duration of the arriving members when fewer than half arrive), then the earliest; only
+  the best departure's route to fly is chosen (the closed loop of
   `glideplan.routing.ensemble`), the others carry their statistics.
 
 `departure_times(start, end, step_h)`: start, start + step, ... up to end inclusive.

@@ -76,8 +76,8 @@ class _Stacked:
             axes += (f0.times,)
         if len(fields) == 1:  # an interpolator axis needs two points: repeat the member
             vals = np.concatenate([vals, vals])
-            axes = (np.array([0.0, 1.0]),) + axes[1:]
-        self.interp = RegularGridInterpolator(axes + (self.lat, self.lon), vals,
+            axes = (np.array([0.0, 1.0]), *axes[1:])
+        self.interp = RegularGridInterpolator((*axes, self.lat, self.lon), vals,
                                               bounds_error=False, fill_value=np.nan)
         self.centre = 0.5 * (float(f0.lon[0]) + float(f0.lon[-1]))
 
@@ -89,7 +89,7 @@ class _Stacked:
         cols: list[Any] = [member.astype(float)]
         if not self.steady:
             cols.append(np.full(lat.shape, t))
-        uv = self.interp(np.stack(cols + [lat, lo], axis=-1))
+        uv = self.interp(np.stack([*cols, lat, lo], axis=-1))
         return uv[:, 0], uv[:, 1], inside
 
 
@@ -118,13 +118,13 @@ class _PerField:
 
 
 def _same_grid(fields: Sequence[FlowField]) -> bool:
-    if not all(isinstance(f, GriddedField) and not f.periodic_lon for f in fields):
+    grids = [f for f in fields if isinstance(f, GriddedField) and not f.periodic_lon]
+    if len(grids) != len(fields):
         return False
-    f0 = fields[0]
-    assert isinstance(f0, GriddedField)
-    return all(f.u.shape == f0.u.shape and np.array_equal(f.lat, f0.lat)  # type: ignore[union-attr]
-               and np.array_equal(f.lon, f0.lon) and np.array_equal(f.times, f0.times)  # type: ignore[union-attr]
-               for f in fields)
+    f0 = grids[0]
+    return all(f.u.shape == f0.u.shape and np.array_equal(f.lat, f0.lat)
+               and np.array_equal(f.lon, f0.lon) and np.array_equal(f.times, f0.times)
+               for f in grids)
 
 
 def sampler(fields: Sequence[FlowField], tracks: Sequence[tuple[FloatArray, FloatArray]]) -> Any:
@@ -240,7 +240,7 @@ def follow_waypoints(
         hl = lat[f] + np.degrees(0.5 * dt * (wn + v) / EARTH_RADIUS_M)
         ho = lon[f] + np.degrees(0.5 * dt * (we + u) / (EARTH_RADIUS_M * np.cos(
             np.radians(lat[f]))))
-        um, vm, inside_m = sample(t + 0.5 * dt, memb[f], hl, ho)
+        um, vm, _inside_m = sample(t + 0.5 * dt, memb[f], hl, ho)
         um, vm = np.where(np.isfinite(um), um, u), np.where(np.isfinite(vm), vm, v)
         ge, gn = we + um, wn + vm
         at_goal = k[f] == last[f]
