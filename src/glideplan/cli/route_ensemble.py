@@ -120,6 +120,8 @@ def run(**opts: Any) -> None:
     for flag, key in (("--radius", "radius"), ("--kml", "kml")):
         if opts.get(key) is not None:
             usage_error(f"{flag} is not available with --ensemble or --depart-range")
+    if opts["depart"] is not None and opts["depart_range"] is not None:
+        usage_error("give --depart or --depart-range, not both")
     if opts["workers"] is not None and opts["workers"] < 1:
         raise InvalidParameterError("--workers", opts["workers"], "must be >= 1")
     fields, names = _open(opts)
