@@ -194,3 +194,26 @@ def test_bad_input(family, cli_error, tmp_path):
     line = cli_error("route", "--field", field, "--depart-range", "2026-03-01T00:00Z",
                      "2026-03-09T04:00Z", "2", *COMMON)
     assert "--depart-range" in line
+
+
+def test_one_file_with_a_member_dimension(tmp_path, run_cli):
+    """CF `realization` in one file = the same ensemble as one file per member (FORMATS.md):
+    durations t_i = D / (V + W_i) for the members W = 0.1, 0.3."""
+    import xarray as xr
+
+    parts = []
+    for w in (0.1, 0.3):
+        path = tmp_path / f"m{w}.nc"
+        _write(path, w)
+        with xr.open_dataset(path) as ds:
+            parts.append(ds.load())
+    one = tmp_path / "one"
+    one.mkdir()
+    xr.concat(parts, dim="realization").assign_coords(realization=[0, 1]).to_netcdf(
+        one / "ens.nc")
+    code, out, err = run_cli("route", "--ensemble", str(one), *COMMON)  # a folder works too
+    assert code == 0, err
+    e = json.loads(out)["ensemble"]
+    assert e["members"] == 2 and e["files"][1].endswith("ens.nc[realization=1]")
+    assert e["duration_s"] == pytest.approx([D / (V + 0.1), D / (V + 0.3)],
+                                            rel=GRID_TIME_TOLERANCE)

@@ -89,7 +89,7 @@ def _open(opts: dict[str, Any]) -> tuple[list[Any], list[str]]:
         paths = expand_members(opts["ensemble"])
         with flag_names(field="--ensemble", members="--ensemble",
                         depth_range="--depth-range"):
-            return open_members(paths, opts["depth_range"]), [str(p) for p in paths]
+            return open_members(paths, opts["depth_range"])
     if opts["example"] is not None:
         from glideplan.cli.route import _EXAMPLES
         from glideplan.fields import double_gyre

@@ -39,8 +39,18 @@ from glideplan.routing.result import RouteResult
 from glideplan.routing.settings import RouteSettings
 from glideplan.solution import Status
 
-__all__ = ["BATCH_CELLS", "EnsembleResult", "RouteTask", "check_same_grid", "corridor_envelope",
-           "ensemble_quantile", "expand_members", "open_members", "route_ensemble"]
+__all__ = [
+    "BATCH_CELLS",
+    "MEMBER_DIMS",
+    "EnsembleResult",
+    "RouteTask",
+    "check_same_grid",
+    "corridor_envelope",
+    "ensemble_quantile",
+    "expand_members",
+    "open_members",
+    "route_ensemble",
+]
 
 FloatArray = NDArray[np.float64]
 QUANTILES = (0.1, 0.5, 0.9)
@@ -52,9 +62,17 @@ BATCH_CELLS = 150
 
 
 def expand_members(pattern: str, flag: str = "--ensemble") -> list[pathlib.Path]:
-    """The files matching a glob pattern (sorted); none matching -> an error naming `flag`."""
+    """The files matching a glob pattern (sorted; a folder: its .nc and GRIB files); none
+    matching -> an error naming `flag`."""
     import glob
 
+    folder = pathlib.Path(pattern).expanduser()
+    if folder.is_dir():
+        found = sorted(p for p in folder.iterdir() if p.is_file() and p.suffix.lower() in (
+            ".nc", ".nc4", ".grib", ".grib2", ".grb", ".grb2"))
+        if not found:
+            raise InvalidParameterError(flag, pattern, "this folder holds no .nc or GRIB file")
+        return found
     paths = sorted(pathlib.Path(p) for p in glob.glob(str(pathlib.Path(pattern).expanduser()))
                    if pathlib.Path(p).is_file())
     if not paths:
@@ -91,14 +109,39 @@ def _axis(a: FloatArray) -> str:
     return f"{a.size} from {float(a[0]):g} to {float(a[-1]):g}"
 
 
-def open_members(paths: Sequence[str | pathlib.Path], depth_range: tuple[float, float] | None
-                 = None, flag: str = "members") -> list[FlowField]:
-    """Read every member file (`open_field`) and check they share one grid."""
-    from glideplan.fields import open_field
+#: Dimensions that number the members of an ensemble in one file (CF, ECMWF, GEFS, others).
+MEMBER_DIMS = ("realization", "number", "ens", "member", "ensemble", "ensemble_member")
 
-    fields: list[FlowField] = [open_field(p, depth_range=depth_range) for p in paths]
-    check_same_grid(fields, [str(p) for p in paths], flag)
-    return fields
+
+def _split_members(path: pathlib.Path, depth_range: tuple[float, float] | None
+                   ) -> tuple[list[FlowField], list[str]]:
+    """A file's members: one per index of its member dimension (MEMBER_DIMS), or itself."""
+    from glideplan.fields.io import _find_components, _open_one, from_xarray
+
+    ds = _open_one(path)
+    dims = set(ds[_find_components(ds)[0]].dims)
+    dim = next((d for d in MEMBER_DIMS if d in dims and ds.sizes[d] > 1), None)
+    if dim is None:
+        return [from_xarray(ds, depth_range=depth_range, source=str(path))], [str(path)]
+    vals = ds[dim].values if dim in ds.coords else np.arange(ds.sizes[dim])
+    names = [f"{path}[{dim}={v}]" for v in vals]
+    return [from_xarray(ds.isel({dim: i}), depth_range=depth_range, source=name)
+            for i, name in enumerate(names)], names
+
+
+def open_members(paths: Sequence[str | pathlib.Path], depth_range: tuple[float, float] | None
+                 = None, flag: str = "members") -> tuple[list[FlowField], list[str]]:
+    """Read every member (one per file, or one per index of a file's member dimension:
+    CF `realization`, ECMWF `number`, GEFS `ens`, ...) and check they share one grid:
+    (fields, their names)."""
+    fields: list[FlowField] = []
+    names: list[str] = []
+    for p in paths:
+        f, n = _split_members(pathlib.Path(p), depth_range)
+        fields += f
+        names += n
+    check_same_grid(fields, names, flag)
+    return fields, names
 
 
 @dataclass(frozen=True)
@@ -317,8 +360,7 @@ def route_ensemble(
         labels = list(names) if names is not None else [f"member {i}" for i in range(len(fields))]
         check_same_grid(fields, labels)
     else:
-        fields = open_members(members)
-        labels = [str(p) for p in members]
+        fields, labels = open_members(members)
     from glideplan.batch import run_batch
 
     tasks = [RouteTask(f, start, goal, speed, depart, replace(settings, progress=False))
