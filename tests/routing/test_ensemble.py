@@ -217,3 +217,19 @@ def test_one_file_with_a_member_dimension(tmp_path, run_cli):
     assert e["members"] == 2 and e["files"][1].endswith("ens.nc[realization=1]")
     assert e["duration_s"] == pytest.approx([D / (V + 0.1), D / (V + 0.3)],
                                             rel=GRID_TIME_TOLERANCE)
+
+
+def test_library_steady_members_and_start_equal_goal():
+    """`route_ensemble` on steady FlowFields (no time span, no limit: route()'s own default
+    applies to the closed loop too): t_i = D / (V + W_i); start = goal: zero durations."""
+    from glideplan.fields.field import UniformField
+    from glideplan.routing import RouteSettings
+    from glideplan.routing.ensemble import route_ensemble
+
+    fields = [UniformField(w, 0.0) for w in (0.1, 0.3)]
+    res = route_ensemble(fields, (0.0, 0.1), (0.0, 0.6), V, processes=1,
+                         settings=RouteSettings(resolution=2000.0))
+    assert res.ok and res.p_arrival == 1.0 and res.chosen_p_arrival == 1.0
+    assert res.durations == pytest.approx([D / 0.6, D / 0.8], rel=GRID_TIME_TOLERANCE)
+    same = route_ensemble(fields, (0.0, 0.1), (0.0, 0.1), V, processes=1)
+    assert same.ok and list(same.durations) == [0.0, 0.0] and same.quantile_h(0.5) == 0.0

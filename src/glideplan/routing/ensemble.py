@@ -294,15 +294,21 @@ class EnsembleResult(OutcomeBase):
         return ensemble_figure(self, **kwargs)
 
 
-def _member_limit(fields: Sequence[FlowField], t0: float, max_duration: float | None) -> float:
-    """The closed loop's end: departure + max duration, within every member's time span."""
+def _member_limit(fields: Sequence[FlowField], routes: Sequence[RouteResult], speed: float,
+                  max_duration: float | None) -> float:
+    """The closed loop's end (s since the epoch): departure + max duration, within every
+    member's time span; steady members without a limit: route()'s default, 10 still-water
+    times (at least an hour)."""
+    from glideplan.routing.sphere import gc_distance
+
+    t0 = routes[0].depart_s
     ends = [f.time_span[1] for f in fields if f.time_span is not None]
     end = min(ends) if ends else math.inf
     if max_duration is not None:
         end = min(end, t0 + max_duration)
-    if not math.isfinite(end):  # steady fields without a limit: 10 x the slowest route
-        raise InvalidParameterError("max_duration", None, "give a duration limit for steady "
-                                    "fields")
+    if not math.isfinite(end):
+        s, g = routes[0].start, routes[0].goal
+        end = t0 + max(10.0 * float(gc_distance(s[0], s[1], g[0], g[1])) / speed, 3600.0)
     return end
 
 
@@ -315,6 +321,8 @@ def choose_route(fields: Sequence[FlowField], routes: Sequence[RouteResult], spe
 
     m = len(routes)
     out = np.full((m, m), np.inf)
+    if all(r.ok and r.distance_m <= 1e-6 for r in routes):  # start = goal: nothing to fly
+        return 0, np.zeros((m, m))
     solved = [i for i, r in enumerate(routes) if r.ok and r.track.size >= 2]
     if not solved:
         return None, out
@@ -376,9 +384,8 @@ def summarise(fields: Sequence[FlowField], routes: Sequence[RouteResult], labels
     """The EnsembleResult of member routes already computed (statistics, corridor, choice)."""
     warnings = sorted({w for r in routes for w in r.warnings})
     chosen, follow = None, np.full((len(routes), len(routes)), np.inf)
-    t0 = routes[0].depart_s
     if choose:
-        t_end = _member_limit(fields, t0, max_duration)
+        t_end = _member_limit(fields, routes, speed, max_duration)
         chosen, follow = choose_route(fields, routes, speed, goal, t_end)
     tracks = [(r.lat, r.lon) for r in routes if r.track.size >= 2]
     envelope = corridor_envelope(tracks, routes[0].start, routes[0].goal) if tracks else None
