@@ -194,6 +194,8 @@ def test_bad_input(family, cli_error, tmp_path):
     line = cli_error("route", "--field", field, "--depart-range", "2026-03-01T00:00Z",
                      "2026-03-09T04:00Z", "2", *COMMON)
     assert "--depart-range" in line
+    line = cli_error("route", "--field", field, *COMMON)  # --workers alone
+    assert "--workers" in line and "--ensemble" in line
 
 
 def test_one_file_with_a_member_dimension(tmp_path, run_cli):

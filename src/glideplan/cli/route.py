@@ -146,7 +146,8 @@ def route_command(
         str | None,
         typer.Option("--ensemble", metavar="GLOB",
                      help="Route on every member file matching GLOB (quoted, e.g. "
-                     "'ENS/member_*.nc'; one grid): arrival P10/P50/P90, p_arrival within "
+                     "'ENS/member_*.nc'; or a folder, or one file with a member dimension; "
+                     "one grid): arrival P10/P50/P90, p_arrival within "
                      "--max-duration, the corridor, and the member route that arrives most "
                      "often flown in closed loop through every member.", show_default=False),
     ] = None,
@@ -220,6 +221,8 @@ def route_command(
         from glideplan.cli.route_ensemble import run
 
         return run(**{k: v for k, v in locals().items() if k in _RUN_ARGS})
+    if scheduler is not None or workers is not None:
+        usage_error("--scheduler and --workers need --ensemble or --depart-range")
     if field is None and example is None:
         usage_error("give --field FILE or --example NAME (double-gyre)")
     if field is not None and example is not None:
