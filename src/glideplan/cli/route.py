@@ -11,6 +11,9 @@ import typer
 from glideplan.cli.app import app
 
 _EXAMPLES = ("double-gyre",)
+_RUN_ARGS = ("from_", "to", "speed", "field", "example", "depart", "depth_range", "resolution",
+             "land_clearance", "max_duration", "radius", "json_out", "plot", "geojson", "kml",
+             "ensemble", "depart_range", "scheduler", "workers")
 
 
 def parse_depart(text: str | None) -> Any:
@@ -139,6 +142,34 @@ def route_command(
         pathlib.Path | None,
         typer.Option("--kml", metavar="FILE", help="Write the route as KML."),
     ] = None,
+    ensemble: Annotated[
+        str | None,
+        typer.Option("--ensemble", metavar="GLOB",
+                     help="Route on every member file matching GLOB (quoted, e.g. "
+                     "'ENS/member_*.nc'; or a folder, or one file with a member dimension; "
+                     "one grid): arrival P10/P50/P90, p_arrival within "
+                     "--max-duration, the corridor, and the member route that arrives most "
+                     "often flown in closed loop through every member.", show_default=False),
+    ] = None,
+    depart_range: Annotated[
+        tuple[str, str, float] | None,
+        typer.Option("--depart-range", metavar="START END HOURS",
+                     help="Route every departure from START to END (ISO 8601) each HOURS: "
+                     "duration against departure, the best departure (with --ensemble: per "
+                     "departure the ensemble's statistics).", show_default=False),
+    ] = None,
+    scheduler: Annotated[
+        str | None,
+        typer.Option("--scheduler", metavar="ADDRESS",
+                     help="Dask scheduler (tcp://HOST:8786) for --ensemble/--depart-range "
+                     "(default: local processes).", show_default=False),
+    ] = None,
+    workers: Annotated[
+        int | None,
+        typer.Option("--workers", metavar="N",
+                     help="Local processes for --ensemble/--depart-range (default: one per "
+                     "core).", show_default=False),
+    ] = None,
 ) -> None:
     """Time-optimal route through a current or wind field, on the sphere (front propagation
     on a lat/lon grid that grows with the front, refined, verified through the field).
@@ -186,6 +217,12 @@ def route_command(
     for flag, out_file in (("--geojson", geojson), ("--kml", kml)):
         if out_file is not None and out_file.parent and not out_file.parent.is_dir():
             raise InvalidParameterError(flag, str(out_file), "its folder does not exist")
+    if ensemble is not None or depart_range is not None:
+        from glideplan.cli.route_ensemble import run
+
+        return run(**{k: v for k, v in locals().items() if k in _RUN_ARGS})
+    if scheduler is not None or workers is not None:
+        usage_error("--scheduler and --workers need --ensemble or --depart-range")
     if field is None and example is None:
         usage_error("give --field FILE or --example NAME (double-gyre)")
     if field is not None and example is not None:
