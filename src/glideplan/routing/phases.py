@@ -523,11 +523,20 @@ def backtrack(problem: RouteProblem, rg: RouteGrid, fo: FrontOutcome) -> Candida
 
     times, chi, _ok = crab_controls(current, problem.speed, problem.t0, lat, lon)
     if _near(lat, lon, rules, 2.0 * rg.spacing_m):
-        # Next to obstacles: the taut polyline (clearance kept) when it is not slower.
-        la2, lo2 = taut(lat, lon, rules, snap=snap)
+        # Next to obstacles: the taut polyline (clearance kept) when it is not slower; round
+        # the field's own land nodes the exact one (`routing.coast`), which is also taken
+        # when the grid route cuts into the clearance.
+        from glideplan.routing.coast import clearance_of, round_coast
+
+        exact = round_coast(problem, rg, lat, lon)
+        la2, lo2 = exact if exact is not None else taut(lat, lon, rules, snap=snap)
         t2, c2, ok2 = crab_controls(current, problem.speed, problem.t0, la2, lo2)
-        wet = np.all(np.isfinite(rg.currents.points(problem.t0, la2, lo2)))
-        if ok2 and wet and t2[-1] < times[-1]:
+        wet = exact is not None or np.all(np.isfinite(rg.currents.points(problem.t0, la2,
+                                                                          lo2)))
+        cuts = exact is not None and clearance_of(
+            lat, lon, rg.coast_xyz, min(rg.clearance_m, rg.spacing_m) / 4) < \
+            rg.clearance_m * (1 - 1e-3)
+        if ok2 and wet and (t2[-1] < times[-1] or cuts):
             # the taut polyline: a few long legs with sharp corners at the obstacles. Each
             # leg's heading held until its vertex (piecewise constant) reproduces it; a
             # heading linear in time between the legs' middles would cut every corner

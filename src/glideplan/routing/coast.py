@@ -1,0 +1,315 @@
+"""Routes round coasts at the data's own resolution: the taut path among clearance disks.
+
+The obstacle a route keeps clear of is the union of disks of radius c (the land clearance)
+about the field's own land (NaN) nodes -- at the field's resolution, never the front's. In
+still water the shortest way round it is a chain of tangent segments and arcs of those
+circles (the polygon geodesic of the clearance-inflated land). `taut_path` finds it, in the
+way round (homotopy) the front's grid route chose, on a visibility graph:
+
+- the plane: the gnomonic projection about the route's middle (great circles are straight
+  lines; distances grow by at most 1/cos^2(rho) at angular distance rho from the centre, so
+  the planar clearance is c times that at the region's edge: never closer than c on the
+  sphere);
+- vertices: the start, the goal, and for every land node the K-gon circumscribing its disk of
+  radius c (vertices at c / cos(pi / K)), kept where no other node is closer than c; a path
+  round a circle along the K-gon is longer than the arc by tan(pi/K) / (pi/K) - 1 (0.6 % of
+  the arcs at K = 24, ~0.05 % of a route round a cape);
+- edges: straight segments at distance >= c from every land node (exact point-segment
+  distances) and within the corridor of width `corridor_m` about the grid route (which keeps
+  the front's way round each island);
+- search: A* with the straight-line distance to the goal (admissible).
+
+`clearance_of` measures a polyline's least distance to the land nodes on the sphere (dense
+great-circle samples, a k-d tree of 3-D positions), the check the tests and `route()` use.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from glideplan.routing.sphere import EARTH_RADIUS_M
+
+__all__ = ["Gnomonic", "clearance_of", "taut_path"]
+
+FloatArray = NDArray[np.float64]
+
+#: Sides of the polygon circumscribing each clearance circle.
+K_SIDES = 24
+#: Relative margin kept beyond the clearance by the graph's vertices and edges.
+MARGIN = 1e-4
+
+
+def _unit(lat: Any, lon: Any) -> FloatArray:
+    p, lam = np.radians(np.asarray(lat, dtype=float)), np.radians(np.asarray(lon, dtype=float))
+    return np.stack([np.cos(p) * np.cos(lam), np.cos(p) * np.sin(lam), np.sin(p)], axis=-1)
+
+
+@dataclass(frozen=True)
+class Gnomonic:
+    """Gnomonic plane about (lat0, lon0) on the sphere of radius R: x east, y north (m);
+    x = R (p . e) / (p . n0), y = R (p . n) / (p . n0) for the unit vector p of a point."""
+
+    lat0: float
+    lon0: float
+
+    def _basis(self) -> tuple[FloatArray, FloatArray, FloatArray]:
+        n0 = _unit(self.lat0, self.lon0)
+        lam = math.radians(self.lon0)
+        e = np.array([-math.sin(lam), math.cos(lam), 0.0])
+        return n0, e, np.cross(n0, e)
+
+    def from_xyz(self, p: FloatArray) -> FloatArray:
+        """(n, 2) plane points of (n, 3) positions (any length; the near hemisphere)."""
+        n0, e, nn = self._basis()
+        d = p @ n0
+        return EARTH_RADIUS_M * np.stack([(p @ e) / d, (p @ nn) / d], axis=-1)
+
+    def to_latlon(self, xy: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """(lat, lon) deg of (n, 2) plane points."""
+        n0, e, nn = self._basis()
+        p = n0[None, :] + (xy[:, :1] * e[None, :] + xy[:, 1:2] * nn[None, :]) / EARTH_RADIUS_M
+        p /= np.linalg.norm(p, axis=1, keepdims=True)
+        return (np.degrees(np.arcsin(np.clip(p[:, 2], -1, 1))),
+                np.degrees(np.arctan2(p[:, 1], p[:, 0])))
+
+    def scale(self, xy: FloatArray) -> float:
+        """The largest distance scale 1 / cos^2(rho) at the points (>= 1)."""
+        rho2 = np.sum(np.asarray(xy) ** 2, axis=-1) / EARTH_RADIUS_M ** 2
+        return float(1.0 + np.max(rho2, initial=0.0))
+
+
+def _seg_dist(a: FloatArray, b: FloatArray, s: FloatArray) -> FloatArray:
+    """Distances (m, b.shape[0] x s.shape[0]) from sites s to the segments a -> b[k]."""
+    d = b - a  # (m, 2)
+    L2 = np.maximum(np.sum(d * d, axis=1), 1e-12)  # (m,)
+    w = s[None, :, :] - a[None, None, :]  # (1, n, 2)
+    t = np.clip(np.einsum("mk,mnk->mn", d, np.broadcast_to(w, (d.shape[0],) + w.shape[1:]))
+                / L2[:, None], 0.0, 1.0)
+    px = a[0] + t * d[:, 0:1] - s[None, :, 0]
+    py = a[1] + t * d[:, 1:2] - s[None, :, 1]
+    return np.asarray(np.hypot(px, py), dtype=float)
+
+
+def _densify(xy: FloatArray, step: float) -> FloatArray:
+    """The polyline's points every <= `step` (m) along each leg (ends kept)."""
+    out = [xy[:1]]
+    for a, b in zip(xy[:-1], xy[1:], strict=True):
+        n = max(int(math.ceil(float(np.hypot(*(b - a))) / step)), 1)
+        s = np.linspace(0.0, 1.0, n + 1)[1:, None]
+        out.append(a + s * (b - a))
+    return np.concatenate(out)
+
+
+def _vertices(sites: FloatArray, radius: FloatArray, tree: Any) -> FloatArray:
+    """The circumscribed K-gons' vertices that no site's disk covers (module docstring)."""
+    ang = 2 * np.pi * (np.arange(K_SIDES) + 0.5) / K_SIDES
+    ring = np.stack([np.cos(ang), np.sin(ang)], axis=-1) / math.cos(math.pi / K_SIDES)
+    v = (sites[:, None, :] + radius[:, None, None] * ring[None, :, :]).reshape(-1, 2)
+    rmax = float(np.max(radius))
+    near = tree.query_ball_point(v, rmax * (1 - 1e-9))
+    keep = np.ones(v.shape[0], dtype=bool)
+    for k, idx in enumerate(near):
+        if idx:
+            d = np.hypot(*(sites[idx] - v[k]).T)
+            keep[k] = bool(np.all(d >= radius[idx] * (1 - 0.5 * MARGIN)))
+    return np.asarray(v[keep], dtype=float)
+
+
+def taut_path(start: tuple[float, float], goal: tuple[float, float], sites_xyz: FloatArray,
+              clearance: float, route_lat: FloatArray, route_lon: FloatArray,
+              corridor_m: float, wall_xyz: FloatArray | None = None,
+              wall_m: float = 0.0) -> tuple[FloatArray, FloatArray] | None:
+    """The shortest path from `start` to `goal` (lat, lon deg) keeping `clearance` (m) from
+    every land node (3-D positions, m) in the corridor of half-width `corridor_m` about the
+    grid route (module docstring); `wall_xyz`: points (the field's edge) kept `wall_m` off
+    without vertices of their own. (lat, lon) deg of its vertices, or None (no such path)."""
+    from scipy.spatial import cKDTree
+
+    mid = _unit(*start) + _unit(*goal)
+    mid /= np.linalg.norm(mid)
+    plane = Gnomonic(float(np.degrees(np.arcsin(mid[2]))),
+                     float(np.degrees(np.arctan2(mid[1], mid[0]))))
+    ends = plane.from_xyz(_unit(np.array([start[0], goal[0]]), np.array([start[1], goal[1]])))
+    route = _densify(plane.from_xyz(_unit(route_lat, route_lon)), 0.25 * corridor_m)
+    route_tree = cKDTree(route)
+    sites = plane.from_xyz(sites_xyz / EARTH_RADIUS_M)
+    radius = np.full(sites.shape[0], clearance)
+    wall = np.zeros((0, 2))
+    if wall_xyz is not None and wall_xyz.shape[0] and wall_m > 0:
+        wall = plane.from_xyz(wall_xyz / EARTH_RADIUS_M)
+    reach = corridor_m + max(clearance, wall_m) * 1.1
+    sites, radius = _within(sites, radius, route_tree, reach)
+    wall_r = np.full(wall.shape[0], wall_m)
+    wall, wall_r = _within(wall, wall_r, route_tree, reach)
+    scale = plane.scale(np.concatenate([route, sites, wall])) * (1 + MARGIN)
+    radius = radius * scale
+    wall_r = wall_r * scale
+    if sites.shape[0] == 0:
+        return None
+    site_tree = cKDTree(sites)
+    verts = _vertices(sites, radius * (1 + MARGIN), site_tree)
+    if verts.shape[0]:
+        d_route, _ = route_tree.query(verts)
+        verts = verts[d_route <= corridor_m]
+    if wall.shape[0] and verts.shape[0]:
+        dw, _ = cKDTree(wall).query(verts)
+        verts = verts[dw >= wall_r[0]]
+    blockers = np.concatenate([sites, wall])
+    block_r = np.concatenate([radius, wall_r])
+    nodes = np.concatenate([ends, verts])
+    path = _astar(nodes, blockers, block_r, route_tree, corridor_m)
+    if path is None:
+        return None
+    return plane.to_latlon(nodes[path])
+
+
+def _within(pts: FloatArray, r: FloatArray, tree: Any, reach: float) -> tuple[FloatArray,
+                                                                              FloatArray]:
+    if pts.shape[0] == 0:
+        return pts, r
+    d, _ = tree.query(pts, distance_upper_bound=reach)
+    keep = np.isfinite(d)
+    return pts[keep], r[keep]
+
+
+def _visible(a: FloatArray, b: FloatArray, blockers: FloatArray, block_r: FloatArray,
+             route_tree: Any, corridor_m: float) -> NDArray[np.bool_]:
+    """Which segments a -> b[k] keep every blocker's distance and stay in the corridor."""
+    ok = np.ones(b.shape[0], dtype=bool)
+    if blockers.shape[0]:
+        # only blockers within reach of the segments' box matter
+        lo = np.minimum(a, b.min(axis=0)) - block_r.max()
+        hi = np.maximum(a, b.max(axis=0)) + block_r.max()
+        inbox = np.all((blockers >= lo) & (blockers <= hi), axis=1)
+        s, r = blockers[inbox], block_r[inbox]
+        for k0 in range(0, b.shape[0], 256):
+            sl = slice(k0, k0 + 256)
+            if s.shape[0]:
+                ok[sl] = np.all(_seg_dist(a, b[sl], s) >= r[None, :], axis=1)
+    idx = np.flatnonzero(ok)
+    if idx.size:
+        length = np.hypot(*(b[idx] - a).T)
+        n = np.maximum(np.ceil(length / (0.5 * corridor_m)).astype(int), 1)
+        for k, m in zip(idx, n, strict=True):
+            t = np.linspace(0.0, 1.0, m + 1)[1:-1, None]
+            if t.size:
+                d, _ = route_tree.query(a + t * (b[k] - a))
+                ok[k] = bool(np.all(d <= corridor_m))
+    return ok
+
+
+def _astar(nodes: FloatArray, blockers: FloatArray, block_r: FloatArray, route_tree: Any,
+           corridor_m: float) -> list[int] | None:
+    """A* from node 0 to node 1 on the visibility graph (edges found lazily per node)."""
+    goal = nodes[1]
+    h = np.hypot(*(nodes - goal).T)
+    n = nodes.shape[0]
+    g = np.full(n, np.inf)
+    g[0] = 0.0
+    prev = np.full(n, -1)
+    done = np.zeros(n, dtype=bool)
+    heap = [(h[0], 0)]
+    while heap:
+        _, u = heapq.heappop(heap)
+        if done[u]:
+            continue
+        done[u] = True
+        if u == 1:
+            break
+        todo = np.flatnonzero(~done)
+        if todo.size == 0:
+            continue
+        step = np.hypot(*(nodes[todo] - nodes[u]).T)
+        better = g[u] + step < g[todo] - 1e-9
+        todo, step = todo[better], step[better]
+        if todo.size == 0:
+            continue
+        vis = _visible(nodes[u], nodes[todo], blockers, block_r, route_tree, corridor_m)
+        for v, s in zip(todo[vis], step[vis], strict=True):
+            g[v] = g[u] + s
+            prev[v] = u
+            heapq.heappush(heap, (g[v] + h[v], int(v)))
+    if not np.isfinite(g[1]):
+        return None
+    path = [1]
+    while path[-1] != 0:
+        path.append(int(prev[path[-1]]))
+    return path[::-1]
+
+
+def clearance_of(lat: FloatArray, lon: FloatArray, sites_xyz: FloatArray,
+                 step_m: float) -> float:
+    """The least great-circle distance (m) from the polyline (its legs sampled every <=
+    `step_m` along the great circle) to the land nodes (3-D positions, m); inf without."""
+    if sites_xyz.shape[0] == 0 or lat.size == 0:
+        return math.inf
+    from scipy.spatial import cKDTree
+
+    p = _unit(lat, lon)
+    pts = [p[:1]]
+    for a, b in zip(p[:-1], p[1:], strict=True):
+        ang = math.acos(min(max(float(a @ b), -1.0), 1.0))
+        n = max(int(math.ceil(ang * EARTH_RADIUS_M / step_m)), 1)
+        s = np.linspace(0.0, 1.0, n + 1)[1:, None]
+        q = a + s * (b - a)
+        pts.append(q / np.linalg.norm(q, axis=1, keepdims=True))
+    d, _ = cKDTree(sites_xyz).query(np.concatenate(pts) * EARTH_RADIUS_M)
+    chord = float(np.min(d))
+    return 2 * EARTH_RADIUS_M * math.asin(min(chord / (2 * EARTH_RADIUS_M), 1.0))
+
+
+
+def field_cell_diagonal(fld: Any, lat_ref: float) -> float:
+    """Half the diagonal (m) of a gridded field's cell at lat_ref (0 for other fields): a
+    point farther than this from every land node lies in no land cell."""
+    from glideplan.fields.field import GriddedField
+
+    if not isinstance(fld, GriddedField) or fld.lat.size < 2 or fld.lon.size < 2:
+        return 0.0
+    dy = EARTH_RADIUS_M * math.radians(float(np.max(np.abs(np.diff(fld.lat)))))
+    dx = EARTH_RADIUS_M * math.cos(math.radians(min(abs(lat_ref), 85.0))) * math.radians(
+        float(np.max(np.abs(np.diff(fld.lon)))))
+    return 0.5 * math.hypot(dx, dy)
+
+
+def round_coast(problem: Any, rg: Any, lat: FloatArray, lon: FloatArray) -> tuple[
+        FloatArray, FloatArray] | None:
+    """`route()`'s grid route (lat, lon deg) made the shortest way round the coast in its
+    homotopy (`taut_path` in a corridor of max(8 h, 2 c) about it, h the routing spacing, c
+    the clearance), checked on the sphere (>= c from every land node); None when it does not
+    apply: no land near, the start or goal within the clearance (relaxed there), a clearance
+    under half a field cell's diagonal (a path clear of the nodes could enter a land cell)."""
+    from glideplan.routing.window import _coast, _xyz, distance_to_land
+
+    c, pts, h = float(rg.clearance_m), rg.coast_xyz, float(rg.spacing_m)
+    lat_ref = 0.5 * (problem.start[0] + problem.goal[0])
+    if c <= 0 or pts.shape[0] == 0 or c < field_cell_diagonal(problem.field_, lat_ref):
+        return None
+    ends = distance_to_land(pts, np.array([problem.start[0], problem.goal[0]]),
+                            np.array([problem.start[1], problem.goal[1]]), c)
+    if np.any(ends < c):
+        return None
+    hard = ~rg.window.inside
+    wall = None
+    if hard.any():
+        LA, LO = np.meshgrid(rg.window.lat, rg.window.lon, indexing="ij")
+        edge = _coast(hard)
+        wall = _xyz(LA[edge], LO[edge])
+    got = taut_path(problem.start, problem.goal, pts, c, lat, lon, max(8 * h, 2 * c),
+                    wall_xyz=wall, wall_m=1.5 * h)
+    if got is None:
+        return None
+    la, lo = got
+    from glideplan.routing.sphere import unwrap_lon
+
+    lo = unwrap_lon(lo, problem.start[1])
+    la[0], lo[0], la[-1], lo[-1] = *problem.start, *problem.goal
+    if clearance_of(la, lo, pts, min(c, h) / 8) < c * (1 - 1e-3):
+        return None
+    return la, lo
