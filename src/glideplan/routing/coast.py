@@ -35,7 +35,7 @@ from numpy.typing import NDArray
 
 from glideplan.routing.sphere import EARTH_RADIUS_M
 
-__all__ = ["Gnomonic", "clearance_of", "taut_path"]
+__all__ = ["Gnomonic", "clearance_of", "descent_path", "round_coast", "taut_path"]
 
 FloatArray = NDArray[np.float64]
 
@@ -278,18 +278,19 @@ def field_cell_diagonal(fld: Any, lat_ref: float) -> float:
     return 0.5 * math.hypot(dx, dy)
 
 
-def round_coast(problem: Any, rg: Any, lat: FloatArray, lon: FloatArray) -> tuple[
+def round_coast(problem: Any, rg: Any, arrival: FloatArray) -> tuple[
         FloatArray, FloatArray] | None:
-    """`route()`'s grid route (lat, lon deg) made the shortest way round the coast in its
-    homotopy (`taut_path` in a corridor of max(8 h, 2 c) about it, h the routing spacing, c
-    the clearance), checked on the sphere (>= c from every land node); None when it does not
+    """The shortest way round the coast in the homotopy of the front's way (`descent_path` on
+    its `arrival` map; `taut_path` in a corridor of max(8 h, 2 c) about it, h the routing
+    spacing, c the clearance), checked on the sphere (>= c from every land node); None when it does not
     apply: no land near, the start or goal within the clearance (relaxed there), a clearance
     under half a field cell's diagonal (a path clear of the nodes could enter a land cell)."""
     from glideplan.routing.window import _coast, _xyz, distance_to_land
 
     c, pts, h = float(rg.clearance_m), rg.coast_xyz, float(rg.spacing_m)
     lat_ref = 0.5 * (problem.start[0] + problem.goal[0])
-    if c <= 0 or pts.shape[0] == 0 or c < field_cell_diagonal(problem.field_, lat_ref):
+    if c <= 0 or pts.shape[0] == 0 or rg.window.periodic or \
+            c < field_cell_diagonal(problem.field_, lat_ref):
         return None
     ends = distance_to_land(pts, np.array([problem.start[0], problem.goal[0]]),
                             np.array([problem.start[1], problem.goal[1]]), c)
@@ -301,6 +302,11 @@ def round_coast(problem: Any, rg: Any, lat: FloatArray, lon: FloatArray) -> tupl
         LA, LO = np.meshgrid(rg.window.lat, rg.window.lon, indexing="ij")
         edge = _coast(hard)
         wall = _xyz(LA[edge], LO[edge])
+    fi, fj = rg.window.frac_index(problem.goal[0], problem.goal[1])
+    ny, nx = arrival.shape
+    gij = (int(np.clip(np.rint(fi), 0, ny - 1)), int(np.clip(np.rint(fj), 0, nx - 1)))
+    ij = descent_path(arrival, ~rg.obstacle | np.isfinite(arrival), gij)
+    lat, lon = rg.window.lat[ij[:, 0]], rg.window.lon[ij[:, 1]]
     got = taut_path(problem.start, problem.goal, pts, c, lat, lon, max(8 * h, 2 * c),
                     wall_xyz=wall, wall_m=1.5 * h)
     if got is None:
@@ -313,3 +319,46 @@ def round_coast(problem: Any, rg: Any, lat: FloatArray, lon: FloatArray) -> tupl
     if clearance_of(la, lo, pts, min(c, h) / 8) < c * (1 - 1e-3):
         return None
     return la, lo
+
+
+def descent_path(arrival: FloatArray, free: NDArray[np.bool_],
+                 goal_ij: tuple[int, int]) -> NDArray[np.intp]:
+    """The front's way to the goal on its own nodes, pulled taut among them: from the goal's
+    node, steps to the 8-neighbour of least arrival time until none is earlier (the start's
+    disk; T falls at every step, so it ends and never enters a node the front did not reach:
+    the way round each obstacle the front chose, where the characteristic may stall at a
+    corner); then, greedily from the start's end, the farthest node in a straight line over
+    `free` nodes (samples every quarter cell). (k, 2) node indices, start's end first."""
+    ny, nx = arrival.shape
+    i, j = goal_ij
+    T = np.where(np.isfinite(arrival), arrival, np.inf)
+    if not np.isfinite(T[i, j]):  # the goal's nearest node unreached: its best neighbour
+        i0, j0 = max(i - 1, 0), max(j - 1, 0)
+        blk = T[i0:i + 2, j0:j + 2]
+        k = np.unravel_index(int(np.argmin(blk)), blk.shape)
+        i, j = i0 + int(k[0]), j0 + int(k[1])
+    path = [(i, j)]
+    for _ in range(ny * nx):
+        i0, j0 = max(i - 1, 0), max(j - 1, 0)
+        blk = T[i0:i + 2, j0:j + 2]
+        k = np.unravel_index(int(np.argmin(blk)), blk.shape)
+        if not blk[k] < T[i, j]:
+            break
+        i, j = i0 + int(k[0]), j0 + int(k[1])
+        path.append((i, j))
+    nodes = np.array(path[::-1], dtype=float)
+    free = free.copy()
+    free[nodes[:, 0].astype(int), nodes[:, 1].astype(int)] = True
+    keep = [0]
+    while keep[-1] < nodes.shape[0] - 1:
+        a = nodes[keep[-1]]
+        rest = nodes[keep[-1] + 1:]
+        n = np.maximum(np.ceil(4 * np.max(np.abs(rest - a), axis=1)).astype(int), 1)
+        ok = np.ones(rest.shape[0], dtype=bool)
+        for k in range(rest.shape[0]):
+            t = np.linspace(0.0, 1.0, n[k] + 1)[:, None]
+            q = np.rint(a + t * (rest[k] - a)).astype(int)
+            ok[k] = bool(np.all(free[q[:, 0], q[:, 1]]))
+        ok[0] = True  # the next node: a step of the descent
+        keep.append(keep[-1] + 1 + int(np.flatnonzero(ok)[-1]))
+    return nodes[keep].astype(np.intp)

@@ -528,7 +528,7 @@ def backtrack(problem: RouteProblem, rg: RouteGrid, fo: FrontOutcome) -> Candida
         # when the grid route cuts into the clearance.
         from glideplan.routing.coast import clearance_of, round_coast
 
-        exact = round_coast(problem, rg, lat, lon)
+        exact = round_coast(problem, rg, fo.arrival)
         la2, lo2 = exact if exact is not None else taut(lat, lon, rules, snap=snap)
         t2, c2, ok2 = crab_controls(current, problem.speed, problem.t0, la2, lo2)
         wet = exact is not None or np.all(np.isfinite(rg.currents.points(problem.t0, la2,
