@@ -362,3 +362,112 @@ def descent_path(arrival: FloatArray, free: NDArray[np.bool_],
         ok[0] = True  # the next node: a step of the descent
         keep.append(keep[-1] + 1 + int(np.flatnonzero(ok)[-1]))
     return nodes[keep].astype(np.intp)
+
+
+def applies(fld: Any, clearance: float, lat_ref: float, periodic: bool) -> bool:
+    """Whether routes keep the clearance at the land mask's resolution (`round_coast`): a
+    clearance of at least half a field cell's diagonal, on a window that is not the whole
+    circle (the start and goal outside the clearance are checked by the caller)."""
+    return clearance > 0 and not periodic and clearance >= field_cell_diagonal(fld, lat_ref)
+
+
+def front_clearance(clearance: float, spacing: float) -> float:
+    """The clearance of the front's obstacles when the route keeps the exact one at the mask's
+    resolution: c - h, at least c / 2. A way whose water beyond the clearance is w > 0 wide
+    is then w + 2 h >= 2 h wide on the front's grid: open to its 8-neighbour steps (the front
+    is an accelerator that picks the way round; `round_coast` is the judge, and a way that is
+    closed at the full clearance sends the route back to a front at the full clearance)."""
+    return max(clearance - spacing, 0.5 * clearance)
+
+
+def narrowest_gap(dist: FloatArray, land: NDArray[np.bool_], inside: NDArray[np.bool_],
+                  clearance: float, relaxed: float) -> tuple[float, int, int] | None:
+    """The narrowest way between land that the front's nodes close at the full clearance but
+    not at `relaxed`: (its width between land ~ 2 x the distance to land at its pass (m),
+    row, column of the pass), or None. dist: each node's distance to land (m, inf beyond
+    the clearance). The nodes free at `relaxed` only are added from the farthest from land
+    down (union-find, 8-neighbours); each time two regions free at the full clearance first
+    join, the node that joins them is a gap's pass."""
+    from scipy.ndimage import label
+
+    eight = np.ones((3, 3), dtype=bool)
+    strict = inside & ~land & (dist >= clearance)
+    bridge = inside & ~land & (dist >= relaxed) & ~strict
+    if not bridge.any():
+        return None
+    s_lab, ns = label(strict, structure=eight)
+    if ns < 2:
+        return None
+    ny, nx = dist.shape
+    parent = list(range(ns + 1))
+
+    def find(a: int) -> int:
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    node_set = np.zeros(dist.shape, dtype=np.int64)  # 0: not added; else its set id
+    node_set[strict] = s_lab[strict]
+    # a strict region's nodes carry its label; a bridge node a new id, owned by no region yet
+    owned = [True] * (ns + 1)
+    flat = np.flatnonzero(bridge.ravel())
+    order = flat[np.argsort(-dist.ravel()[flat], kind="stable")]
+    best: tuple[float, int, int] | None = None
+    for f in order:
+        i, j = divmod(int(f), nx)
+        parent.append(len(parent))
+        owned.append(False)
+        me = len(parent) - 1
+        node_set[i, j] = me
+        for di in (-1, 0, 1):
+            for dj in (-1, 0, 1):
+                a, b = i + di, j + dj
+                if (di or dj) and 0 <= a < ny and 0 <= b < nx and node_set[a, b]:
+                    ra, rb = find(me), find(int(node_set[a, b]))
+                    if ra == rb:
+                        continue
+                    if owned[ra] and owned[rb]:  # two free regions join here: a pass
+                        w = 2.0 * float(dist[i, j])
+                        if best is None or w < best[0]:
+                            best = (w, i, j)
+                    parent[rb] = ra
+                    owned[ra] = owned[ra] or owned[rb]
+    return best
+
+
+def front_obstacles(problem: Any, window: Any, land: NDArray[np.bool_], clearance: float,
+                    pts: FloatArray, strict: bool = False) -> tuple[NDArray[np.bool_], float,
+                                                                    list[str]]:
+    """The front's obstacle nodes when the route keeps the clearance at the mask's resolution
+    (`applies`): land, or nearer land than `front_clearance` (`strict`: the full clearance);
+    with the front's clearance used and a warning naming the narrowest gap between land that
+    the grid closes at the full clearance (`narrowest_gap`)."""
+    from glideplan.routing.window import distance_to_land
+
+    h = window.lattice.spacing_m
+    relaxed = front_clearance(clearance, h)
+    LA, LO = np.meshgrid(window.lat, window.lon, indexing="ij")
+    dist = distance_to_land(pts, LA, LO, clearance)
+    c_front = clearance if strict else relaxed
+    mask = land | (dist < c_front)
+    warn: list[str] = []
+    gap = narrowest_gap(dist, land, window.inside, clearance, relaxed)
+    if gap is not None:
+        w, i, j = gap
+        lon = float((window.lon[j] + 180.0) % 360.0 - 180.0)
+        where = (f"a gap {w / 1000:.3g} km wide between land near {window.lat[i]:.4f}, "
+                 f"{lon:.4f} ({max(w - 2 * clearance, 0.0) / 1000:.2g} km of water beyond the "
+                 f"{clearance:.0f} m land clearance)")
+        if strict:
+            warn.append(f"{GAP_WARNING} ({h:.0f} m) closes {where}: a finer resolution or a "
+                        "smaller --land-clearance may open it")
+        else:
+            warn.append(f"{GAP_WARNING} ({h:.0f} m) does not resolve {where}: the front passes "
+                        "it at a reduced clearance, the route keeps the full clearance at the "
+                        "land mask's resolution")
+    return mask, c_front, warn
+
+
+#: The start of the warning about a gap the routing grid does not resolve.
+GAP_WARNING = "the routing grid"

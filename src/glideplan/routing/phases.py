@@ -100,6 +100,9 @@ class RouteGrid:
     land: NDArray[np.bool_]
     warnings: list[str] = field(default_factory=list)
     coast_xyz: FloatArray = field(default_factory=lambda: np.zeros((0, 3)))
+    #: the clearance of the front's obstacles (m): less than clearance_m when the route keeps
+    #: the clearance at the land mask's resolution (`routing.coast`)
+    front_clearance_m: float | None = None
 
     @property
     def spacing_m(self) -> float:
@@ -235,10 +238,11 @@ def _free_zones(problem: RouteProblem, rg_land_clear: float, dist_start: float,
 
 
 def build_obstacles(problem: RouteProblem, window: Window, currents: WindowCurrents,
-                    clearance: float) -> tuple[NDArray[np.bool_], NDArray[np.bool_], list[str],
-                                               FloatArray]:
-    """(obstacle mask, land mask, warnings, coast points (3-D, m)) on `window` (module
-    docstring of `routing.window`)."""
+                    clearance: float, strict: bool = False) -> tuple[
+                        NDArray[np.bool_], NDArray[np.bool_], list[str], FloatArray, float]:
+    """(obstacle mask, land mask, warnings, coast points (3-D, m), the front's clearance) on
+    `window` (module docstring of `routing.window`; `routing.coast.front_obstacles` where the
+    route keeps the clearance at the land mask's resolution, unless `strict`)."""
     from glideplan.routing.window import distance_to_land, land_points
 
     land = currents.land()
@@ -258,8 +262,16 @@ def build_obstacles(problem: RouteProblem, window: Window, currents: WindowCurre
                     warn.append(f"the {name} is {d:.0f} m from land, closer than the land "
                                 f"clearance {clearance:.0f} m: the clearance is relaxed "
                                 f"around it")
+    from glideplan.routing import coast
+
+    lat_ref = 0.5 * (problem.start[0] + problem.goal[0])
+    if not zones and pts.shape[0] and coast.applies(problem.field_, clearance, lat_ref,
+                                                    window.periodic):
+        mask, c_front, more = coast.front_obstacles(problem, window, land, clearance, pts,
+                                                    strict)
+        return mask | ~window.inside, land, warn + more, pts, c_front
     mask, _ = obstacles(problem.field_, window, land, clearance, zones, pts)
-    return mask | ~window.inside, land, warn, pts
+    return mask | ~window.inside, land, warn, pts, clearance
 
 
 def grid(problem: RouteProblem) -> RouteGrid:
@@ -280,17 +292,40 @@ def grid(problem: RouteProblem) -> RouteGrid:
     lat_ref = 0.5 * (problem.start[0] + problem.goal[0])
     clearance = problem.settings.land_clearance_m
     if clearance is None:
+        from glideplan.routing.coast import applies
+
         clearance = land_clearance_default(problem.field_, h, lat_ref)
-    mask, land, warn, pts = build_obstacles(problem, window, currents, clearance)
-    return RouteGrid(lattice, window, currents, float(clearance), mask, land, warn, pts)
+        exact = land_clearance_default(problem.field_, 0.0, lat_ref)  # the field's own cells
+        if exact > 0 and applies(problem.field_, exact, lat_ref, window.periodic):
+            clearance = exact  # kept at the mask's resolution: no grid spacing added
+    mask, land, warn, pts, c_front = build_obstacles(problem, window, currents, clearance)
+    return RouteGrid(lattice, window, currents, float(clearance), mask, land, warn, pts,
+                     c_front)
 
 
 def regrid(problem: RouteProblem, rg: RouteGrid, window: Window) -> RouteGrid:
     """`rg` on a grown window: the field resampled there, the obstacles recomputed."""
     currents = rg.currents.regrown(window)
-    mask, land, warn, pts = build_obstacles(problem, window, currents, rg.clearance_m)
+    strict = rg.front_clearance_m == rg.clearance_m
+    mask, land, warn, pts, c_front = build_obstacles(problem, window, currents, rg.clearance_m,
+                                                     strict)
+    from glideplan.routing.coast import GAP_WARNING
+
+    old = [w for w in rg.warnings if not w.startswith(GAP_WARNING)]  # this window's gap
     return RouteGrid(rg.lattice, window, currents, rg.clearance_m, mask, land,
-                     sorted(set(rg.warnings) | set(warn)), pts)
+                     sorted(set(old) | set(warn)), pts, c_front)
+
+
+def strict_grid(problem: RouteProblem, rg: RouteGrid) -> RouteGrid:
+    """`rg` with the front's obstacles at the full clearance (the way the front found at a
+    reduced one is closed at the land mask's resolution)."""
+    mask, land, warn, pts, c_front = build_obstacles(problem, rg.window, rg.currents,
+                                                     rg.clearance_m, strict=True)
+    from glideplan.routing.coast import GAP_WARNING
+
+    old = [w for w in rg.warnings if not w.startswith(GAP_WARNING)]
+    return RouteGrid(rg.lattice, rg.window, rg.currents, rg.clearance_m, mask, land,
+                     sorted(set(old) | set(warn)), pts, c_front)
 
 
 # --------------------------------------------------------------------------------- front
@@ -485,6 +520,9 @@ def _held(method: str, times: FloatArray, lat: FloatArray, lon: FloatArray, chi:
     return Candidate(method, t_out, la_out, lo_out, h_out, True, float(times[-1] - t0))
 
 
+#: The method of a `backtrack` answer that says: run the front again at the full clearance.
+CLOSED = "closed"
+
 #: Up to this many legs the grid route's headings are held leg by leg (the verification
 #: restarts its integrator at every vertex); longer routes get one smooth control.
 HOLD_MAX_LEGS = 400
@@ -529,6 +567,10 @@ def backtrack(problem: RouteProblem, rg: RouteGrid, fo: FrontOutcome) -> Candida
         from glideplan.routing.coast import clearance_of, round_coast
 
         exact = round_coast(problem, rg, fo.arrival)
+        if exact is None and rg.front_clearance_m is not None and \
+                rg.front_clearance_m < rg.clearance_m:
+            # the front's way, found at a reduced clearance, is closed at the full one
+            return Candidate(CLOSED, times, lat, lon, chi, True, math.inf)
         la2, lo2 = exact if exact is not None else taut(lat, lon, rules, snap=snap)
         t2, c2, ok2 = crab_controls(current, problem.speed, problem.t0, la2, lo2)
         wet = exact is not None or np.all(np.isfinite(rg.currents.points(problem.t0, la2,

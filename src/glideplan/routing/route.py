@@ -110,6 +110,13 @@ def route(
     tolerance = settings.endpoint_tolerance_cells * rg.spacing_m
     lap("grid")
     fo, rg = phases.front(problem, rg)
+    g0 = None
+    if fo.goal_time is not None:
+        g0 = phases.backtrack(problem, rg, fo)
+        if g0.method == phases.CLOSED:  # closed at the full clearance: the front again
+            rg = phases.strict_grid(problem, rg)
+            fo, rg = phases.front(problem, rg)
+            g0 = None
     warnings += [w for w in rg.warnings if w not in warnings]
     stats.update(grid_nodes=list(rg.window.shape), spacing_m=rg.spacing_m, steps=fo.steps,
                  window_growths=fo.growths, periodic=rg.window.periodic,
@@ -130,7 +137,7 @@ def route(
                            unreachable_reason=why, stats=stats, **common)
 
     grid_T = fo.goal_time - problem.t0
-    g = phases.backtrack(problem, rg, fo)
+    g = g0 if g0 is not None else phases.backtrack(problem, rg, fo)
     lap("backtrack")
     best, flown, note = g, None, ""
     refined_T = None
