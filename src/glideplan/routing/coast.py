@@ -455,19 +455,47 @@ def front_obstacles(problem: Any, window: Any, land: NDArray[np.bool_], clearanc
     gap = narrowest_gap(dist, land, window.inside, clearance, relaxed)
     if gap is not None:
         w, i, j = gap
+        w = _gap_width(pts, float(window.lat[i]), float(window.lon[j]), w)
         lon = float((window.lon[j] + 180.0) % 360.0 - 180.0)
-        where = (f"a gap {w / 1000:.3g} km wide between land near {window.lat[i]:.4f}, "
-                 f"{lon:.4f} ({max(w - 2 * clearance, 0.0) / 1000:.2g} km of water beyond the "
-                 f"{clearance:.0f} m land clearance)")
-        if strict:
-            warn.append(f"{GAP_WARNING} ({h:.0f} m) closes {where}: a finer resolution or a "
-                        "smaller --land-clearance may open it")
+        lat = float(window.lat[i])
+        water = w - 2 * clearance
+        where = f"a gap {w / 1000:.3g} km wide between land near {lat:.4f}, {lon:.4f}"
+        if water <= 0:
+            if strict:
+                warn.append(f"{where} is closed by the land clearance ({clearance:.0f} m on "
+                            f"either side); a --land-clearance under {w / 2:.0f} m opens it")
+        elif strict:
+            warn.append(f"{GAP_WARNING} ({h:.0f} m) closes {where} ({water:.0f} m of water "
+                        f"beyond the {clearance:.0f} m land clearance): a finer resolution "
+                        "may open it")
         else:
-            warn.append(f"{GAP_WARNING} ({h:.0f} m) does not resolve {where}: the front passes "
-                        "it at a reduced clearance, the route keeps the full clearance at the "
-                        "land mask's resolution")
+            warn.append(f"{GAP_WARNING} ({h:.0f} m) does not resolve {where} ({water:.0f} m "
+                        f"of water beyond the {clearance:.0f} m land clearance): the front "
+                        "passes it at a reduced clearance, the route keeps the full "
+                        "clearance at the land mask's resolution")
     return mask, c_front, warn
+
+
+def _gap_width(pts: FloatArray, lat: float, lon: float, guess: float) -> float:
+    """The width (m) of a gap at its pass node (lat, lon): the distance between the nearest
+    land node and the nearest one on the other side (the angle at the node over 90 deg);
+    `guess` (twice the distance to land) when there is none."""
+    from scipy.spatial import cKDTree
+
+    q = _unit(lat, lon) * EARTH_RADIUS_M
+    tree = cKDTree(pts)
+    d1, k1 = tree.query(q)
+    near = tree.query_ball_point(q, 2.0 * guess + 1.0)
+    a = pts[k1] - q
+    other = [k for k in near if float((pts[k] - q) @ a) < 0.0]
+    if not other:
+        return guess
+    b = pts[other]
+    k2 = int(np.argmin(np.linalg.norm(b - q, axis=1)))
+    return float(np.linalg.norm(b[k2] - pts[k1]))
 
 
 #: The start of the warning about a gap the routing grid does not resolve.
 GAP_WARNING = "the routing grid"
+#: The start of the note on a gap the land clearance closes.
+GAP_CLOSED = "a gap "

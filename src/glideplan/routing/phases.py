@@ -309,9 +309,9 @@ def regrid(problem: RouteProblem, rg: RouteGrid, window: Window) -> RouteGrid:
     strict = rg.front_clearance_m == rg.clearance_m
     mask, land, warn, pts, c_front = build_obstacles(problem, window, currents, rg.clearance_m,
                                                      strict)
-    from glideplan.routing.coast import GAP_WARNING
+    from glideplan.routing.coast import GAP_CLOSED, GAP_WARNING
 
-    old = [w for w in rg.warnings if not w.startswith(GAP_WARNING)]  # this window's gap
+    old = [w for w in rg.warnings if not w.startswith((GAP_WARNING, GAP_CLOSED))]
     return RouteGrid(rg.lattice, window, currents, rg.clearance_m, mask, land,
                      sorted(set(old) | set(warn)), pts, c_front)
 
@@ -321,9 +321,9 @@ def strict_grid(problem: RouteProblem, rg: RouteGrid) -> RouteGrid:
     reduced one is closed at the land mask's resolution)."""
     mask, land, warn, pts, c_front = build_obstacles(problem, rg.window, rg.currents,
                                                      rg.clearance_m, strict=True)
-    from glideplan.routing.coast import GAP_WARNING
+    from glideplan.routing.coast import GAP_CLOSED, GAP_WARNING
 
-    old = [w for w in rg.warnings if not w.startswith(GAP_WARNING)]
+    old = [w for w in rg.warnings if not w.startswith((GAP_WARNING, GAP_CLOSED))]
     return RouteGrid(rg.lattice, rg.window, rg.currents, rg.clearance_m, mask, land,
                      sorted(set(old) | set(warn)), pts, c_front)
 
