@@ -26,6 +26,7 @@ great-circle samples, a k-d tree of 3-D positions), the check the tests and `rou
 from __future__ import annotations
 
 import heapq
+import itertools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -89,7 +90,7 @@ def _seg_dist(a: FloatArray, b: FloatArray, s: FloatArray) -> FloatArray:
     d = b - a  # (m, 2)
     L2 = np.maximum(np.sum(d * d, axis=1), 1e-12)  # (m,)
     w = s[None, :, :] - a[None, None, :]  # (1, n, 2)
-    t = np.clip(np.einsum("mk,mnk->mn", d, np.broadcast_to(w, (d.shape[0],) + w.shape[1:]))
+    t = np.clip(np.einsum("mk,mnk->mn", d, np.broadcast_to(w, (d.shape[0], *w.shape[1:])))
                 / L2[:, None], 0.0, 1.0)
     px = a[0] + t * d[:, 0:1] - s[None, :, 0]
     py = a[1] + t * d[:, 1:2] - s[None, :, 1]
@@ -99,8 +100,8 @@ def _seg_dist(a: FloatArray, b: FloatArray, s: FloatArray) -> FloatArray:
 def _densify(xy: FloatArray, step: float) -> FloatArray:
     """The polyline's points every <= `step` (m) along each leg (ends kept)."""
     out = [xy[:1]]
-    for a, b in zip(xy[:-1], xy[1:], strict=True):
-        n = max(int(math.ceil(float(np.hypot(*(b - a))) / step)), 1)
+    for a, b in itertools.pairwise(xy):
+        n = max(math.ceil(float(np.hypot(*(b - a))) / step), 1)
         s = np.linspace(0.0, 1.0, n + 1)[1:, None]
         out.append(a + s * (b - a))
     return np.concatenate(out)
@@ -253,9 +254,9 @@ def clearance_of(lat: FloatArray, lon: FloatArray, sites_xyz: FloatArray,
 
     p = _unit(lat, lon)
     pts = [p[:1]]
-    for a, b in zip(p[:-1], p[1:], strict=True):
+    for a, b in itertools.pairwise(p):
         ang = math.acos(min(max(float(a @ b), -1.0), 1.0))
-        n = max(int(math.ceil(ang * EARTH_RADIUS_M / step_m)), 1)
+        n = max(math.ceil(ang * EARTH_RADIUS_M / step_m), 1)
         s = np.linspace(0.0, 1.0, n + 1)[1:, None]
         q = a + s * (b - a)
         pts.append(q / np.linalg.norm(q, axis=1, keepdims=True))
@@ -280,11 +281,12 @@ def field_cell_diagonal(fld: Any, lat_ref: float) -> float:
 
 def round_coast(problem: Any, rg: Any, arrival: FloatArray) -> tuple[
         FloatArray, FloatArray] | None:
-    """The shortest way round the coast in the homotopy of the front's way (`descent_path` on
-    its `arrival` map; `taut_path` in a corridor of max(8 h, 2 c) about it, h the routing
-    spacing, c the clearance), checked on the sphere (>= c from every land node); None when it does not
-    apply: no land near, the start or goal within the clearance (relaxed there), a clearance
-    under half a field cell's diagonal (a path clear of the nodes could enter a land cell)."""
+    """The shortest way round the coast in the homotopy of the front's way (`descent_path`
+    on its `arrival` map; `taut_path` in a corridor of max(8 h, 2 c) about it, h the routing
+    spacing, c the clearance), checked on the sphere (>= c from every land node); None when
+    it does not apply: no land near, the start or goal within the clearance (relaxed there),
+    a clearance under half a field cell's diagonal (a path clear of the nodes could enter a
+    land cell), or no such path in the corridor."""
     from glideplan.routing.window import _coast, _xyz, distance_to_land
 
     c, pts, h = float(rg.clearance_m), rg.coast_xyz, float(rg.spacing_m)
@@ -315,7 +317,8 @@ def round_coast(problem: Any, rg: Any, arrival: FloatArray) -> tuple[
     from glideplan.routing.sphere import unwrap_lon
 
     lo = unwrap_lon(lo, problem.start[1])
-    la[0], lo[0], la[-1], lo[-1] = *problem.start, *problem.goal
+    la[0], lo[0] = problem.start[0], problem.start[1]
+    la[-1], lo[-1] = problem.goal[0], problem.goal[1]
     if clearance_of(la, lo, pts, min(c, h) / 8) < c * (1 - 1e-3):
         return None
     return la, lo
@@ -355,10 +358,10 @@ def descent_path(arrival: FloatArray, free: NDArray[np.bool_],
         rest = nodes[keep[-1] + 1:]
         n = np.maximum(np.ceil(4 * np.max(np.abs(rest - a), axis=1)).astype(int), 1)
         ok = np.ones(rest.shape[0], dtype=bool)
-        for k in range(rest.shape[0]):
-            t = np.linspace(0.0, 1.0, n[k] + 1)[:, None]
-            q = np.rint(a + t * (rest[k] - a)).astype(int)
-            ok[k] = bool(np.all(free[q[:, 0], q[:, 1]]))
+        for m in range(rest.shape[0]):
+            t = np.linspace(0.0, 1.0, n[m] + 1)[:, None]
+            q = np.rint(a + t * (rest[m] - a)).astype(int)
+            ok[m] = bool(np.all(free[q[:, 0], q[:, 1]]))
         ok[0] = True  # the next node: a step of the descent
         keep.append(keep[-1] + 1 + int(np.flatnonzero(ok)[-1]))
     return nodes[keep].astype(np.intp)
@@ -484,7 +487,7 @@ def _gap_width(pts: FloatArray, lat: float, lon: float, guess: float) -> float:
 
     q = _unit(lat, lon) * EARTH_RADIUS_M
     tree = cKDTree(pts)
-    d1, k1 = tree.query(q)
+    _d1, k1 = tree.query(q)
     near = tree.query_ball_point(q, 2.0 * guess + 1.0)
     a = pts[k1] - q
     other = [k for k in near if float((pts[k] - q) @ a) < 0.0]
