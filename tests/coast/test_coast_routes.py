@@ -91,3 +91,25 @@ def test_a_strait_open_at_the_masks_resolution_stays_open_a_closed_one_closed(tm
     assert r.status == "unreachable" and r.unreachable_reason == "front_stopped"
     assert any("a gap 4 km wide" in w and "closed by the land clearance" in w
                for w in r.warnings), r.warnings
+
+
+def test_the_fronts_progress_bar_estimates_the_time_left():
+    """After ~2 s the front's bar appears with the straight line's still-water time as its
+    total (Rich's time-remaining column estimates from it); a front that runs past it grows
+    the total to 1.05 x the simulated time, never beyond the limit."""
+    from glideplan.routing.phases import _Progress
+
+    bar = _Progress(True, 0.0, 1000.0, expected=100.0)
+    bar.started -= 3.0
+    try:
+        bar(50.0, 10, 500)
+        task = bar.bar.tasks[0]
+        assert task.total == 100.0 and task.completed == 50.0
+        bar.last = 0.0
+        bar(200.0, 40, 2000)
+        assert bar.bar.tasks[0].total == pytest.approx(210.0)
+        bar.last = 0.0
+        bar(990.0, 90, 4000)
+        assert bar.bar.tasks[0].total == 1000.0
+    finally:
+        bar.close()

@@ -370,11 +370,15 @@ def _closest(arrival: FloatArray, window: Window, goal: tuple[float, float],
 
 class _Progress:
     """Rich progress on stderr for the front, shown once it has run ~2 s (the kernel's
-    on_step(t, steps, reached)): simulated time against the limit, steps."""
+    on_step(t, steps, reached)): simulated time against the expected arrival (`expected` s
+    after t0: the straight line's still-water time, grown to 1.05 x the simulated time once
+    that passes it), steps, elapsed time and an estimate of the time left."""
 
-    def __init__(self, enabled: bool, t0: float, t_max: float) -> None:
+    def __init__(self, enabled: bool, t0: float, t_max: float,
+                 expected: float | None = None) -> None:
         self.enabled = enabled
         self.t0, self.t_max = t0, t_max
+        self.expected = min(expected, t_max - t0) if expected else t_max - t0
         self.started = time.perf_counter()
         self.bar: Any = None
         self.task: Any = None
@@ -391,16 +395,25 @@ class _Progress:
             if now - self.started < 2.0:
                 return
             from rich.console import Console
-            from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+            from rich.progress import (
+                BarColumn,
+                Progress,
+                TextColumn,
+                TimeElapsedColumn,
+                TimeRemainingColumn,
+            )
 
             self.bar = Progress(TextColumn("{task.description}"), BarColumn(),
                                 TextColumn("{task.fields[info]}"), TimeElapsedColumn(),
+                                TextColumn("left"), TimeRemainingColumn(),
                                 console=Console(stderr=True), transient=True)
             self.bar.start()
-            self.task = self.bar.add_task("routing: front", total=self.t_max - self.t0,
-                                          info="")
+            self.task = self.bar.add_task("routing: front", total=self.expected, info="")
         done = max(t - self.t0, 0.0)
-        self.bar.update(self.task, completed=min(done, self.t_max - self.t0),
+        if done > self.expected:  # later than the straight line: expect a little more
+            self.expected = min(1.05 * done, self.t_max - self.t0)
+            self.bar.update(self.task, total=self.expected)
+        self.bar.update(self.task, completed=min(done, self.expected),
                         info=f"step {steps}, simulated {done / 3600:.1f} h, "
                              f"{reached} nodes reached")
 
@@ -421,7 +434,8 @@ def front(problem: RouteProblem, rg: RouteGrid,
         state = start_state(kp, problem.t0, problem.start[0], problem.start[1])
     growths = 0
     limited = False
-    progress = _Progress(problem.settings.progress, problem.t0, problem.t_max)
+    progress = _Progress(problem.settings.progress, problem.t0, problem.t_max,
+                         problem.distance_m / problem.speed)
     callback = on_step if on_step is not None else progress
     cfl = min(problem.settings.cfl, 0.9)
     try:
