@@ -502,3 +502,20 @@ def _gap_width(pts: FloatArray, lat: float, lon: float, guess: float) -> float:
 GAP_WARNING = "the routing grid"
 #: The start of the note on a gap the land clearance closes.
 GAP_CLOSED = "a gap "
+
+
+def track_clearance(problem: Any, rg: Any, lat: FloatArray, lon: FloatArray) -> float | None:
+    """The least distance (m) from the route's track (its legs sampled on the great circle)
+    to the field's land nodes, or None without land near or when the start or goal lies
+    within the clearance (which is relaxed there)."""
+    from glideplan.routing.window import distance_to_land
+
+    c, pts = float(rg.clearance_m), rg.coast_xyz
+    if pts.shape[0] == 0:
+        return None
+    ends = distance_to_land(pts, np.array([problem.start[0], problem.goal[0]]),
+                            np.array([problem.start[1], problem.goal[1]]), max(c, 1.0))
+    if c > 0 and np.any(ends < c):
+        return None
+    step = max(min(c if c > 0 else rg.spacing_m, rg.spacing_m) / 4, 1.0)
+    return clearance_of(np.asarray(lat, dtype=float), np.asarray(lon, dtype=float), pts, step)

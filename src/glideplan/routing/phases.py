@@ -777,6 +777,12 @@ def refine(problem: RouteProblem, rg: RouteGrid, grid_route: Candidate) -> tuple
         jj, 0, rg.window.shape[1] - 1)
     if np.any(rg.obstacle[ii, jj]):
         return None, "the shooting's track enters the land clearance"
+    if rg.front_clearance_m is not None and rg.front_clearance_m < rg.clearance_m:
+        from glideplan.routing.coast import clearance_of  # the front's obstacles are narrower
+
+        step = max(min(rg.clearance_m, rg.spacing_m) / 4, 1.0)
+        if clearance_of(shot.lat, shot.lon, rg.coast_xyz, step) < rg.clearance_m * (1 - 1e-3):
+            return None, "the shooting's track enters the land clearance"
     return Candidate("zermelo-shooting", shot.t, shot.lat, shot.lon, shot.chi, False,
                      shot.duration), ""
 

@@ -188,6 +188,14 @@ def route(
     straight = straight_line_duration(problem.field_, problem.speed, problem.t0, problem.start,
                                       problem.goal, problem.t0 + max(3 * T, 3600.0))
     lap("straight_line")
+    from glideplan.routing.coast import track_clearance
+
+    near = track_clearance(problem, rg, best.lat, best.lon)
+    if near is not None and math.isfinite(near):
+        stats["least_distance_to_land_m"] = round(near, 1)
+        if near < rg.clearance_m * (1 - 1e-3):
+            warnings.append(f"the track comes within {near:.0f} m of a land node, inside the "
+                            f"{rg.clearance_m:.0f} m land clearance")
     track = _track(problem, best)
     dist = float(np.sum(gc_distance(best.lat[:-1], best.lon[:-1], best.lat[1:], best.lon[1:])))
     return RouteResult(
