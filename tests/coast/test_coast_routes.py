@@ -69,6 +69,8 @@ def test_the_shortest_way_round_keeping_the_clearance(tmp_path, name, dx):
     ref = shapes.shortest_way_round(name, dx, c) / V
     assert r.duration_s == pytest.approx(ref, rel=1e-2)
     assert _least_distance_to_land(r.lat, r.lon, land_lat, land_lon) >= c * (1 - 1e-4)
+    assert r.stats["least_distance_to_land_m"] >= c * (1 - 1e-4)
+    assert not any("inside the" in w for w in r.warnings)
     if name == "spit":  # the way round is ~3x the straight line
         _, _, _, a, b = shapes.SHAPES[name]
         assert ref * V > 3 * math.dist(a, b) * shapes.KM

@@ -107,11 +107,14 @@ def _densify(xy: FloatArray, step: float) -> FloatArray:
     return np.concatenate(out)
 
 
-def _vertices(sites: FloatArray, radius: FloatArray, tree: Any) -> FloatArray:
-    """The circumscribed K-gons' vertices that no site's disk covers (module docstring)."""
+def _vertices(sites: FloatArray, radius: FloatArray, tree: Any) -> tuple[FloatArray,
+                                                                         FloatArray]:
+    """The circumscribed K-gons' vertices that no site's disk covers (module docstring), and
+    each one's centre (its site)."""
     ang = 2 * np.pi * (np.arange(K_SIDES) + 0.5) / K_SIDES
     ring = np.stack([np.cos(ang), np.sin(ang)], axis=-1) / math.cos(math.pi / K_SIDES)
     v = (sites[:, None, :] + radius[:, None, None] * ring[None, :, :]).reshape(-1, 2)
+    centre = np.repeat(sites, K_SIDES, axis=0)
     rmax = float(np.max(radius))
     near = tree.query_ball_point(v, rmax * (1 - 1e-9))
     keep = np.ones(v.shape[0], dtype=bool)
@@ -119,7 +122,7 @@ def _vertices(sites: FloatArray, radius: FloatArray, tree: Any) -> FloatArray:
         if idx:
             d = np.hypot(*(sites[idx] - v[k]).T)
             keep[k] = bool(np.all(d >= radius[idx] * (1 - 0.5 * MARGIN)))
-    return np.asarray(v[keep], dtype=float)
+    return np.asarray(v[keep], dtype=float), np.asarray(centre[keep], dtype=float)
 
 
 def taut_path(start: tuple[float, float], goal: tuple[float, float], sites_xyz: FloatArray,
@@ -154,17 +157,20 @@ def taut_path(start: tuple[float, float], goal: tuple[float, float], sites_xyz: 
     if sites.shape[0] == 0:
         return None
     site_tree = cKDTree(sites)
-    verts = _vertices(sites, radius * (1 + MARGIN), site_tree)
+    verts, centre = _vertices(sites, radius * (1 + MARGIN), site_tree)
     if verts.shape[0]:
         d_route, _ = route_tree.query(verts)
-        verts = verts[d_route <= corridor_m]
+        near = d_route <= corridor_m
+        verts, centre = verts[near], centre[near]
     if wall.shape[0] and verts.shape[0]:
         dw, _ = cKDTree(wall).query(verts)
-        verts = verts[dw >= wall_r[0]]
+        clear = dw >= wall_r[0]
+        verts, centre = verts[clear], centre[clear]
     blockers = np.concatenate([sites, wall])
     block_r = np.concatenate([radius, wall_r])
     nodes = np.concatenate([ends, verts])
-    path = _astar(nodes, blockers, block_r, route_tree, corridor_m)
+    centres = np.concatenate([np.full((2, 2), np.nan), centre])
+    path = _astar(nodes, centres, blockers, block_r, route_tree, corridor_m)
     if path is None:
         return None
     return plane.to_latlon(nodes[path])
@@ -194,20 +200,39 @@ def _visible(a: FloatArray, b: FloatArray, blockers: FloatArray, block_r: FloatA
             if s.shape[0]:
                 ok[sl] = np.all(_seg_dist(a, b[sl], s) >= r[None, :], axis=1)
     idx = np.flatnonzero(ok)
-    if idx.size:
+    if idx.size:  # inner samples every half corridor, all segments in one query
         length = np.hypot(*(b[idx] - a).T)
         n = np.maximum(np.ceil(length / (0.5 * corridor_m)).astype(int), 1)
-        for k, m in zip(idx, n, strict=True):
-            t = np.linspace(0.0, 1.0, m + 1)[1:-1, None]
-            if t.size:
-                d, _ = route_tree.query(a + t * (b[k] - a))
-                ok[k] = bool(np.all(d <= corridor_m))
+        inner = n - 1
+        has = inner > 0
+        if has.any():
+            seg = np.repeat(np.flatnonzero(has), inner[has])
+            first = np.cumsum(inner[has]) - inner[has]
+            k = np.arange(seg.size) - np.repeat(first, inner[has]) + 1
+            t = (k / np.repeat(n[has], inner[has]))[:, None]
+            d, _ = route_tree.query(a + t * (b[idx[seg]] - a), distance_upper_bound=corridor_m
+                                    * (1 + 1e-9))
+            inside = np.isfinite(d)
+            bad = np.zeros(idx.size, dtype=bool)
+            np.logical_or.at(bad, seg, ~inside)
+            ok[idx[bad]] = False
     return ok
 
 
-def _astar(nodes: FloatArray, blockers: FloatArray, block_r: FloatArray, route_tree: Any,
-           corridor_m: float) -> list[int] | None:
-    """A* from node 0 to node 1 on the visibility graph (edges found lazily per node)."""
+def _supports(p: FloatArray, centre: FloatArray, d: FloatArray) -> NDArray[np.bool_]:
+    """Whether the lines through vertices p along d support their K-gons (about `centre`;
+    NaN: no K-gon, always): the direction within pi/K of the tangent. A shortest path among
+    convex polygons leaves and meets their vertices along such lines only (a bitangent)."""
+    radial = p - centre
+    cos = np.abs(np.sum(d * radial, axis=-1)) / np.maximum(
+        np.hypot(*d.T) * np.hypot(*radial.T), 1e-300)
+    return np.asarray(~(cos > math.sin(math.pi / K_SIDES) + 1e-9), dtype=bool)
+
+
+def _astar(nodes: FloatArray, centres: FloatArray, blockers: FloatArray, block_r: FloatArray,
+           route_tree: Any, corridor_m: float) -> list[int] | None:
+    """A* from node 0 to node 1 on the visibility graph of bitangent edges (`_supports`,
+    found lazily per node)."""
     goal = nodes[1]
     h = np.hypot(*(nodes - goal).T)
     n = nodes.shape[0]
@@ -229,6 +254,10 @@ def _astar(nodes: FloatArray, blockers: FloatArray, block_r: FloatArray, route_t
         step = np.hypot(*(nodes[todo] - nodes[u]).T)
         better = g[u] + step < g[todo] - 1e-9
         todo, step = todo[better], step[better]
+        d = nodes[todo] - nodes[u]
+        tangent = _supports(nodes[u][None, :], centres[u][None, :], d) & \
+            _supports(nodes[todo], centres[todo], d)
+        todo, step = todo[tangent], step[tangent]
         if todo.size == 0:
             continue
         vis = _visible(nodes[u], nodes[todo], blockers, block_r, route_tree, corridor_m)
@@ -309,8 +338,12 @@ def round_coast(problem: Any, rg: Any, arrival: FloatArray) -> tuple[
     gij = (int(np.clip(np.rint(fi), 0, ny - 1)), int(np.clip(np.rint(fj), 0, nx - 1)))
     ij = descent_path(arrival, ~rg.obstacle | np.isfinite(arrival), gij)
     lat, lon = rg.window.lat[ij[:, 0]], rg.window.lon[ij[:, 1]]
-    got = taut_path(problem.start, problem.goal, pts, c, lat, lon, max(8 * h, 2 * c),
-                    wall_xyz=wall, wall_m=1.5 * h)
+    got = None
+    for widen in (1.0, 4.0):  # a corridor too narrow for the way round: once 4x wider
+        got = taut_path(problem.start, problem.goal, pts, c, lat, lon,
+                        widen * max(8 * h, 2 * c), wall_xyz=wall, wall_m=1.5 * h)
+        if got is not None:
+            break
     if got is None:
         return None
     la, lo = got
@@ -352,6 +385,15 @@ def descent_path(arrival: FloatArray, free: NDArray[np.bool_],
     nodes = np.array(path[::-1], dtype=float)
     free = free.copy()
     free[nodes[:, 0].astype(int), nodes[:, 1].astype(int)] = True
+    # pulled from either end (8-neighbour steps run diagonally first: the pull from the end
+    # they left late shortcuts it); the shorter (nodes are near square: dlon = dlat / cos)
+    ways = [_pull(nodes, free), _pull(nodes[::-1], free)[::-1]]
+    return min(ways, key=lambda w: float(np.sum(np.hypot(*np.diff(w, axis=0).T))))
+
+
+def _pull(nodes: FloatArray, free: NDArray[np.bool_]) -> NDArray[np.intp]:
+    """Greedily from the first node, the farthest later node in a straight line over `free`
+    nodes (samples every quarter cell); the kept nodes."""
     keep = [0]
     while keep[-1] < nodes.shape[0] - 1:
         a = nodes[keep[-1]]
@@ -364,7 +406,7 @@ def descent_path(arrival: FloatArray, free: NDArray[np.bool_],
             ok[m] = bool(np.all(free[q[:, 0], q[:, 1]]))
         ok[0] = True  # the next node: a step of the descent
         keep.append(keep[-1] + 1 + int(np.flatnonzero(ok)[-1]))
-    return nodes[keep].astype(np.intp)
+    return np.asarray(nodes[keep], dtype=np.intp)
 
 
 def applies(fld: Any, clearance: float, lat_ref: float, periodic: bool) -> bool:
