@@ -571,7 +571,13 @@ def backtrack(problem: RouteProblem, rg: RouteGrid, fo: FrontOutcome) -> Candida
     lat, lon = keep_clearance(lat, lon, rules, snap=snap)
 
     def current(tt: FloatArray, la: FloatArray, lo: FloatArray) -> FloatArray:
-        return rg.currents.points(float(tt[0]), la, lo)
+        c = rg.currents.points(float(tt[0]), la, lo)
+        near = ~(np.isfinite(c[0]) & np.isfinite(c[1]))
+        if near.any():  # within a window cell of the coast: the field's own current
+            u, v = problem.field_.velocity(float(tt[0]), np.asarray(la)[near],
+                                           np.asarray(lo)[near])
+            c[0, near], c[1, near] = u, v
+        return c
 
     times, chi, _ok = crab_controls(current, problem.speed, problem.t0, lat, lon)
     if _near(lat, lon, rules, 2.0 * rg.spacing_m):
