@@ -110,8 +110,9 @@ def route_command(
     land_clearance: Annotated[
         float | None,
         typer.Option("--land-clearance", metavar="METRES",
-                     help="Keep this far from land (m; default: one field cell's diagonal plus "
-                     "one grid spacing with a gridded field, else one grid spacing).",
+                     help="Keep this far from the field's land nodes (m; default: one field "
+                     "cell's diagonal with a gridded field, kept at the land mask's resolution; "
+                     "else one grid spacing).",
                      show_default=False),
     ] = None,
     max_duration: Annotated[

@@ -100,6 +100,9 @@ class RouteGrid:
     land: NDArray[np.bool_]
     warnings: list[str] = field(default_factory=list)
     coast_xyz: FloatArray = field(default_factory=lambda: np.zeros((0, 3)))
+    #: the clearance of the front's obstacles (m): less than clearance_m when the route keeps
+    #: the clearance at the land mask's resolution (`routing.coast`)
+    front_clearance_m: float | None = None
 
     @property
     def spacing_m(self) -> float:
@@ -235,10 +238,11 @@ def _free_zones(problem: RouteProblem, rg_land_clear: float, dist_start: float,
 
 
 def build_obstacles(problem: RouteProblem, window: Window, currents: WindowCurrents,
-                    clearance: float) -> tuple[NDArray[np.bool_], NDArray[np.bool_], list[str],
-                                               FloatArray]:
-    """(obstacle mask, land mask, warnings, coast points (3-D, m)) on `window` (module
-    docstring of `routing.window`)."""
+                    clearance: float, strict: bool = False) -> tuple[
+                        NDArray[np.bool_], NDArray[np.bool_], list[str], FloatArray, float]:
+    """(obstacle mask, land mask, warnings, coast points (3-D, m), the front's clearance) on
+    `window` (module docstring of `routing.window`; `routing.coast.front_obstacles` where the
+    route keeps the clearance at the land mask's resolution, unless `strict`)."""
     from glideplan.routing.window import distance_to_land, land_points
 
     land = currents.land()
@@ -258,8 +262,16 @@ def build_obstacles(problem: RouteProblem, window: Window, currents: WindowCurre
                     warn.append(f"the {name} is {d:.0f} m from land, closer than the land "
                                 f"clearance {clearance:.0f} m: the clearance is relaxed "
                                 f"around it")
+    from glideplan.routing import coast
+
+    lat_ref = 0.5 * (problem.start[0] + problem.goal[0])
+    if not zones and pts.shape[0] and coast.applies(problem.field_, clearance, lat_ref,
+                                                    window.periodic):
+        mask, c_front, more = coast.front_obstacles(problem, window, land, clearance, pts,
+                                                    strict)
+        return mask | ~window.inside, land, warn + more, pts, c_front
     mask, _ = obstacles(problem.field_, window, land, clearance, zones, pts)
-    return mask | ~window.inside, land, warn, pts
+    return mask | ~window.inside, land, warn, pts, clearance
 
 
 def grid(problem: RouteProblem) -> RouteGrid:
@@ -280,17 +292,40 @@ def grid(problem: RouteProblem) -> RouteGrid:
     lat_ref = 0.5 * (problem.start[0] + problem.goal[0])
     clearance = problem.settings.land_clearance_m
     if clearance is None:
+        from glideplan.routing.coast import applies
+
         clearance = land_clearance_default(problem.field_, h, lat_ref)
-    mask, land, warn, pts = build_obstacles(problem, window, currents, clearance)
-    return RouteGrid(lattice, window, currents, float(clearance), mask, land, warn, pts)
+        exact = land_clearance_default(problem.field_, 0.0, lat_ref)  # the field's own cells
+        if exact > 0 and applies(problem.field_, exact, lat_ref, window.periodic):
+            clearance = exact  # kept at the mask's resolution: no grid spacing added
+    mask, land, warn, pts, c_front = build_obstacles(problem, window, currents, clearance)
+    return RouteGrid(lattice, window, currents, float(clearance), mask, land, warn, pts,
+                     c_front)
 
 
 def regrid(problem: RouteProblem, rg: RouteGrid, window: Window) -> RouteGrid:
     """`rg` on a grown window: the field resampled there, the obstacles recomputed."""
     currents = rg.currents.regrown(window)
-    mask, land, warn, pts = build_obstacles(problem, window, currents, rg.clearance_m)
+    strict = rg.front_clearance_m == rg.clearance_m
+    mask, land, warn, pts, c_front = build_obstacles(problem, window, currents, rg.clearance_m,
+                                                     strict)
+    from glideplan.routing.coast import GAP_CLOSED, GAP_WARNING
+
+    old = [w for w in rg.warnings if not w.startswith((GAP_WARNING, GAP_CLOSED))]
     return RouteGrid(rg.lattice, window, currents, rg.clearance_m, mask, land,
-                     sorted(set(rg.warnings) | set(warn)), pts)
+                     sorted(set(old) | set(warn)), pts, c_front)
+
+
+def strict_grid(problem: RouteProblem, rg: RouteGrid) -> RouteGrid:
+    """`rg` with the front's obstacles at the full clearance (the way the front found at a
+    reduced one is closed at the land mask's resolution)."""
+    mask, land, warn, pts, c_front = build_obstacles(problem, rg.window, rg.currents,
+                                                     rg.clearance_m, strict=True)
+    from glideplan.routing.coast import GAP_CLOSED, GAP_WARNING
+
+    old = [w for w in rg.warnings if not w.startswith((GAP_WARNING, GAP_CLOSED))]
+    return RouteGrid(rg.lattice, rg.window, rg.currents, rg.clearance_m, mask, land,
+                     sorted(set(old) | set(warn)), pts, c_front)
 
 
 # --------------------------------------------------------------------------------- front
@@ -335,11 +370,15 @@ def _closest(arrival: FloatArray, window: Window, goal: tuple[float, float],
 
 class _Progress:
     """Rich progress on stderr for the front, shown once it has run ~2 s (the kernel's
-    on_step(t, steps, reached)): simulated time against the limit, steps."""
+    on_step(t, steps, reached)): simulated time against the expected arrival (`expected` s
+    after t0: the straight line's still-water time, grown to 1.05 x the simulated time once
+    that passes it), steps, elapsed time and an estimate of the time left."""
 
-    def __init__(self, enabled: bool, t0: float, t_max: float) -> None:
+    def __init__(self, enabled: bool, t0: float, t_max: float,
+                 expected: float | None = None) -> None:
         self.enabled = enabled
         self.t0, self.t_max = t0, t_max
+        self.expected = min(expected, t_max - t0) if expected else t_max - t0
         self.started = time.perf_counter()
         self.bar: Any = None
         self.task: Any = None
@@ -356,16 +395,25 @@ class _Progress:
             if now - self.started < 2.0:
                 return
             from rich.console import Console
-            from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+            from rich.progress import (
+                BarColumn,
+                Progress,
+                TextColumn,
+                TimeElapsedColumn,
+                TimeRemainingColumn,
+            )
 
             self.bar = Progress(TextColumn("{task.description}"), BarColumn(),
                                 TextColumn("{task.fields[info]}"), TimeElapsedColumn(),
+                                TextColumn("left"), TimeRemainingColumn(),
                                 console=Console(stderr=True), transient=True)
             self.bar.start()
-            self.task = self.bar.add_task("routing: front", total=self.t_max - self.t0,
-                                          info="")
+            self.task = self.bar.add_task("routing: front", total=self.expected, info="")
         done = max(t - self.t0, 0.0)
-        self.bar.update(self.task, completed=min(done, self.t_max - self.t0),
+        if done > self.expected:  # later than the straight line: expect a little more
+            self.expected = min(1.05 * done, self.t_max - self.t0)
+            self.bar.update(self.task, total=self.expected)
+        self.bar.update(self.task, completed=min(done, self.expected),
                         info=f"step {steps}, simulated {done / 3600:.1f} h, "
                              f"{reached} nodes reached")
 
@@ -386,7 +434,8 @@ def front(problem: RouteProblem, rg: RouteGrid,
         state = start_state(kp, problem.t0, problem.start[0], problem.start[1])
     growths = 0
     limited = False
-    progress = _Progress(problem.settings.progress, problem.t0, problem.t_max)
+    progress = _Progress(problem.settings.progress, problem.t0, problem.t_max,
+                         problem.distance_m / problem.speed)
     callback = on_step if on_step is not None else progress
     cfl = min(problem.settings.cfl, 0.9)
     try:
@@ -485,6 +534,9 @@ def _held(method: str, times: FloatArray, lat: FloatArray, lon: FloatArray, chi:
     return Candidate(method, t_out, la_out, lo_out, h_out, True, float(times[-1] - t0))
 
 
+#: The method of a `backtrack` answer that says: run the front again at the full clearance.
+CLOSED = "closed"
+
 #: Up to this many legs the grid route's headings are held leg by leg (the verification
 #: restarts its integrator at every vertex); longer routes get one smooth control.
 HOLD_MAX_LEGS = 400
@@ -519,15 +571,34 @@ def backtrack(problem: RouteProblem, rg: RouteGrid, fo: FrontOutcome) -> Candida
     lat, lon = keep_clearance(lat, lon, rules, snap=snap)
 
     def current(tt: FloatArray, la: FloatArray, lo: FloatArray) -> FloatArray:
-        return rg.currents.points(float(tt[0]), la, lo)
+        c = rg.currents.points(float(tt[0]), la, lo)
+        near = ~(np.isfinite(c[0]) & np.isfinite(c[1]))
+        if near.any():  # within a window cell of the coast: the field's own current
+            u, v = problem.field_.velocity(float(tt[0]), np.asarray(la)[near],
+                                           np.asarray(lo)[near])
+            c[0, near], c[1, near] = u, v
+        return c
 
     times, chi, _ok = crab_controls(current, problem.speed, problem.t0, lat, lon)
     if _near(lat, lon, rules, 2.0 * rg.spacing_m):
-        # Next to obstacles: the taut polyline (clearance kept) when it is not slower.
-        la2, lo2 = taut(lat, lon, rules, snap=snap)
+        # Next to obstacles: the taut polyline (clearance kept) when it is not slower; round
+        # the field's own land nodes the exact one (`routing.coast`), which is also taken
+        # when the grid route cuts into the clearance.
+        from glideplan.routing.coast import clearance_of, round_coast
+
+        exact = round_coast(problem, rg, fo.arrival)
+        if exact is None and rg.front_clearance_m is not None and \
+                rg.front_clearance_m < rg.clearance_m:
+            # the front's way, found at a reduced clearance, is closed at the full one
+            return Candidate(CLOSED, times, lat, lon, chi, True, math.inf)
+        la2, lo2 = exact if exact is not None else taut(lat, lon, rules, snap=snap)
         t2, c2, ok2 = crab_controls(current, problem.speed, problem.t0, la2, lo2)
-        wet = np.all(np.isfinite(rg.currents.points(problem.t0, la2, lo2)))
-        if ok2 and wet and t2[-1] < times[-1]:
+        wet = exact is not None or np.all(np.isfinite(rg.currents.points(problem.t0, la2,
+                                                                          lo2)))
+        cuts = exact is not None and clearance_of(
+            lat, lon, rg.coast_xyz, min(rg.clearance_m, rg.spacing_m) / 4) < \
+            rg.clearance_m * (1 - 1e-3)
+        if ok2 and wet and (t2[-1] < times[-1] or cuts):
             # the taut polyline: a few long legs with sharp corners at the obstacles. Each
             # leg's heading held until its vertex (piecewise constant) reproduces it; a
             # heading linear in time between the legs' middles would cut every corner
@@ -712,6 +783,12 @@ def refine(problem: RouteProblem, rg: RouteGrid, grid_route: Candidate) -> tuple
         jj, 0, rg.window.shape[1] - 1)
     if np.any(rg.obstacle[ii, jj]):
         return None, "the shooting's track enters the land clearance"
+    if rg.front_clearance_m is not None and rg.front_clearance_m < rg.clearance_m:
+        from glideplan.routing.coast import clearance_of  # the front's obstacles are narrower
+
+        step = max(min(rg.clearance_m, rg.spacing_m) / 4, 1.0)
+        if clearance_of(shot.lat, shot.lon, rg.coast_xyz, step) < rg.clearance_m * (1 - 1e-3):
+            return None, "the shooting's track enters the land clearance"
     return Candidate("zermelo-shooting", shot.t, shot.lat, shot.lon, shot.chi, False,
                      shot.duration), ""
 

@@ -110,6 +110,13 @@ def route(
     tolerance = settings.endpoint_tolerance_cells * rg.spacing_m
     lap("grid")
     fo, rg = phases.front(problem, rg)
+    g0 = None
+    if fo.goal_time is not None:
+        g0 = phases.backtrack(problem, rg, fo)
+        if g0.method == phases.CLOSED:  # closed at the full clearance: the front again
+            rg = phases.strict_grid(problem, rg)
+            fo, rg = phases.front(problem, rg)
+            g0 = None
     warnings += [w for w in rg.warnings if w not in warnings]
     stats.update(grid_nodes=list(rg.window.shape), spacing_m=rg.spacing_m, steps=fo.steps,
                  window_growths=fo.growths, periodic=rg.window.periodic,
@@ -139,7 +146,7 @@ def route(
                            unreachable_reason=why, stats=stats, **common)
 
     grid_T = fo.goal_time - problem.t0
-    g = phases.backtrack(problem, rg, fo)
+    g = g0 if g0 is not None else phases.backtrack(problem, rg, fo)
     lap("backtrack")
     best, flown, note = g, None, ""
     refined_T = None
@@ -190,6 +197,14 @@ def route(
     straight = straight_line_duration(problem.field_, problem.speed, problem.t0, problem.start,
                                       problem.goal, problem.t0 + max(3 * T, 3600.0))
     lap("straight_line")
+    from glideplan.routing.coast import track_clearance
+
+    near = track_clearance(problem, rg, best.lat, best.lon)
+    if near is not None and math.isfinite(near):
+        stats["least_distance_to_land_m"] = round(near, 1)
+        if near < rg.clearance_m * (1 - 1e-3):
+            warnings.append(f"the track comes within {near:.0f} m of a land node, inside the "
+                            f"{rg.clearance_m:.0f} m land clearance")
     track = _track(problem, best)
     dist = float(np.sum(gc_distance(best.lat[:-1], best.lon[:-1], best.lat[1:], best.lon[1:])))
     return RouteResult(

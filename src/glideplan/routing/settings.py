@@ -2,13 +2,15 @@
 
 resolution: routing-grid spacing h (m) at the route's mean latitude; None: the start-goal
 distance over `cells` (about 250 cells across it). land_clearance_m: routes keep at least this
-distance from land (m); None: the default, one field cell's diagonal plus one grid spacing for
-a gridded field with land (the field's linear interpolation reads NaN within one cell of a land
-node, and the grid places the route to within one spacing of its obstacles), else one grid
-spacing. cfl: the front's Courant number. max_duration: give up after this long (s; default:
-the field's time span, or 10 x the still-water time for a steady field). refine: try Zermelo
-shooting on the sphere in open water. endpoint_tolerance_cells: a route is solved when its
-controls, flown through the field, end within this many grid spacings of the goal.
+distance from land (m), measured from the field's own land (NaN) nodes; None: the default,
+one field cell's diagonal for a gridded field with land (the field's linear interpolation
+reads NaN within one cell of a land node; the route keeps the clearance at the land mask's
+resolution, `routing.coast`; plus one grid spacing where it cannot: a window round the whole
+circle), else one grid spacing. cfl: the front's Courant number. max_duration: give up after
+this long (s; default: the field's time span, or 10 x the still-water time for a steady
+field). refine: try Zermelo shooting on the sphere in open water. endpoint_tolerance_cells:
+a route is solved when its controls, flown through the field, end within this many grid
+spacings of the goal.
 margin: the first routing window is the start-goal box grown by margin x distance (plus 10
 cells) on each side; it grows when the front reaches its edge. progress: Rich progress on
 stderr for the front (after ~2 s).
