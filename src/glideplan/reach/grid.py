@@ -34,7 +34,8 @@ from numpy.typing import NDArray
 from glideplan.reach.problem import ReachProblem
 from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
 
-__all__ = ["DEFAULT_MAX_NODES", "ReachGrid", "cell_nodes", "reach_grid"]
+__all__ = ["DEFAULT_MAX_NODES", "MAX_NATIVE_NODES", "ReachGrid", "cell_nodes", "native_terrain",
+           "reach_grid"]
 
 FloatArray = NDArray[np.float64]
 
@@ -112,3 +113,42 @@ def reach_grid(problem: ReachProblem, max_ratio: float) -> ReachGrid:
     spacing = max(spacing, EARTH_RADIUS_M * math.cos(math.radians(float(np.min(np.abs(lat)))))
                   * math.radians(float(lon[1] - lon[0])))
     return ReachGrid(lat, lon, z, block, fine, factor, spacing, tuple(notes))
+
+
+#: The native search (`reach.native`) runs on at most this many terrain nodes by default;
+#: more (an SRTM1 tile with a high start) are max-pooled by the smallest factor that fits.
+MAX_NATIVE_NODES = 14_000_000
+
+
+def native_terrain(problem: ReachProblem, max_ratio: float, clearance: float
+                   ) -> tuple[Terrain, int, list[str]]:
+    """The terrain the native search runs on: cropped to the largest possible reach,
+    (ALT - clearance - lowest terrain) x max ground glide ratio + 5 %, + 5 km; pooled (max,
+    so closed stays closed) only when `resolution_m` asks for a coarser grid or the crop has
+    more than MAX_NATIVE_NODES nodes. Returns (terrain, pooling factor, notes)."""
+    lat0, lon0, alt = problem.start
+    t = problem.terrain
+    notes: list[str] = []
+    zmin = float(np.nanmin(t.z))
+    reach = max(alt - clearance - zmin, 0.0) * max_ratio
+    margin = reach * 1.05 + 5000.0
+    dlat = math.degrees(margin / EARTH_RADIUS_M)
+    coslat = max(math.cos(math.radians(min(abs(lat0) + dlat, 89.0))), 1e-3)
+    dlon = math.degrees(margin / (EARTH_RADIUS_M * coslat))
+    fine = t.crop(lat0 - dlat, lat0 + dlat, lon0 - dlon, lon0 + dlon)
+    ny, nx = fine.shape
+    factor = max(1, math.ceil(math.sqrt(ny * nx / MAX_NATIVE_NODES)))
+    if problem.resolution_m is not None:
+        asked = max(1, round(problem.resolution_m / max(fine.spacing_m[1], 1e-9)))
+        if problem.resolution_m < 0.5 * fine.spacing_m[1]:
+            notes.append(f"resolution {problem.resolution_m:g} m is finer than the terrain "
+                         f"({fine.spacing_m[1]:.0f} m): the terrain's own grid is used")
+        factor = asked
+    factor = min(factor, max(1, (min(ny, nx) - 1) // 3))
+    if factor == 1:
+        return fine, 1, notes
+    lat, lon, z = fine.pooled_max(factor, reach=factor)
+    notes.append(f"the terrain is max-pooled by {factor} ({factor * fine.spacing_m[1]:.0f} m "
+                 "cells): a pass or gap narrower than about two cells is closed; run at the "
+                 "terrain's own resolution (no --resolution) to judge passes")
+    return Terrain(lat, lon, z, fine.sources, fine.warnings), factor, notes

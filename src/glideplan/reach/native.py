@@ -1,0 +1,193 @@
+"""The glide reach on the terrain's own grid: a state-constrained Dijkstra (numba).
+
+Why this and not the front on a pooled grid: max-pooling the terrain per front cell closes
+every col narrower than a cell (a 1 km pass vanishes at a 463 m grid); any pooling that
+keeps a pass open (min, or a "passable" bottleneck height) also opens walls that are closed
+at the data's resolution, so the answer would depend on the grid either way. Searching the
+DEM's own nodes keeps exactly what the data keeps open or closed, and a Dijkstra with a
+wide stencil is O(N log N) (the narrow-band front is ~O(N^1.5): 51 s on an SRTM3 tile).
+
+Graph: the nodes of the DEM (lat/lon grid, spacings hx(lat) = R cos(lat) dlon, hy = R dlat);
+edges to the 48 neighbours (di, dj) with max(|di|, |dj|) <= 4 and gcd(|di|, |dj|) = 1 (the
+directions 0, 14.0, 18.4, 26.6, 33.7, 36.9, 45 deg and their mirrors). An edge of ground
+length d in direction chi costs the altitude d / r(chi) (r: the ground glide ratio in the
+wind, `Glide.ratio`; exact for a straight glide in a steady wind). A straight line between
+two stencil directions costs at most 1 / cos(delta / 2) times its true loss, delta the
+largest gap (14.0 deg): <= 0.76 % more altitude lost (never less), so the search is
+conservative; verified paths are string-pulled and flown exactly (`reach.flight`).
+
+State constraint (the safety height en route): at loss L the glider is at ALT - L, which
+must stay >= z + clearance, i.e. L <= B = ALT - z - clearance along every edge. B is
+checked at the edge's end node and, along the edge, at half-cell samples of the bilinear
+terrain -- skipped when the edge's end loss is below the smallest B within 4 cells of its
+start (a bilinear surface never goes below its lowest corner sample), which is most edges.
+NaN terrain: B = -inf (never entered).
+
+Seeds: the nodes within SEED_CELLS of the start get the straight glide's loss from the start
+when that glide clears (sampled at half cells); the search runs in chunks of pops so the
+caller can show progress.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from glideplan.reach.model import Glide
+from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
+
+__all__ = ["SEED_CELLS", "STENCIL", "NativeSearch", "native_search", "node_path"]
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+#: Radius (cells) of the straight-glide seed disk round the start.
+SEED_CELLS = 3
+
+
+def _stencil() -> IntArray:
+    out = []
+    for di in range(-4, 5):
+        for dj in range(-4, 5):
+            if (di or dj) and math.gcd(abs(di), abs(dj)) == 1:
+                out.append((di, dj))
+    return np.array(out, dtype=np.int64)
+
+
+#: The 48 neighbour offsets (row, column).
+STENCIL = _stencil()
+
+
+@dataclass(frozen=True, eq=False)
+class NativeSearch:
+    """loss (ny, nx): least altitude lost to each node (inf: not reached); parent: flat index
+    of the previous node (-1: a seed; -2: not reached); block B = ALT - z - clearance;
+    pops: nodes settled."""
+
+    loss: FloatArray
+    parent: IntArray
+    block: FloatArray
+    pops: int
+
+
+def _costs(glide: Glide, lat: FloatArray, dlat: float, dlon: float) -> FloatArray:
+    """Loss per edge (ny, 48): d / r(chi) at the mid latitude of each edge (inf: no
+    progress)."""
+    hy = EARTH_RADIUS_M * math.radians(dlat)
+    di, dj = STENCIL[:, 0].astype(float), STENCIL[:, 1].astype(float)
+    mid = np.radians(lat[:, None] + 0.5 * di[None, :] * dlat)
+    hx = EARTH_RADIUS_M * np.cos(mid) * math.radians(dlon)
+    east, north = dj[None, :] * hx, di[None, :] * hy
+    d = np.hypot(east, north)
+    chi = np.arctan2(north, east)
+    r = np.asarray(glide.ratio(chi.ravel()), dtype=float).reshape(chi.shape)
+    ok = np.isfinite(r) & (r > 0)
+    return np.where(ok, d / np.where(ok, r, 1.0), np.inf)
+
+
+def native_search(terrain: Terrain, start: tuple[float, float, float], glide: Glide,
+                  clearance: float, *, chunk: int = 400_000,
+                  on_chunk: Callable[[float], None] | None = None) -> NativeSearch:
+    """The state-constrained Dijkstra from `start` = (lat, lon, ALT) (module docstring).
+
+    on_chunk(fraction): called between chunks of `chunk` pops with the fraction of the
+    largest possible loss reached so far, squared (an area: the progress estimate).
+    """
+    from scipy.ndimage import minimum_filter
+
+    from glideplan.reach._native_kernel import dijkstra_chunk
+
+    alt = start[2]
+    z = np.asarray(terrain.z, dtype=float)
+    block = alt - z - clearance
+    block = np.where(np.isfinite(block), block, -np.inf)
+    bmin = minimum_filter(block, size=9, mode="nearest")
+    costs = _costs(glide, terrain.lat, terrain.dlat, terrain.dlon)
+    ny, nx = block.shape
+    loss = np.full(ny * nx, np.inf)
+    parent = np.full(ny * nx, -2, dtype=np.int64)
+    seeds, seed_loss = _seeds(terrain, start, glide, clearance)
+    for k, v in zip(seeds, seed_loss, strict=True):
+        if v <= block.flat[k] and v < loss[k]:
+            loss[k], parent[k] = v, -1
+    heap_key = np.empty(1 << 16)
+    heap_node = np.empty(1 << 16, dtype=np.int64)
+    size = 0
+    for k in np.flatnonzero(parent == -1):
+        heap_key, heap_node, size = _push(heap_key, heap_node, size, loss[k], int(k))
+    top = float(np.max(block)) if np.isfinite(np.max(block)) else 0.0
+    done = np.zeros(ny * nx, dtype=np.bool_)
+    pops = 0
+    while size > 0:
+        heap_key, heap_node, size, n, last = dijkstra_chunk(
+            block, bmin, costs, STENCIL, loss, parent, done, heap_key, heap_node, size, chunk)
+        pops += n
+        if on_chunk is not None and top > 0:
+            on_chunk(min(max(last / top, 0.0), 1.0) ** 2)
+    return NativeSearch(loss.reshape(ny, nx), parent, block, pops)
+
+
+def _push(key: FloatArray, node: IntArray, size: int, k: float, v: int
+          ) -> tuple[FloatArray, IntArray, int]:
+    """Push onto the binary heap (Python side, for the seeds)."""
+    if size >= key.size:
+        key = np.concatenate([key, np.empty(key.size)])
+        node = np.concatenate([node, np.empty(node.size, dtype=np.int64)])
+    i = size
+    key[i], node[i] = k, v
+    while i > 0:
+        p = (i - 1) // 2
+        if key[p] <= key[i]:
+            break
+        key[p], key[i] = key[i], key[p]
+        node[p], node[i] = node[i], node[p]
+        i = p
+    return key, node, size + 1
+
+
+def _seeds(terrain: Terrain, start: tuple[float, float, float], glide: Glide,
+           clearance: float) -> tuple[IntArray, FloatArray]:
+    """Flat indices and straight-glide losses of the nodes within SEED_CELLS of the start
+    whose straight glide from the start keeps the clearance (half-cell samples)."""
+    from glideplan.reach.flight import rhumb
+
+    lat0, lon0, alt = start
+    ny, nx = terrain.shape
+    fi = (lat0 - terrain.lat[0]) / terrain.dlat
+    fj = (lon0 - terrain.lon[0]) / terrain.dlon
+    i0, j0 = round(fi), round(fj)
+    ii, jj = np.meshgrid(np.arange(i0 - SEED_CELLS, i0 + SEED_CELLS + 1),
+                         np.arange(j0 - SEED_CELLS, j0 + SEED_CELLS + 1), indexing="ij")
+    ok = (ii >= 0) & (ii < ny) & (jj >= 0) & (jj < nx)
+    ii, jj = ii[ok], jj[ok]
+    la, lo = terrain.lat[ii], terrain.lon[jj]
+    d, chi = rhumb(np.full(la.shape, lat0), np.full(lo.shape, lon0), la, lo)
+    r = np.asarray(glide.ratio(chi), dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        lossv = np.where(d > 0, d / r, 0.0)
+    f = np.linspace(0.0, 1.0, 4 * SEED_CELLS + 3)[None, :]
+    sla = lat0 + f * (la[:, None] - lat0)
+    slo = lon0 + f * (lo[:, None] - lon0)
+    h = alt - f * lossv[:, None]
+    zz = terrain.elevation(sla, slo)
+    clear = np.all(np.where(np.isfinite(zz), h - zz >= clearance - 1e-6, False), axis=1)
+    keep = clear & np.isfinite(lossv)
+    return (ii[keep] * nx + jj[keep]).astype(np.int64), lossv[keep]
+
+
+def node_path(search: NativeSearch, terrain: Terrain, i: int, j: int
+              ) -> tuple[FloatArray, FloatArray]:
+    """The nodes from the seed to node (i, j) along the parents (lat, lon, start first)."""
+    nx = terrain.shape[1]
+    k = i * nx + j
+    out = []
+    while k >= 0:
+        out.append(k)
+        k = int(search.parent[k])
+    out.reverse()
+    idx = np.array(out, dtype=np.int64)
+    return terrain.lat[idx // nx], terrain.lon[idx % nx]
