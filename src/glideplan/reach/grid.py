@@ -121,11 +121,12 @@ MAX_NATIVE_NODES = 14_000_000
 
 
 def native_terrain(problem: ReachProblem, max_ratio: float, clearance: float
-                   ) -> tuple[Terrain, int, list[str]]:
+                   ) -> tuple[Terrain, int, list[str], Terrain]:
     """The terrain the native search runs on: cropped to the largest possible reach,
     (ALT - clearance - lowest terrain) x max ground glide ratio + 5 %, + 5 km; pooled (max,
     so closed stays closed) only when `resolution_m` asks for a coarser grid or the crop has
-    more than MAX_NATIVE_NODES nodes. Returns (terrain, pooling factor, notes)."""
+    more than MAX_NATIVE_NODES nodes. Returns (search terrain, pooling factor, notes, the
+    unpooled crop: paths are flown over it)."""
     lat0, lon0, alt = problem.start
     t = problem.terrain
     notes: list[str] = []
@@ -146,9 +147,9 @@ def native_terrain(problem: ReachProblem, max_ratio: float, clearance: float
         factor = asked
     factor = min(factor, max(1, (min(ny, nx) - 1) // 3))
     if factor == 1:
-        return fine, 1, notes
+        return fine, 1, notes, fine
     lat, lon, z = fine.pooled_max(factor, reach=factor)
     notes.append(f"the terrain is max-pooled by {factor} ({factor * fine.spacing_m[1]:.0f} m "
                  "cells): a pass or gap narrower than about two cells is closed; run at the "
                  "terrain's own resolution (no --resolution) to judge passes")
-    return Terrain(lat, lon, z, fine.sources, fine.warnings), factor, notes
+    return Terrain(lat, lon, z, fine.sources, fine.warnings), factor, notes, fine

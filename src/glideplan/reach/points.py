@@ -79,9 +79,12 @@ def _straight_shortfall(path: FlownPath, lnd: Landable, clearance: float, arriva
 
 def native_point(terrain: Terrain, start: tuple[float, float, float], glide: Glide,
                  search: NativeSearch, lnd: Landable, clearance: float, arrival_h: float,
-                 spacing_m: float) -> ReachPoint:
-    """The landable's answer (module docstring)."""
+                 spacing_m: float, true_terrain: Terrain | None = None) -> ReachPoint:
+    """The landable's answer (module docstring). `terrain`: the search's; paths are flown
+    over `true_terrain` (the unpooled DEM; default `terrain`)."""
     lat0, lon0, alt = start
+    grid_terrain = terrain
+    terrain = grid_terrain if true_terrain is None else true_terrain
 
     def empty(note: str, missing: bool = False, short: float | None = None,
               front: float | None = None) -> ReachPoint:
@@ -89,14 +92,15 @@ def native_point(terrain: Terrain, start: tuple[float, float, float], glide: Gli
                           None, note, None, short_by_m=short, terrain_missing=missing)
 
     if not math.isfinite(float(terrain.elevation(lnd.lat, lnd.lon))):
-        return empty("outside the terrain or on no data (a void or no tile): not judged", missing=True)
-    near = _best_node(search, terrain, glide, lnd)
+        return empty("outside the terrain or on no data (a void or no tile): not judged",
+                     missing=True)
+    near = _best_node(search, grid_terrain, glide, lnd)
     front_alt = None if near is None else alt - near[0]
     straight = fly(glide, terrain, clearance, np.array([lat0, lnd.lat]),
                    np.array([lon0, lnd.lon]), alt)
     candidates = [straight]
     if near is not None:
-        pla, plo = node_path(search, terrain, near[1], near[2])
+        pla, plo = node_path(search, grid_terrain, near[1], near[2])
         la = np.concatenate([[lat0], pla, [lnd.lat]])
         lo = np.concatenate([[lon0], plo, [lnd.lon]])
         candidates += front_candidates(glide, terrain, clearance, la, lo, alt)

@@ -257,7 +257,7 @@ def glide_reach(
     alt = problem.start[2]
     timings: dict[str, float] = {}
     t = time.perf_counter()
-    fine, factor, notes = native_terrain(problem, glide.max_ratio, clear_h)
+    fine, factor, notes, crop = native_terrain(problem, glide.max_ratio, clear_h)
     warnings += notes
     timings["grid_s"] = time.perf_counter() - t
     t = time.perf_counter()
@@ -272,7 +272,8 @@ def glide_reach(
     points = []
     for lnd in problem.landables:
         comp = replace(lnd, lon=wrap_lon(fine, lnd.lon))
-        pt = native_point(fine, problem.start, glide, search, comp, clear_h, arrive_h, spacing)
+        pt = native_point(fine, problem.start, glide, search, comp, clear_h, arrive_h, spacing,
+                          crop)
         points.append(replace(pt, landable=lnd))
     timings["paths_s"] = time.perf_counter() - t
     t = time.perf_counter()
