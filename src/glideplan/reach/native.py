@@ -11,10 +11,12 @@ Graph: the nodes of the DEM (lat/lon grid, spacings hx(lat) = R cos(lat) dlon, h
 edges to the 48 neighbours (di, dj) with max(|di|, |dj|) <= 4 and gcd(|di|, |dj|) = 1 (the
 directions 0, 14.0, 18.4, 26.6, 33.7, 36.9, 45 deg and their mirrors). An edge of ground
 length d in direction chi costs the altitude d / r(chi) (r: the ground glide ratio in the
-wind, `Glide.ratio`; exact for a straight glide in a steady wind). A straight line between
-two stencil directions costs at most 1 / cos(delta / 2) times its true loss, delta the
-largest gap (14.0 deg): <= 0.76 % more altitude lost (never less), so the search is
-conservative; verified paths are string-pulled and flown exactly (`reach.flight`).
+wind, `Glide.ratio_fast`, relative error ~1e-7; exact for a straight glide in a steady
+wind). A straight line between two stencil directions costs at most 1 / cos(delta / 2)
+times its true loss, delta the largest gap (14.0 deg): <= 0.76 % more altitude lost (never
+less), so the search is conservative; verified paths are string-pulled and flown exactly
+(`reach.flight`). Edges from a node far from the constraint are relaxed only in a cone
+round the direction it was entered by (`_native_kernel.dijkstra_chunk`).
 
 State constraint (the safety height en route): at loss L the glider is at ALT - L, which
 must stay >= z + clearance, i.e. L <= B = ALT - z - clearance along every edge. B is
@@ -47,6 +49,8 @@ IntArray = NDArray[np.int64]
 
 #: Radius (cells) of the straight-glide seed disk round the start.
 SEED_CELLS = 3
+#: Blocked border (cells) round the grid: the stencil's reach, so no bounds checks.
+PAD = 4
 
 
 def _stencil() -> IntArray:
@@ -66,12 +70,14 @@ STENCIL = _stencil()
 class NativeSearch:
     """loss (ny, nx): least altitude lost to each node (inf: not reached); parent: flat index
     of the previous node (-1: a seed; -2: not reached); block B = ALT - z - clearance;
-    pops: nodes settled."""
+    pops: nodes settled; pushes: heap pushes; coned: nodes relaxed only in a cone."""
 
     loss: FloatArray
     parent: IntArray
     block: FloatArray
     pops: int
+    pushes: int = 0
+    coned: int = 0
 
 
 def _costs(glide: Glide, lat: FloatArray, dlat: float, dlon: float) -> FloatArray:
@@ -84,7 +90,7 @@ def _costs(glide: Glide, lat: FloatArray, dlat: float, dlon: float) -> FloatArra
     east, north = dj[None, :] * hx, di[None, :] * hy
     d = np.hypot(east, north)
     chi = np.arctan2(north, east)
-    r = np.asarray(glide.ratio(chi.ravel()), dtype=float).reshape(chi.shape)
+    r = np.asarray(glide.ratio_fast(chi.ravel()), dtype=float).reshape(chi.shape)
     ok = np.isfinite(r) & (r > 0)
     return np.where(ok, d / np.where(ok, r, 1.0), np.inf)
 
@@ -103,14 +109,18 @@ def native_search(terrain: Terrain, start: tuple[float, float, float], glide: Gl
 
     alt = start[2]
     z = np.asarray(terrain.z, dtype=float)
-    block = alt - z - clearance
-    block = np.where(np.isfinite(block), block, -np.inf)
-    bmin = minimum_filter(block, size=9, mode="nearest")
-    costs = _costs(glide, terrain.lat, terrain.dlat, terrain.dlon)
-    ny, nx = block.shape
-    loss = np.full(ny * nx, np.inf)
-    parent = np.full(ny * nx, -2, dtype=np.int64)
+    ny, nx = z.shape
+    block = np.full((ny + 2 * PAD, nx + 2 * PAD), -np.inf)
+    inner = alt - z - clearance
+    block[PAD:-PAD, PAD:-PAD] = np.where(np.isfinite(inner), inner, -np.inf)
+    bmin = minimum_filter(block, size=2 * PAD + 1, mode="nearest")
+    lat_p = terrain.lat[0] + terrain.dlat * np.arange(-PAD, ny + PAD)
+    costs = _costs(glide, lat_p, terrain.dlat, terrain.dlon)
+    nxp = nx + 2 * PAD
+    loss = np.full(block.size, np.inf)
+    parent = np.full(block.size, -2, dtype=np.int64)
     seeds, seed_loss = _seeds(terrain, start, glide, clearance)
+    seeds = (seeds // nx + PAD) * nxp + seeds % nx + PAD
     for k, v in zip(seeds, seed_loss, strict=True):
         if v <= block.flat[k] and v < loss[k]:
             loss[k], parent[k] = v, -1
@@ -119,16 +129,24 @@ def native_search(terrain: Terrain, start: tuple[float, float, float], glide: Gl
     size = 0
     for k in np.flatnonzero(parent == -1):
         heap_key, heap_node, size = _push(heap_key, heap_node, size, loss[k], int(k))
-    top = float(np.max(block)) if np.isfinite(np.max(block)) else 0.0
-    done = np.zeros(ny * nx, dtype=np.bool_)
+    top = float(np.max(block))
+    done = np.zeros(block.size, dtype=np.bool_)
+    counts = np.zeros(3, dtype=np.int64)
+    aspect = math.cos(math.radians(float(np.mean(terrain.lat)))) * terrain.dlon / terrain.dlat
     pops = 0
     while size > 0:
         heap_key, heap_node, size, n, last = dijkstra_chunk(
-            block, bmin, costs, STENCIL, loss, parent, done, heap_key, heap_node, size, chunk)
+            block, bmin, costs, STENCIL, loss, parent, done, heap_key, heap_node, size, chunk,
+            aspect, counts)
         pops += n
         if on_chunk is not None and top > 0:
             on_chunk(min(max(last / top, 0.0), 1.0) ** 2)
-    return NativeSearch(loss.reshape(ny, nx), parent, block, pops)
+    inner_loss = loss.reshape(block.shape)[PAD:-PAD, PAD:-PAD].copy()
+    par = parent.reshape(block.shape)[PAD:-PAD, PAD:-PAD].ravel()
+    ok = par >= 0
+    par = np.where(ok, (par // nxp - PAD) * nx + par % nxp - PAD, par)
+    return NativeSearch(inner_loss, par, block[PAD:-PAD, PAD:-PAD].copy(), pops,
+                        int(counts[1]), int(counts[2]))
 
 
 def _push(key: FloatArray, node: IntArray, size: int, k: float, v: int
