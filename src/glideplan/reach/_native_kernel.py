@@ -1,5 +1,17 @@
-"""numba kernel of `reach.native`: chunks of the state-constrained Dijkstra (binary heap with
-lazy deletion). Imported only by `reach.native.native_search` (numba start-up)."""
+"""numba kernel of `reach.native`: chunks of the state-constrained Dijkstra (Dial's bucket
+queue). Imported only by `reach.native.native_search` (numba start-up).
+
+The grid is padded: `block` (ny, nx) has PAD = 4 rows/columns of -inf on every side (never
+entered), so neighbours need no bounds check; flat indices are into the padded grid.
+
+Cone pruning: from a node u whose every stencil edge is free (lu + the row's largest edge
+loss <= the smallest B within 4 cells: no neighbour blocked, no edge to check), only the
+edges within CONE of the direction it was entered by (parent -> u) are relaxed. An optimal
+path turns only where it touches the state constraint; in free space it is straight and its
+discrete edges stay within a stencil gap (14 deg) of its direction, so the edge that gives a
+node its least loss is not pruned (on the SRTM3 benchmark tile the losses are identical to
+the unpruned search's).
+"""
 
 from __future__ import annotations
 
@@ -9,7 +21,7 @@ from typing import Any
 import numba
 import numpy as np
 
-__all__ = ["CONE", "dijkstra_chunk"]
+__all__ = ["CONE", "dial_chunk"]
 
 #: cos of the half-angle of the cone of edges relaxed from a free node (60 deg).
 CONE = 0.5
@@ -46,70 +58,23 @@ def _edge_clear(b: Any, i: int, j: int, di: int, dj: int, lu: float, c: float) -
 
 
 @numba.njit(cache=True)
-def _push(key: Any, node: Any, size: int, k: float, v: int) -> tuple[Any, Any, int]:
-    if size >= key.size:
-        nk = np.empty(2 * key.size)
-        nn = np.empty(2 * key.size, dtype=np.int64)
-        nk[:size] = key[:size]
-        nn[:size] = node[:size]
-        key, node = nk, nn
-    i = size
-    while i > 0:
-        p = (i - 1) >> 1
-        if key[p] <= k:
-            break
-        key[i] = key[p]
-        node[i] = node[p]
-        i = p
-    key[i] = k
-    node[i] = v
-    return key, node, size + 1
+def dial_chunk(block: Any, bmin: Any, costs: Any, stencil: Any, loss: Any, parent: Any,
+               done: Any, head: Any, ent_node: Any, ent_next: Any, free: int, n_ent: int,
+               cur: int, delta: float, chunk: int, aspect: float, counts: Any
+               ) -> tuple[Any, Any, int, int, int, int, float]:
+    """Settle up to `chunk` nodes (module docstring); loss/parent/done (flat) and head are
+    updated in place; counts (3,) += nodes settled, queue pushes, nodes relaxed in a cone.
+    aspect = hx / hy (east over north spacing) for the directions.
 
-
-@numba.njit(cache=True)
-def _pop(key: Any, node: Any, size: int) -> tuple[float, int, int]:
-    k0, v0 = key[0], node[0]
-    size -= 1
-    if size > 0:
-        k, v = key[size], node[size]
-        i = 0
-        while True:
-            c = 2 * i + 1
-            if c >= size:
-                break
-            if c + 1 < size and key[c + 1] < key[c]:
-                c += 1
-            if key[c] >= k:
-                break
-            key[i] = key[c]
-            node[i] = node[c]
-            i = c
-        key[i] = k
-        node[i] = v
-    return k0, v0, size
-
-
-@numba.njit(cache=True)
-def dijkstra_chunk(block: Any, bmin: Any, costs: Any, stencil: Any, loss: Any, parent: Any,
-                   done: Any, key: Any, node: Any, size: int, chunk: int, aspect: float,
-                   counts: Any) -> tuple[Any, Any, int, int, float]:
-    """Settle up to `chunk` nodes; returns (heap keys, heap nodes, heap size, nodes settled,
-    last loss settled). loss/parent/done (flat) are updated in place; counts (3,) += nodes
-    settled, heap pushes, nodes relaxed in a cone.
-
-    The grid is padded: `block` (ny, nx) has PAD = 4 rows/columns of -inf on every side
-    (never entered), so neighbours need no bounds check; flat indices are into the padded
-    grid.
-
-    Cone pruning: from a node u whose every stencil edge is free (lu + the row's largest
-    edge loss <= the smallest B within 4 cells: no neighbour blocked, no edge to check),
-    only the edges within CONE of the direction it was entered by (parent -> u) are
-    relaxed. An optimal path turns only where it touches the state constraint; in free
-    space it is straight and its discrete edges stay within a stencil gap (14 deg) of its
-    direction, so the edge that gives a node its least loss is never pruned.
-    aspect = hx / hy (east over north spacing) for the directions."""
+    Dial's bucket queue: bucket b holds the nodes of loss in
+    [b delta, (b + 1) delta); with delta <= the least edge loss no node of a bucket can
+    improve another of the same bucket, so each bucket's nodes are final when it is taken
+    (exact Dijkstra, O(1) queue operations). Buckets are linked lists (head[b], ent_next)
+    of entries (ent_node), freed entries chained from `free`. Returns (ent_node, ent_next,
+    free, n_ent, cur bucket, nodes settled, last loss settled)."""
     ny, nx = block.shape
     m = stencil.shape[0]
+    nb = head.size
     flat = np.empty(m, dtype=np.int64)
     ux = np.empty(m)
     uy = np.empty(m)
@@ -122,15 +87,21 @@ def dijkstra_chunk(block: Any, bmin: Any, costs: Any, stencil: Any, loss: Any, p
     cmax = np.empty(ny)
     for r in range(ny):
         cmax[r] = np.max(costs[r])
-    settled = 0
-    pushes = 0
-    coned = 0
+    settled = pushes = coned = 0
     last = 0.0
-    while size > 0 and settled < chunk:
-        lu, u, size = _pop(key, node, size)
-        if done[u] or lu > loss[u]:
+    while cur < nb and settled < chunk:
+        en = head[cur]
+        if en < 0:
+            cur += 1
+            continue
+        head[cur] = ent_next[en]
+        u = ent_node[en]
+        ent_next[en] = free
+        free = en
+        if done[u]:
             continue
         done[u] = True
+        lu = loss[u]
         settled += 1
         last = lu
         i = u // nx
@@ -145,6 +116,7 @@ def dijkstra_chunk(block: Any, bmin: Any, costs: Any, stencil: Any, loss: Any, p
             px, py = (j - (pu - pi * nx)) * aspect, float(i - pi)
             n = math.hypot(px, py)
             px, py, cone = px / n, py / n, True
+            coned += 1
         for e in range(m):
             if cone and ux[e] * px + uy[e] * py < CONE:
                 continue
@@ -157,11 +129,26 @@ def dijkstra_chunk(block: Any, bmin: Any, costs: Any, stencil: Any, loss: Any, p
                 continue
             loss[v] = lv
             parent[v] = u
-            key, node, size = _push(key, node, size, lv, v)
+            b = int(lv / delta)
+            if b >= nb:
+                continue  # beyond every block time: never entered
+            if free >= 0:
+                en = free
+                free = ent_next[en]
+            else:
+                if n_ent >= ent_node.size:
+                    nn = np.empty(2 * ent_node.size, dtype=np.int64)
+                    nn[:n_ent] = ent_node[:n_ent]
+                    nx2 = np.empty(2 * ent_node.size, dtype=np.int64)
+                    nx2[:n_ent] = ent_next[:n_ent]
+                    ent_node, ent_next = nn, nx2
+                en = n_ent
+                n_ent += 1
+            ent_node[en] = v
+            ent_next[en] = head[b]
+            head[b] = en
             pushes += 1
-        if cone:
-            coned += 1
     counts[0] += settled
     counts[1] += pushes
     counts[2] += coned
-    return key, node, size, settled, last
+    return ent_node, ent_next, free, n_ent, cur, settled, last

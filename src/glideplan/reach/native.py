@@ -16,7 +16,8 @@ wind). A straight line between two stencil directions costs at most 1 / cos(delt
 times its true loss, delta the largest gap (14.0 deg): <= 0.76 % more altitude lost (never
 less), so the search is conservative; verified paths are string-pulled and flown exactly
 (`reach.flight`). Edges from a node far from the constraint are relaxed only in a cone
-round the direction it was entered by (`_native_kernel.dijkstra_chunk`).
+round the direction it was entered by; the queue is Dial's buckets, exact here
+(`_native_kernel.dial_chunk`).
 
 State constraint (the safety height en route): at loss L the glider is at ALT - L, which
 must stay >= z + clearance, i.e. L <= B = ALT - z - clearance along every edge. B is
@@ -105,7 +106,7 @@ def native_search(terrain: Terrain, start: tuple[float, float, float], glide: Gl
     """
     from scipy.ndimage import minimum_filter
 
-    from glideplan.reach._native_kernel import dijkstra_chunk
+    from glideplan.reach._native_kernel import dial_chunk
 
     alt = start[2]
     z = np.asarray(terrain.z, dtype=float)
@@ -124,20 +125,29 @@ def native_search(terrain: Terrain, start: tuple[float, float, float], glide: Gl
     for k, v in zip(seeds, seed_loss, strict=True):
         if v <= block.flat[k] and v < loss[k]:
             loss[k], parent[k] = v, -1
-    heap_key = np.empty(1 << 16)
-    heap_node = np.empty(1 << 16, dtype=np.int64)
-    size = 0
-    for k in np.flatnonzero(parent == -1):
-        heap_key, heap_node, size = _push(heap_key, heap_node, size, loss[k], int(k))
-    top = float(np.max(block))
     done = np.zeros(block.size, dtype=np.bool_)
     counts = np.zeros(3, dtype=np.int64)
     aspect = math.cos(math.radians(float(np.mean(terrain.lat)))) * terrain.dlon / terrain.dlat
-    pops = 0
-    while size > 0:
-        heap_key, heap_node, size, n, last = dijkstra_chunk(
-            block, bmin, costs, STENCIL, loss, parent, done, heap_key, heap_node, size, chunk,
-            aspect, counts)
+    top = float(np.max(block))
+    finite = costs[np.isfinite(costs)]
+    delta = float(np.min(finite)) * (1 - 1e-9) if finite.size else 1.0
+    nb = max(int(top / delta) + 2, 1) if top > 0 else 1
+    head = np.full(nb, -1, dtype=np.int64)
+    ent_node = np.empty(1 << 16, dtype=np.int64)
+    ent_next = np.empty(1 << 16, dtype=np.int64)
+    n_ent, free = 0, -1
+    for k in np.flatnonzero(parent == -1):
+        if n_ent >= ent_node.size:
+            ent_node = np.concatenate([ent_node, np.empty_like(ent_node)])
+            ent_next = np.concatenate([ent_next, np.empty_like(ent_next)])
+        b = int(loss[k] / delta)
+        ent_node[n_ent], ent_next[n_ent], head[b] = k, head[b], n_ent
+        n_ent += 1
+    cur = pops = 0
+    while cur < nb:
+        ent_node, ent_next, free, n_ent, cur, n, last = dial_chunk(
+            block, bmin, costs, STENCIL, loss, parent, done, head, ent_node, ent_next, free,
+            n_ent, cur, delta, chunk, aspect, counts)
         pops += n
         if on_chunk is not None and top > 0:
             on_chunk(min(max(last / top, 0.0), 1.0) ** 2)
@@ -147,24 +157,6 @@ def native_search(terrain: Terrain, start: tuple[float, float, float], glide: Gl
     par = np.where(ok, (par // nxp - PAD) * nx + par % nxp - PAD, par)
     return NativeSearch(inner_loss, par, block[PAD:-PAD, PAD:-PAD].copy(), pops,
                         int(counts[1]), int(counts[2]))
-
-
-def _push(key: FloatArray, node: IntArray, size: int, k: float, v: int
-          ) -> tuple[FloatArray, IntArray, int]:
-    """Push onto the binary heap (Python side, for the seeds)."""
-    if size >= key.size:
-        key = np.concatenate([key, np.empty(key.size)])
-        node = np.concatenate([node, np.empty(node.size, dtype=np.int64)])
-    i = size
-    key[i], node[i] = k, v
-    while i > 0:
-        p = (i - 1) // 2
-        if key[p] <= key[i]:
-            break
-        key[p], key[i] = key[i], key[p]
-        node[p], node[i] = node[i], node[p]
-        i = p
-    return key, node, size + 1
 
 
 def _seeds(terrain: Terrain, start: tuple[float, float, float], glide: Glide,
