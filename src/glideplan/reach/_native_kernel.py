@@ -152,3 +152,123 @@ def dial_chunk(block: Any, bmin: Any, costs: Any, stencil: Any, loss: Any, paren
     counts[1] += pushes
     counts[2] += coned
     return ent_node, ent_next, free, n_ent, cur, settled, last
+
+
+@numba.njit(cache=True, inline="always")
+def _bilinear_up(f: Any, fi: float, fj: float) -> float:
+    """Bilinear floor at fractional (row, column); +inf when a corner with weight is +inf."""
+    ny, nx = f.shape
+    i = min(int(fi), ny - 2)
+    j = min(int(fj), nx - 2)
+    wy, wx = fi - i, fj - j
+    acc = 0.0
+    for di, w1 in ((0, 1.0 - wy), (1, wy)):
+        for dj, w2 in ((0, 1.0 - wx), (1, wx)):
+            w = w1 * w2
+            if w > 0.0:
+                v = f[i + di, j + dj]
+                if v == np.inf:
+                    return np.inf
+                acc += w * v
+    return acc
+
+
+@numba.njit(cache=True, inline="always")
+def _edge_floor(floor: Any, i: int, j: int, di: int, dj: int, c: float) -> float:
+    """Least altitude at node (i, j) for the straight flight to (i + di, j + dj) (loss c)
+    to keep the floor at its half-cell samples: max_s floor(s) + s c (its ends excluded)."""
+    n = 2 * max(abs(di), abs(dj))
+    worst = -np.inf
+    for k in range(1, n):
+        s = k / n
+        f = _bilinear_up(floor, i + s * di, j + s * dj) + s * c
+        worst = max(worst, f)
+    return worst
+
+
+@numba.njit(cache=True)
+def dial_back_chunk(floor: Any, fmax: Any, costs: Any, stencil: Any, need: Any, parent: Any,
+                    done: Any, head: Any, ent_node: Any, ent_next: Any, free: int, n_ent: int,
+                    cur: int, delta: float, base: float, chunk: int, aspect: float
+                    ) -> tuple[Any, Any, int, int, int, int]:
+    """The backward search (`reach.native.native_back_search`): need[v] = the least altitude
+    at v from which the target is reached keeping the floor (terrain + clearance) along
+    every edge: need_v = max(need_u + c(v -> u), floor_v, max_s floor(s) + s c) relaxed from
+    u to v = u + offset; costs[i, e] is the loss of flying from v back to u. Non-decreasing
+    and >= need_u + c, so Dial's buckets (key need - base, width delta <= least c) stay
+    exact. Cone pruning as `dial_chunk` where the floor cannot bind within 4 cells
+    (need_u >= fmax, the largest floor there: every edge from u is then free). Returns
+    (ent_node, ent_next, free, n_ent, cur, settled)."""
+    nx = floor.shape[1]
+    m = stencil.shape[0]
+    nb = head.size
+    flat = np.empty(m, dtype=np.int64)
+    ux = np.empty(m)
+    uy = np.empty(m)
+    for e in range(m):
+        flat[e] = stencil[e, 0] * nx + stencil[e, 1]
+        ex, ey = stencil[e, 1] * aspect, float(stencil[e, 0])
+        n = math.hypot(ex, ey)
+        ux[e], uy[e] = ex / n, ey / n
+    fflat = floor.ravel()
+    settled = 0
+    while cur < nb and settled < chunk:
+        en = head[cur]
+        if en < 0:
+            cur += 1
+            continue
+        head[cur] = ent_next[en]
+        u = ent_node[en]
+        ent_next[en] = free
+        free = en
+        if done[u]:
+            continue
+        done[u] = True
+        nu = need[u]
+        settled += 1
+        i = u // nx
+        j = u - i * nx
+        crow = costs[i]
+        cone = False
+        px = py = 0.0
+        pu = parent[u]
+        free_u = nu >= fmax[i, j]
+        if pu >= 0 and free_u:
+            pi = pu // nx
+            px, py = (j - (pu - pi * nx)) * aspect, float(i - pi)
+            n = math.hypot(px, py)
+            px, py, cone = px / n, py / n, True
+        for e in range(m):
+            if cone and ux[e] * px + uy[e] * py < CONE:
+                continue
+            v = u + flat[e]
+            if fflat[v] == np.inf:
+                continue
+            nv = max(nu + crow[e], fflat[v])
+            if not free_u:
+                # the flight v -> u starts at v: samples measured from v
+                nv = max(nv, _edge_floor(floor, i + stencil[e, 0], j + stencil[e, 1],
+                                         -stencil[e, 0], -stencil[e, 1], crow[e]))
+            if nv >= need[v]:
+                continue
+            need[v] = nv
+            parent[v] = u
+            b = int((nv - base) / delta)
+            if b >= nb:
+                continue
+            if free >= 0:
+                en = free
+                free = ent_next[en]
+            else:
+                if n_ent >= ent_node.size:
+                    nn = np.empty(2 * ent_node.size, dtype=np.int64)
+                    nn[:n_ent] = ent_node[:n_ent]
+                    nx2 = np.empty(2 * ent_node.size, dtype=np.int64)
+                    nx2[:n_ent] = ent_next[:n_ent]
+                    ent_node, ent_next = nn, nx2
+                en = n_ent
+                n_ent += 1
+            ent_node[en] = v
+            ent_next[en] = head[b]
+            head[b] = en
+    return ent_node, ent_next, free, n_ent, cur, settled

@@ -43,7 +43,17 @@ from numpy.typing import NDArray
 from glideplan.reach.model import Glide
 from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
 
-__all__ = ["SEED_CELLS", "STENCIL", "NativeSearch", "native_search", "node_path"]
+__all__ = [
+    "SEED_CELLS",
+    "STENCIL",
+    "BackSearch",
+    "NativeSearch",
+    "back_path",
+    "native_back_search",
+    "native_search",
+    "need_at",
+    "node_path",
+]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -81,16 +91,17 @@ class NativeSearch:
     coned: int = 0
 
 
-def _costs(glide: Glide, lat: FloatArray, dlat: float, dlon: float) -> FloatArray:
+def _costs(glide: Glide, lat: FloatArray, dlat: float, dlon: float, reverse: bool = False
+           ) -> FloatArray:
     """Loss per edge (ny, 48): d / r(chi) at the mid latitude of each edge (inf: no
-    progress)."""
+    progress); reverse: flown the other way (end to start: the backward search)."""
     hy = EARTH_RADIUS_M * math.radians(dlat)
     di, dj = STENCIL[:, 0].astype(float), STENCIL[:, 1].astype(float)
     mid = np.radians(lat[:, None] + 0.5 * di[None, :] * dlat)
     hx = EARTH_RADIUS_M * np.cos(mid) * math.radians(dlon)
     east, north = dj[None, :] * hx, di[None, :] * hy
     d = np.hypot(east, north)
-    chi = np.arctan2(north, east)
+    chi = np.arctan2(-north, -east) if reverse else np.arctan2(north, east)
     r = np.asarray(glide.ratio_fast(chi.ravel()), dtype=float).reshape(chi.shape)
     ok = np.isfinite(r) & (r > 0)
     return np.where(ok, d / np.where(ok, r, 1.0), np.inf)
@@ -199,5 +210,126 @@ def node_path(search: NativeSearch, terrain: Terrain, i: int, j: int
         out.append(k)
         k = int(search.parent[k])
     out.reverse()
+    idx = np.array(out, dtype=np.int64)
+    return terrain.lat[idx // nx], terrain.lon[idx % nx]
+
+
+@dataclass(frozen=True, eq=False)
+class BackSearch:
+    """need (ny, nx): the least altitude (m MSL) at each node from which the target is
+    reached keeping the clearance en route and arriving at `target altitude` (inf: not
+    from below `ceiling`); parent: flat index of the next node towards the target (-1: the
+    target's own nodes)."""
+
+    need: FloatArray
+    parent: IntArray
+
+
+def native_back_search(terrain: Terrain, target: tuple[float, float, float], glide: Glide,
+                       clearance: float, ceiling: float, *, chunk: int = 400_000
+                       ) -> BackSearch:
+    """The backward search from `target` = (lat, lon, least arrival altitude): over the
+    terrain's own nodes and the 48-stencil of `native_search`, the least altitude needed
+    at every node below `ceiling` (`_native_kernel.dial_back_chunk`). Seeds: the nodes
+    within SEED_CELLS of the target, by the straight glide to it (altitude at the node =
+    arrival + d / r, and the floor along it)."""
+    from scipy.ndimage import maximum_filter
+
+    from glideplan.reach._native_kernel import dial_back_chunk
+    from glideplan.reach.flight import rhumb
+
+    la_t, lo_t, arrive = target
+    z = np.asarray(terrain.z, dtype=float)
+    ny, nx = z.shape
+    floor = np.full((ny + 2 * PAD, nx + 2 * PAD), np.inf)
+    inner = z + clearance
+    floor[PAD:-PAD, PAD:-PAD] = np.where(np.isfinite(inner), inner, np.inf)
+    fmax = maximum_filter(floor, size=2 * PAD + 1, mode="nearest")
+    lat_p = terrain.lat[0] + terrain.dlat * np.arange(-PAD, ny + PAD)
+    costs = _costs(glide, lat_p, terrain.dlat, terrain.dlon, reverse=True)
+    nxp = nx + 2 * PAD
+    need = np.full(floor.size, np.inf)
+    parent = np.full(floor.size, -2, dtype=np.int64)
+    fi = (la_t - terrain.lat[0]) / terrain.dlat
+    fj = (lo_t - terrain.lon[0]) / terrain.dlon
+    i0, j0 = round(fi), round(fj)
+    for i in range(max(i0 - SEED_CELLS, 0), min(i0 + SEED_CELLS, ny - 1) + 1):
+        for j in range(max(j0 - SEED_CELLS, 0), min(j0 + SEED_CELLS, nx - 1) + 1):
+            d, chi = rhumb(np.array(terrain.lat[i]), np.array(terrain.lon[j]),
+                           np.array(la_t), np.array(lo_t))
+            r = float(glide.ratio_fast(float(chi)))
+            c = float(d) / r if float(d) > 0 else 0.0
+            f = np.linspace(0.0, 1.0, 4 * SEED_CELLS + 3)
+            zz = terrain.elevation(terrain.lat[i] + f * (la_t - terrain.lat[i]),
+                                   terrain.lon[j] + f * (lo_t - terrain.lon[j]))
+            if not (np.all(np.isfinite(zz)) and math.isfinite(c)):
+                continue
+            k = (i + PAD) * nxp + j + PAD
+            need[k] = max(arrive + c, float(np.max(zz + clearance + f * c)))
+            parent[k] = -1
+    finite = costs[np.isfinite(costs)]
+    delta = float(np.min(finite)) * (1 - 1e-9) if finite.size else 1.0
+    base = float(np.min(need))
+    if not math.isfinite(base):
+        return BackSearch(np.full((ny, nx), np.inf), np.full(ny * nx, -2, dtype=np.int64))
+    nb = max(int((ceiling - base) / delta) + 2, 1)
+    head = np.full(nb, -1, dtype=np.int64)
+    seeds = np.flatnonzero(parent == -1)
+    ent_node = np.empty(max(1 << 16, 2 * seeds.size), dtype=np.int64)
+    ent_next = np.empty_like(ent_node)
+    n_ent, free = 0, -1
+    for k in seeds:
+        b = int((need[k] - base) / delta)
+        if b < nb:
+            ent_node[n_ent], ent_next[n_ent], head[b] = k, head[b], n_ent
+            n_ent += 1
+    done = np.zeros(floor.size, dtype=np.bool_)
+    aspect = math.cos(math.radians(float(np.mean(terrain.lat)))) * terrain.dlon / terrain.dlat
+    cur = 0
+    while cur < nb:
+        ent_node, ent_next, free, n_ent, cur, _ = dial_back_chunk(
+            floor, fmax, costs, STENCIL, need, parent, done, head, ent_node, ent_next, free,
+            n_ent, cur, delta, base, chunk, aspect)
+    inner_need = need.reshape(floor.shape)[PAD:-PAD, PAD:-PAD].copy()
+    par = parent.reshape(floor.shape)[PAD:-PAD, PAD:-PAD].ravel()
+    par = np.where(par >= 0, (par // nxp - PAD) * nx + par % nxp - PAD, par)
+    return BackSearch(inner_need, par)
+
+
+def need_at(back: BackSearch, terrain: Terrain, glide: Glide, lat: float, lon: float
+            ) -> tuple[float, int, int]:
+    """(altitude needed at (lat, lon), row, column of the node to glide to first): the least
+    over the nodes within 2 cells of need + the straight glide's loss to the node (the
+    straight leg's terrain is left to the flight that verifies it); (inf, -1, -1): none."""
+    from glideplan.reach.flight import rhumb
+
+    fi = (lat - terrain.lat[0]) / terrain.dlat
+    fj = (lon - terrain.lon[0]) / terrain.dlon
+    ny, nx = terrain.shape
+    i0, j0 = round(fi), round(fj)
+    best = (math.inf, -1, -1)
+    for i in range(max(i0 - 2, 0), min(i0 + 2, ny - 1) + 1):
+        for j in range(max(j0 - 2, 0), min(j0 + 2, nx - 1) + 1):
+            v = float(back.need[i, j])
+            if not math.isfinite(v):
+                continue
+            d, chi = rhumb(np.array(lat), np.array(lon), np.array(terrain.lat[i]),
+                           np.array(terrain.lon[j]))
+            r = float(glide.ratio_fast(float(chi)))
+            tot = v + (float(d) / r if float(d) > 0 else 0.0)
+            if tot < best[0]:
+                best = (tot, i, j)
+    return best
+
+
+def back_path(back: BackSearch, terrain: Terrain, i: int, j: int
+              ) -> tuple[FloatArray, FloatArray]:
+    """The nodes from (i, j) along the parents to the target's nodes (lat, lon)."""
+    nx = terrain.shape[1]
+    k = i * nx + j
+    out = []
+    while k >= 0:
+        out.append(k)
+        k = int(back.parent[k])
     idx = np.array(out, dtype=np.int64)
     return terrain.lat[idx // nx], terrain.lon[idx % nx]
