@@ -191,3 +191,38 @@ def test_field_over_the_antimeridian(polar, tmp_path):
     p = r.points[0]
     assert p.reachable and p.arrival_margin_m == pytest.approx(90.0, abs=1.0)
     assert p.landable.lon == fld.lon  # reported as given
+
+
+def test_turnback_at_the_dem_resolution_matches_an_independent_bisection(polar):
+    """Home south of the ridge, the course east along its north side: the way home runs
+    through a col. The turn-back point (one backward search, the course walked, verified by
+    flights) against an independent search: bisection on the distance out with, at each
+    probe, the forward glide reach from that point (`glide_reach`, home as its landable) --
+    within one DEM cell (92.6 m)."""
+    from glideplan.reach import Glide, turnback
+    from glideplan.reach.turnback import destination
+
+    t = ridge_terrain()
+    la_h, lo_h = _xy_to_latlon(0.0, -5.0)
+    i = round((la_h - t.lat[0]) / t.dlat)
+    j = round((lo_h - t.lon[0]) / t.dlon)
+    home = Landable("HOME", float(t.lat[i]), float(t.lon[j]), float(t.z[i, j]))
+    la0, lo0 = _xy_to_latlon(-3.0, 4.0)
+    alt = 1350.0
+    r = turnback((la0, lo0, alt), 90.0, home, polar, terrain=t, safety_height=300.0)
+    assert r.ok and r.back is not None and r.back.min_clearance_m >= 300.0 - 1e-6
+    assert r.limited_by != "search budget"
+    r_out = float(Glide(polar).ratio(np.array([0.0]))[0])
+
+    def reachable(s):
+        la, lo = destination(la0, lo0, 0.0, np.array(s))
+        res = glide_reach(t, (float(la), float(lo), alt - s / r_out), polar, landables=[home],
+                          terrain_clearance=300.0, arrival_height=300.0)
+        return res.points[0].reachable
+
+    a, b = 0.0, 6000.0
+    assert reachable(a) and not reachable(b)
+    while b - a > 46.0:
+        mid = 0.5 * (a + b)
+        a, b = (mid, b) if reachable(mid) else (a, mid)
+    assert r.distance_m == pytest.approx(0.5 * (a + b), abs=92.6)
