@@ -275,6 +275,7 @@ def glide_reach(
         pt = native_point(fine, problem.start, glide, search, comp, clear_h, arrive_h, spacing,
                           crop)
         points.append(replace(pt, landable=lnd))
+    points = _shortfalls(points, fine, problem.start, glide, clear_h, arrive_h)
     timings["paths_s"] = time.perf_counter() - t
     t = time.perf_counter()
     z = np.asarray(fine.z, dtype=float)
@@ -302,6 +303,41 @@ def glide_reach(
         stop_reason="the search settled every node it can reach", front_steps=search.pops,
         timings=timings, warnings=tuple(warnings), terrain_clearance=clear_h,
         arrival_height=arrive_h)
+
+
+#: At most this many fields out of reach get their shortfall from a backward search.
+MAX_SHORTFALL_SEARCHES = 8
+
+
+def _shortfalls(points: list[ReachPoint], t: Terrain, start: tuple[float, float, float],
+                glide: Glide, clear_h: float, arrive_h: float) -> list[ReachPoint]:
+    """`short_by_m` of the fields out of reach from a backward search from each
+    (`native.native_back_search`: the least start altitude that reaches it with both
+    heights, on the search's grid) when that is less than the flown estimate (the straight
+    glide's bound, or a clear path's arrival deficit). Up to MAX_SHORTFALL_SEARCHES
+    fields; the rest keep the flown estimate."""
+    from glideplan.reach.native import native_back_search, need_at
+
+    out = []
+    budget = MAX_SHORTFALL_SEARCHES
+    for p in points:
+        if p.reachable or p.terrain_missing or budget == 0:
+            out.append(p)
+            continue
+        budget -= 1
+        lnd = p.landable
+        lon = wrap_lon(t, lnd.lon)
+        ceiling = start[2] + (p.short_by_m if p.short_by_m is not None else 5000.0) + 1.0
+        back = native_back_search(t, (lnd.lat, lon, lnd.elevation_m + arrive_h), glide,
+                                  clear_h, ceiling)
+        need = need_at(back, t, glide, start[0], start[1])[0]
+        short = max(need - start[2], 0.0)
+        if math.isfinite(need) and (p.short_by_m is None or short < p.short_by_m):
+            note = f"out of reach: short by {short:.0f} m (the least start altitude that " \
+                   "reaches it, on the terrain's grid)"
+            p = replace(p, short_by_m=short, note=note)
+        out.append(p)
+    return out
 
 
 def two_heights(safety_height: float | None, terrain_clearance: float | None,
