@@ -73,8 +73,9 @@ BugsOpt = Annotated[float, typer.Option(
     "--bugs", help="Bugs: percent less glide ratio at every speed (0-50).")]
 ResolutionOpt = Annotated[float | None, typer.Option(
     "--resolution", metavar="M",
-    help="Front grid spacing (m); default chosen for speed (terrain max-pooled per cell; "
-         "the example's: 700).",
+    help="Search grid spacing (m). reach: default the terrain's own (passes as the data "
+         "has them); coarser max-pools the terrain (narrow passes close). turnback: the "
+         "home check's grid (the example's: 700).",
     show_default=False)]
 VoidsOpt = Annotated[str | None, typer.Option(
     "--fill-voids", metavar="nearest|linear",
