@@ -272,3 +272,77 @@ def dial_back_chunk(floor: Any, fmax: Any, costs: Any, stencil: Any, need: Any, 
             ent_next[en] = head[b]
             head[b] = en
     return ent_node, ent_next, free, n_ent, cur, settled
+
+
+@numba.njit(cache=True, inline="always")
+def _ratio(rtab: Any, th: float) -> float:
+    """The ratio table (0.1 deg steps from 0 to 360 deg inclusive) at th (rad, 0..2 pi),
+    linear between entries; 0 where a neighbour entry is 0 (no progress)."""
+    a = math.degrees(th) * 10.0
+    k = min(max(int(a), 0), 3599)
+    w = a - k
+    r0, r1 = rtab[k], rtab[k + 1]
+    if r0 <= 0.0 or r1 <= 0.0:
+        return 0.0
+    return (1.0 - w) * r0 + w * r1
+
+
+@numba.njit(cache=True)
+def straight_from_start(block: Any, loss: Any, parent: Any, fi0: float, fj0: float,
+                        lat0: float, dlat: float, dlon: float, radius: float,
+                        rtab: Any) -> int:
+    """Lower `loss` (inner grid, not padded; flat parent -1) to the straight glide's from the
+    start where that glide keeps the clearance: rays from the start (fi0, fj0) every half
+    cell at the largest radius `radius` (cells), each marched in half-cell steps to where the
+    glide first meets B (bilinear); a node at distance d between two rays is in sight when
+    d <= both rays' clear length. Metric: east = R cos(mid lat) dlon, north = R dlat (mid
+    lat between the start and the point: the rhumb line to 1e-6). rtab: the ground glide
+    ratio at 0.1 deg steps of chi (3601 values, CCW from east). Returns nodes lowered."""
+    ny, nx = block.shape
+    rr = 6371008.8
+    hy = rr * math.radians(dlat)
+    nray = max(8, int(4.0 * math.pi * radius))
+    clear = np.zeros(nray)
+    for k in range(nray):
+        th = 2.0 * math.pi * k / nray
+        r = _ratio(rtab, th)
+        if not r > 0.0:
+            continue
+        t = 0.0
+        while True:
+            t += 0.5
+            fi = fi0 + t * math.sin(th)
+            la = lat0 + (fi - fi0) * dlat
+            hx = rr * math.cos(math.radians(0.5 * (lat0 + la))) * math.radians(dlon)
+            fj = fj0 + t * math.cos(th) * hy / hx
+            if fi < 0.0 or fi > ny - 1 or fj < 0.0 or fj > nx - 1:
+                break
+            if t * hy / r > _bilinear(block, fi, fj):
+                break
+            clear[k] = t
+    lowered = 0
+    for i in range(ny):
+        la = lat0 + (i - fi0) * dlat
+        hx = rr * math.cos(math.radians(0.5 * (lat0 + la))) * math.radians(dlon)
+        y = (i - fi0) * hy
+        for j in range(nx):
+            x = (j - fj0) * hx
+            d = math.hypot(x, y)
+            th = math.atan2(y, x)
+            if th < 0.0:
+                th += 2.0 * math.pi
+            a = th / (2.0 * math.pi) * nray
+            k0 = int(a) % nray
+            k1 = (k0 + 1) % nray
+            if d / hy > min(clear[k0], clear[k1]):
+                continue
+            r = _ratio(rtab, th)
+            if not r > 0.0:
+                continue
+            v = d / r
+            u = i * nx + j
+            if v < loss[i, j] and v <= block[i, j]:
+                loss[i, j] = v
+                parent[u] = -1
+                lowered += 1
+    return lowered

@@ -166,8 +166,29 @@ def native_search(terrain: Terrain, start: tuple[float, float, float], glide: Gl
     par = parent.reshape(block.shape)[PAD:-PAD, PAD:-PAD].ravel()
     ok = par >= 0
     par = np.where(ok, (par // nxp - PAD) * nx + par % nxp - PAD, par)
-    return NativeSearch(inner_loss, par, block[PAD:-PAD, PAD:-PAD].copy(), pops,
-                        int(counts[1]), int(counts[2]))
+    inner_block = block[PAD:-PAD, PAD:-PAD].copy()
+    _straight(terrain, start, glide, inner_block, inner_loss, par)
+    return NativeSearch(inner_loss, par, inner_block, pops, int(counts[1]), int(counts[2]))
+
+
+def _straight(terrain: Terrain, start: tuple[float, float, float], glide: Glide,
+              block: FloatArray, loss: FloatArray, parent: IntArray) -> None:
+    """Where the straight glide from the start keeps the clearance, its loss (exact, not the
+    stencil's up to 0.76 % more): `_native_kernel.straight_from_start`, in place."""
+    from glideplan.reach._native_kernel import straight_from_start
+
+    fi0 = (start[0] - terrain.lat[0]) / terrain.dlat
+    fj0 = (start[1] - terrain.lon[0]) / terrain.dlon
+    reached = np.isfinite(loss)
+    if not reached.any():
+        return
+    ii, jj = np.nonzero(reached)
+    radius = float(np.max(np.hypot(ii - fi0, (jj - fj0) * terrain.dlon / terrain.dlat))) + 2
+    chi = np.radians(np.arange(3601) / 10.0)
+    rtab = np.asarray(glide.ratio_fast(chi), dtype=float)
+    rtab = np.where(np.isfinite(rtab) & (rtab > 0), rtab, 0.0)
+    straight_from_start(block, loss, parent, fi0, fj0, float(start[0]), terrain.dlat,
+                        terrain.dlon, radius, rtab)
 
 
 def _seeds(terrain: Terrain, start: tuple[float, float, float], glide: Glide,
