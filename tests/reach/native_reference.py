@@ -6,8 +6,11 @@ gcd = 1; an edge of ground length d in direction chi costs d / r(chi) metres of 
 (r: `Glide.ratio`, the model's ground glide ratio in the wind). A node is entered only when
 the loss there is <= ALT - z - clearance, and every edge's midpoint and quarter points
 (bilinear terrain) must keep it too. Its own accuracy: a straight line between two stencil
-directions costs up to 1 / cos(9.2 deg) - 1 = 1.3 % more than its true loss (the largest
-gap, 0 to 18.4 deg), never less: tolerances in the tests come from this.
+directions costs up to 1 / cos(9.2 deg) - 1 = 1.3 % more than its true loss in still air
+(the largest gap, 0 to 18.4 deg), never less; in wind the gauge is not round and the bound
+is `reference_error(glide)` (the largest ratio, over directions, of the cost of the two
+bracketing stencil edges that add up to a unit step, to the true cost): tolerances in the
+tests come from this.
 """
 
 from __future__ import annotations
@@ -19,8 +22,27 @@ import numpy as np
 
 from glideplan.terrain.grid import EARTH_RADIUS_M
 
-#: the reference's largest relative overestimate of the altitude lost (module docstring)
+#: the reference's largest relative overestimate of the altitude lost in still air
 REFERENCE_ERROR = 1 / math.cos(math.radians(18.435 / 2)) - 1
+
+
+def reference_error(glide):
+    """The largest relative overestimate of a straight line's loss by the 32-stencil in this
+    glide's wind (square cells): max over directions theta of (a c(u1) + b c(u2)) / c(theta)
+    - 1 where a u1 + b u2 = the unit vector of theta (u1, u2 the bracketing stencil
+    directions, a, b >= 0) and c = |v| / r(direction of v)."""
+    offs = sorted({math.atan2(a, b) % (2 * math.pi) for a in range(-3, 4)
+                   for b in range(-3, 4) if (a or b) and math.gcd(abs(a), abs(b)) == 1})
+    dirs = np.array([*offs, offs[0] + 2 * math.pi])
+    th = np.linspace(0.0, 2 * math.pi, 7200, endpoint=False)
+    k = np.searchsorted(dirs, th, side="right") - 1
+    t1, t2 = dirs[k], dirs[k + 1]
+    # theta's unit vector = a u(t1) + b u(t2) (unit u): Cramer's rule
+    det = np.sin(t2 - t1)
+    a = np.sin(t2 - th) / det
+    b = np.sin(th - t1) / det
+    cost = a / glide.ratio(t1) + b / glide.ratio(t2)
+    return float(np.max(cost * glide.ratio(th)) - 1.0)
 
 
 def reference_loss(terrain, start, glide, clearance):

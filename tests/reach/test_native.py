@@ -11,7 +11,7 @@ from glideplan.reach import Landable, glide_reach
 from glideplan.terrain import Terrain
 
 from .conftest import flat_terrain
-from .native_reference import REFERENCE_ERROR, reference_loss
+from .native_reference import reference_error, reference_loss
 
 LAT0, LON0 = 46.0, 7.0
 DLAT = 3 / 3600  # 92.6 m
@@ -68,7 +68,15 @@ def case(polar):
     return t, start, fields, r, ref
 
 
-def test_fields_behind_cols_match_the_reference(case):
+@pytest.fixture(scope="module")
+def ref_error(polar):
+    """The reference's own overestimate in this wind (`reference_error`)."""
+    from glideplan.reach import Glide
+
+    return reference_error(Glide(polar, 0.0, WIND))
+
+
+def test_fields_behind_cols_match_the_reference(case, ref_error):
     """Reachability and arrival of every field as the native reference (+-1 % of the
     altitude lost, widened by the reference's own overestimate, <= 1.3 %); the cols are
     flown through (detour); the crest is too high for the straight glide."""
@@ -84,10 +92,10 @@ def test_fields_behind_cols_match_the_reference(case):
             assert not pt.reachable and pt.short_by_m is not None
             ref_short = lnd.elevation_m + 300.0 - (ALT - ref_loss)
             assert pt.short_by_m == pytest.approx(ref_short, abs=0.01 * ref_loss
-                                                  + REFERENCE_ERROR * ref_loss)
+                                                  + ref_error * ref_loss)
             continue
         loss = ALT - pt.arrival_altitude_m
-        assert ref_loss / (1 + REFERENCE_ERROR) - 0.01 * ref_loss <= loss <= ref_loss * 1.01
+        assert ref_loss / (1 + ref_error) - 0.01 * ref_loss <= loss <= ref_loss * 1.01
         assert pt.detour and pt.verified and pt.min_clearance_m >= 150.0 - 1e-6
         assert pt.short_by_m is None and not pt.terrain_missing
         straight = pt.path.waypoints_lat.size == 2
@@ -109,10 +117,10 @@ def test_a_coarse_grid_is_conservative_and_says_so(polar, case):
     assert any("pass or gap narrower" in w for w in r.warnings)
 
 
-def test_footprint_within_3_percent_of_the_reference_and_never_beyond(case):
+def test_footprint_within_3_percent_of_the_reference_and_never_beyond(case, ref_error):
     """Nodes in the footprint (margin >= 0) against the reference's: area within 3 %; no node
     of the footprint is one the reference cannot reach even with its loss deflated by its
-    own overestimate (REFERENCE_ERROR); every reachable field inside the drawn polygon."""
+    own overestimate (ref_error); every reachable field inside the drawn polygon."""
     from matplotlib.path import Path
 
     t, _start, _fields, r, ref = case
@@ -121,7 +129,7 @@ def test_footprint_within_3_percent_of_the_reference_and_never_beyond(case):
     ours = r.margin >= 0
     theirs = ALT - ref - z - 300.0 >= 0
     assert abs(ours.sum() - theirs.sum()) <= 0.03 * theirs.sum()
-    generous = ALT - ref / (1 + REFERENCE_ERROR) - z - 300.0 >= 0
+    generous = ALT - ref / (1 + ref_error) - z - 300.0 >= 0
     assert not np.any(ours & ~generous)
     for pt in r.points:
         if pt.reachable:
