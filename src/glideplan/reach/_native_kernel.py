@@ -301,6 +301,9 @@ def straight_from_start(block: Any, loss: Any, parent: Any, fi0: float, fj0: flo
     ny, nx = block.shape
     rr = 6371008.8
     hy = rr * math.radians(dlat)
+    hxr = np.empty(ny)  # east spacing at the mid latitude between the start and each row
+    for i in range(ny):
+        hxr[i] = rr * math.cos(math.radians(lat0 + 0.5 * (i - fi0) * dlat)) * math.radians(dlon)
     nray = max(8, int(4.0 * math.pi * radius))
     clear = np.zeros(nray)
     for k in range(nray):
@@ -308,24 +311,28 @@ def straight_from_start(block: Any, loss: Any, parent: Any, fi0: float, fj0: flo
         r = _ratio(rtab, th)
         if not r > 0.0:
             continue
+        s_, c_ = math.sin(th), math.cos(th) * hy
         t = 0.0
         while True:
             t += 0.5
-            fi = fi0 + t * math.sin(th)
-            la = lat0 + (fi - fi0) * dlat
-            hx = rr * math.cos(math.radians(0.5 * (lat0 + la))) * math.radians(dlon)
-            fj = fj0 + t * math.cos(th) * hy / hx
-            if fi < 0.0 or fi > ny - 1 or fj < 0.0 or fj > nx - 1:
+            fi = fi0 + t * s_
+            if fi < 0.0 or fi > ny - 1:
+                break
+            fj = fj0 + t * c_ / hxr[min(int(fi + 0.5), ny - 1)]
+            if fj < 0.0 or fj > nx - 1:
                 break
             if t * hy / r > _bilinear(block, fi, fj):
                 break
             clear[k] = t
+    cmax = np.max(clear)
+    i_lo = max(int(fi0 - cmax) - 1, 0)
+    i_hi = min(int(fi0 + cmax) + 2, ny)
     lowered = 0
-    for i in range(ny):
-        la = lat0 + (i - fi0) * dlat
-        hx = rr * math.cos(math.radians(0.5 * (lat0 + la))) * math.radians(dlon)
+    for i in range(i_lo, i_hi):
+        hx = hxr[i]
         y = (i - fi0) * hy
-        for j in range(nx):
+        w = cmax * hy / hx + 2.0
+        for j in range(max(int(fj0 - w), 0), min(int(fj0 + w) + 1, nx)):
             x = (j - fj0) * hx
             d = math.hypot(x, y)
             th = math.atan2(y, x)

@@ -182,11 +182,10 @@ def _straight(terrain: Terrain, start: tuple[float, float, float], glide: Glide,
 
     fi0 = (start[0] - terrain.lat[0]) / terrain.dlat
     fj0 = (start[1] - terrain.lon[0]) / terrain.dlon
-    reached = np.isfinite(loss)
-    if not reached.any():
-        return
-    ii, jj = np.nonzero(reached)
-    radius = float(np.max(np.hypot(ii - fi0, (jj - fj0) * terrain.dlon / terrain.dlat))) + 2
+    ny, nx = loss.shape
+    aspect = math.cos(math.radians(float(start[0]))) * terrain.dlon / terrain.dlat
+    radius = max(math.hypot(a - fi0, (b - fj0) * aspect) for a in (0, ny - 1)
+                 for b in (0, nx - 1)) + 2
     chi = np.radians(np.arange(3601) / 10.0)
     rtab = np.asarray(glide.ratio_fast(chi), dtype=float)
     rtab = np.where(np.isfinite(rtab) & (rtab > 0), rtab, 0.0)
