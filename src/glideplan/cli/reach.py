@@ -420,7 +420,7 @@ def glide_turnback_cmd(
     _required(course, "--course DEG", ex)
     _required(home, "--home LAT LON ELEV_M", ex)
     plot = check_figure_file(plot)
-    mc_v, safety_v, resolution_v, start_v, wind_in = _shared(
+    mc_v, safety_v, _, start_v, wind_in = _shared(
         ex, start, wind, mc, safety_height, resolution)
     course_v = float(_or(course, ex, "course_deg", None))
     from glideplan.validation import check_physical
@@ -430,7 +430,7 @@ def glide_turnback_cmd(
     if write_example_dir is not None:
         tile, _, plr = _example_files(ex, write_example_dir)
         args = _flag_args(polar_file or plr, start_v, list(terrain or [tile]), wind_in, mc_v,
-                          safety_v, safety_glide_ratio, mass, ballast, bugs, resolution_v,
+                          safety_v, safety_glide_ratio, mass, ballast, bugs, resolution,
                           fill_voids)
         args += ["--course", repr(course_v), "--home", *(repr(float(v)) for v in home_v)]
         _write_example(ex, write_example_dir, "turnback", args, json_out)
@@ -450,7 +450,7 @@ def glide_turnback_cmd(
                           ex.home if home is None else (home_v[0], home_v[1], home_v[2]), p,
                           terrain=t, mc=mc_v, wind=w,
                           safety_height=safety_v, safety_glide_ratio=safety_glide_ratio,
-                          resolution_m=resolution_v)
+                          resolution_m=resolution)  # the example's 700 m grid: not used
     if json_out:
         print_json(result.to_dict())
     else:

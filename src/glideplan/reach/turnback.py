@@ -247,6 +247,7 @@ def turnback(
                         "the answer is clipped to the terrain's extent")
 
     probes: list[tuple[float, bool]] = []
+    spacing = grid.spacing_m  # the search's grid (the terrain's own unless pooled)
     t = time.perf_counter()
     home_in = bool(grid_contains(grid, np.array(home.lat), np.array(home.lon)))
     back_s = None
@@ -256,6 +257,7 @@ def turnback(
 
         sterrain, _, notes, _ = native_terrain(problem, glide.max_ratio, safety_height)
         warnings += notes
+        spacing = max(sterrain.spacing_m)
         back_s = native_back_search(sterrain, (home.lat, home.lon,
                                                home.elevation_m + safety_height),
                                     glide, safety_height, alt + 1.0)
@@ -283,7 +285,7 @@ def turnback(
     if not ok0:
         return _result(Status.UNREACHABLE, "home is out of reach already: turn back is not "
                        "enough", problem, home, course, glide, 0.0, P(0.0), None, "glide home",
-                       None, None, probes, fine, grid, warnings, {"total_s": time.perf_counter()
+                       None, None, probes, fine, spacing, warnings, {"total_s": time.perf_counter()
                                                                   - t_all})
     timings: dict[str, float] = {}
 
@@ -351,7 +353,7 @@ def turnback(
            f"{P(s_star)[2]:.0f} m: home reached at {back.arrival_altitude:.0f} m "
            f"({margin:+.1f} m over the safety height); limited by {limited}")
     return _result(Status.SOLVED, msg, problem, home, course, glide, s_star, P(s_star),
-                   outbound, limited, back, margin, probes, fine, grid, warnings, timings)
+                   outbound, limited, back, margin, probes, fine, spacing, warnings, timings)
 
 
 def _graph_crossing(back_s: Any, sterrain: Terrain, glide: Glide, P: Any, s_hi: float,
@@ -399,12 +401,12 @@ def _special_nodes(grid: ReachGrid, pts: list[tuple[float, float]]) -> list[tupl
 def _result(status: Status, message: str, problem: ReachProblem, home: Landable, course: float,
             glide: Glide, s: float, p: tuple[float, float, float], outbound: FlownPath | None,
             limited: str, back: FlownPath | None, margin: float | None,
-            probes: list[tuple[float, bool]], terrain: Terrain, grid: ReachGrid,
+            probes: list[tuple[float, bool]], terrain: Terrain, resolution_m: float,
             warnings: list[str], timings: dict[str, float]) -> TurnbackResult:
     return TurnbackResult(
         status=status, message=message, start=problem.start, home=home, course_deg=course,
         safety_height=problem.safety_height, glide=glide, distance_m=s, lat=p[0], lon=p[1],
         altitude_m=p[2], arrival_altitude_m=None if back is None else back.arrival_altitude,
         arrival_margin_m=margin, limited_by=limited, outbound=outbound, back=back,
-        probes=tuple(probes), terrain=terrain, resolution_m=grid.spacing_m,
+        probes=tuple(probes), terrain=terrain, resolution_m=resolution_m,
         warnings=tuple(warnings), timings=timings)
