@@ -234,3 +234,20 @@ def test_turnback_at_the_dem_resolution_matches_an_independent_bisection(polar):
         mid = 0.5 * (a + b)
         a, b = (mid, b) if reachable(mid) else (a, mid)
     assert r.distance_m == pytest.approx(0.5 * (a + b), abs=92.6)
+
+
+def test_field_beyond_the_longest_glide_is_out_of_reach_not_missing(polar):
+    """On the terrain but outside the searched crop (farther than the longest glide over the
+    lowest terrain): out of reach, not terrain_missing, short by the flat-ground straight
+    glide's deficit (closed form: elevation + arrival + d / r - ALT)."""
+    from glideplan.reach import Glide
+
+    t = flat_terrain(121, span_lat=0.6, span_lon=0.8)
+    lat0, lon0 = 46.3, 7.1
+    dlon = math.degrees(50000 / (6371008.8 * math.cos(math.radians(lat0))))
+    fld = Landable("far", lat0, lon0 + dlon, 0.0)
+    r = glide_reach(t, (lat0, lon0, 600.0), polar, landables=[fld])
+    p = r.points[0]
+    assert not p.reachable and not p.terrain_missing
+    ratio = float(Glide(polar).ratio(np.array([0.0]))[0])
+    assert p.short_by_m == pytest.approx(300.0 + 50000 / ratio - 600.0, rel=1e-3)

@@ -272,8 +272,12 @@ def glide_reach(
     points = []
     for lnd in problem.landables:
         comp = replace(lnd, lon=wrap_lon(fine, lnd.lon))
-        pt = native_point(fine, problem.start, glide, search, comp, clear_h, arrive_h, spacing,
-                          crop)
+        if (math.isfinite(float(terrain.elevation(comp.lat, comp.lon)))
+                and not math.isfinite(float(crop.elevation(comp.lat, comp.lon)))):
+            pt = _beyond_crop(problem.start, glide, comp, arrive_h)
+        else:
+            pt = native_point(fine, problem.start, glide, search, comp, clear_h, arrive_h,
+                              spacing, crop)
         points.append(replace(pt, landable=lnd))
     points = _shortfalls(points, fine, problem.start, glide, clear_h, arrive_h)
     timings["paths_s"] = time.perf_counter() - t
@@ -303,6 +307,23 @@ def glide_reach(
         stop_reason="the search settled every node it can reach", front_steps=search.pops,
         timings=timings, warnings=tuple(warnings), terrain_clearance=clear_h,
         arrival_height=arrive_h)
+
+
+def _beyond_crop(start: tuple[float, float, float], glide: Glide, lnd: Landable,
+                 arrive_h: float) -> ReachPoint:
+    """A field on the terrain but beyond the largest possible glide (outside the searched
+    crop): out of reach, short by at least the straight glide's deficit over flat ground,
+    elevation + arrival height + d / r(chi) - ALT (a lower bound: terrain only adds)."""
+    from glideplan.reach.flight import rhumb
+
+    d, chi = rhumb(np.array(start[0]), np.array(start[1]), np.array(lnd.lat),
+                   np.array(lnd.lon))
+    r = float(glide.ratio(float(chi))[0])
+    short = lnd.elevation_m + arrive_h + float(d) / r - start[2] if r > 0 else None
+    note = "beyond reach: farther than the longest glide over the lowest terrain" + (
+        f" (short by at least {short:.0f} m)" if short is not None else "")
+    return ReachPoint(lnd, False, None, None, None, False, None, False, None, None, None,
+                      None, note, None, short_by_m=short, terrain_missing=False)
 
 
 #: At most this many fields out of reach get their shortfall from a backward search.
