@@ -292,8 +292,9 @@ def straight_from_start(block: Any, loss: Any, parent: Any, fi0: float, fj0: flo
                         lat0: float, dlat: float, dlon: float, radius: float,
                         rtab: Any) -> int:
     """Lower `loss` (inner grid, not padded; flat parent -1) to the straight glide's from the
-    start where that glide keeps the clearance: rays from the start (fi0, fj0) every half
-    cell at the largest radius `radius` (cells), each marched in half-cell steps to where the
+    start where that glide keeps the clearance: rays from the start (fi0, fj0) a cell apart
+    at the largest radius `radius` (cells; a node lies within a cell of both rays
+    bracketing it), each marched in half-cell steps to where the
     glide first meets B (bilinear); a node at distance d between two rays is in sight when
     d <= both rays' clear length. Metric: east = R cos(mid lat) dlon, north = R dlat (mid
     lat between the start and the point: the rhumb line to 1e-6). rtab: the ground glide
@@ -304,7 +305,7 @@ def straight_from_start(block: Any, loss: Any, parent: Any, fi0: float, fj0: flo
     hxr = np.empty(ny)  # east spacing at the mid latitude between the start and each row
     for i in range(ny):
         hxr[i] = rr * math.cos(math.radians(lat0 + 0.5 * (i - fi0) * dlat)) * math.radians(dlon)
-    nray = max(8, int(4.0 * math.pi * radius))
+    nray = max(8, int(2.0 * math.pi * radius) + 1)
     clear = np.zeros(nray)
     for k in range(nray):
         th = 2.0 * math.pi * k / nray

@@ -182,10 +182,14 @@ def _straight(terrain: Terrain, start: tuple[float, float, float], glide: Glide,
 
     fi0 = (start[0] - terrain.lat[0]) / terrain.dlat
     fj0 = (start[1] - terrain.lon[0]) / terrain.dlon
-    ny, nx = loss.shape
+    reached = np.isfinite(loss)
+    rows = np.flatnonzero(reached.any(axis=1))
+    cols = np.flatnonzero(reached.any(axis=0))
+    if rows.size == 0:
+        return
     aspect = math.cos(math.radians(float(start[0]))) * terrain.dlon / terrain.dlat
-    radius = max(math.hypot(a - fi0, (b - fj0) * aspect) for a in (0, ny - 1)
-                 for b in (0, nx - 1)) + 2
+    radius = max(math.hypot(a - fi0, (b - fj0) * aspect) for a in (rows[0], rows[-1])
+                 for b in (cols[0], cols[-1])) + 2  # the reached nodes' bounding box
     chi = np.radians(np.arange(3601) / 10.0)
     rtab = np.asarray(glide.ratio_fast(chi), dtype=float)
     rtab = np.where(np.isfinite(rtab) & (rtab > 0), rtab, 0.0)
