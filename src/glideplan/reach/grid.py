@@ -1,5 +1,9 @@
 """The front's grid for a glide reach: terrain cropped to the reach, max-pooled, block times.
 
+Since issue 24 `glide_reach` and `turnback` search the terrain's own grid (`native_terrain`
+below, `reach.native`); `reach_grid` (the pooled front's grid) remains for containment
+checks and other callers.
+
 Domain: the terrain's nodes within the largest possible reach of the start,
 (ALT - safety - lowest terrain) x max ground glide ratio, plus a margin; the footprint is
 clipped to the terrain's extent (the front's `edges` say where it was).
