@@ -1,8 +1,10 @@
 """Benchmark: glide reach over terrain (issue 20) -- SRTM3 and SRTM1 tiles, and the straight
 glide per bearing (what XCSoar/LK8000 draw) against the exact reach behind a ridge.
 
-The issue's budgets: a 1201 x 1201 tile (SRTM3, 1 deg) with 8 landables <= 5 s, an SRTM1
-tile (3601 x 3601) <= 30 s, in one process, wall clock, reading the .hgt file included.
+The issues' budgets: a 1201 x 1201 tile (SRTM3, 1 deg) with 8 landables <= 5 s, an SRTM1
+tile (3601 x 3601) <= 20 s (issue 24: both at the tile's own spacing, the default since
+then), in one process, wall clock, reading the .hgt file included; CPU time is printed too
+(on the shared machine the wall clock is several times the CPU time under load).
 Terrain: synthetic alpine relief (valleys 400-900 m, ridges to ~3000 m, a 17 km ridge 3100 m
 high north-east of the start, higher than any glide over it), written as N46E007.hgt;
 DG-1001M polar (tests/data/polars), start 46.5 N 7.5 E at 3200 m, wind 8 m/s from 300 deg,
@@ -164,7 +166,7 @@ def main() -> None:
         if not args.skip_srtm1:
             p1 = write_hgt(pathlib.Path(d) / "N46E007.hgt", relief(3601))
             _, t1 = run(p1, 3601, polar)
-            print(f"    budget 30 s: {'PASS' if t1 <= 30 else 'FAIL'}")
+            print(f"    budget 20 s: {'PASS' if t1 <= 20 else 'FAIL'}")
     # the straight glide per bearing against the exact reach
     t = Terrain(res3.terrain.lat, res3.terrain.lon, res3.terrain.z)
     from glideplan.geodesy import wind_from_to_vector

@@ -57,6 +57,14 @@ SafetyOpt = Annotated[float | None, typer.Option(
     "--safety-height",
     help="Height kept above the terrain all along and above the field (m). Default 300 "
          "(the example's with --example).", show_default=False)]
+ClearanceOpt = Annotated[float | None, typer.Option(
+    "--terrain-clearance", metavar="M",
+    help="Height kept above the terrain en route (m). Default 150 (XCSoar's); "
+         "--safety-height sets it too.", show_default=False)]
+ArrivalOpt = Annotated[float | None, typer.Option(
+    "--arrival-height", metavar="M",
+    help="Height above a field on arrival (m). Default 300 (XCSoar's); --safety-height sets "
+         "it too.", show_default=False)]
 RatioOpt = Annotated[float | None, typer.Option(
     "--safety-glide-ratio", help="Cap the still-air glide ratio at R (min(polar L/D, R)).",
     show_default=False)]
@@ -67,8 +75,9 @@ BugsOpt = Annotated[float, typer.Option(
     "--bugs", help="Bugs: percent less glide ratio at every speed (0-50).")]
 ResolutionOpt = Annotated[float | None, typer.Option(
     "--resolution", metavar="M",
-    help="Front grid spacing (m); default chosen for speed (terrain max-pooled per cell; "
-         "the example's: 700).",
+    help="Search grid spacing (m). reach: default the terrain's own (passes as the data "
+         "has them); coarser max-pools the terrain (narrow passes close). turnback: the "
+         "home check's grid (the example's: 700).",
     show_default=False)]
 VoidsOpt = Annotated[str | None, typer.Option(
     "--fill-voids", metavar="nearest|linear",
@@ -80,7 +89,8 @@ PlotOpt = Annotated[pathlib.Path | None, typer.Option(
 
 _FLAGS = {
     "start": "--from", "start altitude": "--from ALT_M", "mc": "--mc",
-    "safety_height": "--safety-height", "safety_glide_ratio": "--safety-glide-ratio",
+    "safety_height": "--safety-height", "terrain_clearance": "--terrain-clearance",
+    "arrival_height": "--arrival-height", "safety_glide_ratio": "--safety-glide-ratio",
     "resolution": "--resolution", "wind": "--wind", "wind east": "--wind",
     "wind north": "--wind", "wind speed": "--wind SPEED_MS", "wind direction": "--wind FROM_DEG",
     "course": "--course", "home": "--home", "voids": "--fill-voids", "terrain": "--terrain",
@@ -262,6 +272,8 @@ def glide_reach_cmd(
     wind: WindOpt = None,
     mc: McOpt = None,
     safety_height: SafetyOpt = None,
+    terrain_clearance: ClearanceOpt = None,
+    arrival_height: ArrivalOpt = None,
     safety_glide_ratio: RatioOpt = None,
     mass: MassOpt = None,
     ballast: BallastOpt = 0.0,
@@ -303,13 +315,16 @@ def glide_reach_cmd(
     plot = check_figure_file(plot)
     check_output_file(geojson, "--geojson")
     check_output_file(kml, "--kml")
-    mc_v, safety_v, resolution_v, start_v, wind_in = _shared(
-        ex, start, wind, mc, safety_height, resolution)
+    mc_v, safety_v, _, start_v, wind_in = _shared(ex, start, wind, mc, safety_height, resolution)
     if write_example_dir is not None:
         tile, cup, plr = _example_files(ex, write_example_dir)
         args = _flag_args(polar_file or plr, start_v, list(terrain or [tile]), wind_in, mc_v,
-                          safety_v, safety_glide_ratio, mass, ballast, bugs, resolution_v,
+                          safety_v, safety_glide_ratio, mass, ballast, bugs, resolution,
                           fill_voids)
+        for flag, value in (("--terrain-clearance", terrain_clearance),
+                            ("--arrival-height", arrival_height)):
+            if value is not None:
+                args += [flag, repr(float(value))]
         args += ["--landables", str(landables or cup)]
         _write_example(ex, write_example_dir, "reach", args, json_out)
         return
@@ -329,10 +344,15 @@ def glide_reach_cmd(
     w = _wind(wind_in)
     if ex is not None:
         _announce_example(ex, start_v, p, wind_in, mc_v, safety_v, json_out)
+    # --safety-height (or the example's) sets both heights unless the new flags are given;
+    # the example's 700 m grid is not used: the search runs at the terrain's own spacing
+    one_height = safety_height if safety_height is not None or ex is None else safety_v
     with flag_names(**_FLAGS):
         result = glide_reach(t, (start_v[0], start_v[1], start_v[2]), p, landables=lands,
-                             mc=mc_v, wind=w, safety_height=safety_v,
-                             safety_glide_ratio=safety_glide_ratio, resolution_m=resolution_v)
+                             mc=mc_v, wind=w, safety_height=one_height,
+                             terrain_clearance=terrain_clearance, arrival_height=arrival_height,
+                             safety_glide_ratio=safety_glide_ratio, resolution_m=resolution,
+                             progress=True)
     if notes:  # into the result's warnings (JSON too)
         import dataclasses
 
@@ -342,14 +362,7 @@ def glide_reach_cmd(
         print_json(result.to_dict())
     else:
         typer.echo(result.message)
-        typer.echo(f"{'landable':<20} {'reach':>5} {'arrival m':>9} {'margin m':>8} "
-                   f"{'dist km':>8} detour")
-        for pt in result.points:
-            arr = "-" if pt.arrival_altitude_m is None else f"{pt.arrival_altitude_m:.0f}"
-            mar = "-" if pt.arrival_margin_m is None else f"{pt.arrival_margin_m:+.0f}"
-            dist = "-" if pt.distance_m is None else f"{pt.distance_m / 1000:.1f}"
-            typer.echo(f"{pt.landable.name[:20]:<20} {'yes' if pt.reachable else 'no':>5} "
-                       f"{arr:>9} {mar:>8} {dist:>8} {'yes' if pt.detour else 'no'}")
+        _table(result)
     print_warnings(result.warnings)
     for path, flag, write in ((geojson, "--geojson", result.write_geojson),
                               (kml, "--kml", result.write_kml)):
@@ -358,6 +371,21 @@ def glide_reach_cmd(
                 write(path)
             announce(f"wrote {path}", json_out)
     _save_plot(result, plot, json_out)
+
+
+def _table(result: Any) -> None:
+    """The landables, one line each: reachable, arrival, margin, distance, detour, and for a
+    field out of reach how much altitude is missing (or that its terrain is missing)."""
+    typer.echo(f"{'landable':<20} {'reach':>5} {'arrival m':>9} {'margin m':>8} "
+               f"{'dist km':>8} {'detour':>6}  short by")
+    for pt in result.points:
+        arr = "-" if pt.arrival_altitude_m is None else f"{pt.arrival_altitude_m:.0f}"
+        mar = "-" if pt.arrival_margin_m is None else f"{pt.arrival_margin_m:+.0f}"
+        dist = "-" if pt.distance_m is None else f"{pt.distance_m / 1000:.1f}"
+        short = ("no terrain" if pt.terrain_missing else "-" if pt.short_by_m is None
+                 else f"{pt.short_by_m:.0f} m")
+        typer.echo(f"{pt.landable.name[:20]:<20} {'yes' if pt.reachable else 'no':>5} "
+                   f"{arr:>9} {mar:>8} {dist:>8} {'yes' if pt.detour else 'no':>6}  {short}")
 
 
 @glide_app.command("turnback")
@@ -403,7 +431,7 @@ def glide_turnback_cmd(
     _required(course, "--course DEG", ex)
     _required(home, "--home LAT LON ELEV_M", ex)
     plot = check_figure_file(plot)
-    mc_v, safety_v, resolution_v, start_v, wind_in = _shared(
+    mc_v, safety_v, _, start_v, wind_in = _shared(
         ex, start, wind, mc, safety_height, resolution)
     course_v = float(_or(course, ex, "course_deg", None))
     from glideplan.validation import check_physical
@@ -413,7 +441,7 @@ def glide_turnback_cmd(
     if write_example_dir is not None:
         tile, _, plr = _example_files(ex, write_example_dir)
         args = _flag_args(polar_file or plr, start_v, list(terrain or [tile]), wind_in, mc_v,
-                          safety_v, safety_glide_ratio, mass, ballast, bugs, resolution_v,
+                          safety_v, safety_glide_ratio, mass, ballast, bugs, resolution,
                           fill_voids)
         args += ["--course", repr(course_v), "--home", *(repr(float(v)) for v in home_v)]
         _write_example(ex, write_example_dir, "turnback", args, json_out)
@@ -433,7 +461,7 @@ def glide_turnback_cmd(
                           ex.home if home is None else (home_v[0], home_v[1], home_v[2]), p,
                           terrain=t, mc=mc_v, wind=w,
                           safety_height=safety_v, safety_glide_ratio=safety_glide_ratio,
-                          resolution_m=resolution_v)
+                          resolution_m=resolution)  # the example's 700 m grid: not used
     if json_out:
         print_json(result.to_dict())
     else:

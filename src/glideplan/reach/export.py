@@ -54,7 +54,9 @@ def reach_geojson(result: ReachResult) -> dict[str, Any]:
                            "reachable": p.reachable,
                            "arrival_altitude_m": _r(p.arrival_altitude_m),
                            "arrival_margin_m": _r(p.arrival_margin_m),
-                           "detour": p.detour}})
+                           "detour": p.detour,
+                           "short_by_m": _r(p.short_by_m),
+                           "terrain_missing": p.terrain_missing}})
     for p in result.points:
         if p.path is not None and p.reachable:
             coords = [[round(float(x), 7), round(float(y), 7)]

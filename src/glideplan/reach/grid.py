@@ -1,5 +1,9 @@
 """The front's grid for a glide reach: terrain cropped to the reach, max-pooled, block times.
 
+Since issue 24 `glide_reach` and `turnback` search the terrain's own grid (`native_terrain`
+below, `reach.native`); `reach_grid` (the pooled front's grid) remains for containment
+checks and other callers.
+
 Domain: the terrain's nodes within the largest possible reach of the start,
 (ALT - safety - lowest terrain) x max ground glide ratio, plus a margin; the footprint is
 clipped to the terrain's extent (the front's `edges` say where it was).
@@ -34,7 +38,8 @@ from numpy.typing import NDArray
 from glideplan.reach.problem import ReachProblem
 from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
 
-__all__ = ["DEFAULT_MAX_NODES", "ReachGrid", "cell_nodes", "reach_grid"]
+__all__ = ["DEFAULT_MAX_NODES", "MAX_NATIVE_NODES", "ReachGrid", "cell_nodes", "native_terrain",
+           "reach_grid"]
 
 FloatArray = NDArray[np.float64]
 
@@ -112,3 +117,43 @@ def reach_grid(problem: ReachProblem, max_ratio: float) -> ReachGrid:
     spacing = max(spacing, EARTH_RADIUS_M * math.cos(math.radians(float(np.min(np.abs(lat)))))
                   * math.radians(float(lon[1] - lon[0])))
     return ReachGrid(lat, lon, z, block, fine, factor, spacing, tuple(notes))
+
+
+#: The native search (`reach.native`) runs on at most this many terrain nodes by default;
+#: more (an SRTM1 tile with a high start) are max-pooled by the smallest factor that fits.
+MAX_NATIVE_NODES = 14_000_000
+
+
+def native_terrain(problem: ReachProblem, max_ratio: float, clearance: float
+                   ) -> tuple[Terrain, int, list[str], Terrain]:
+    """The terrain the native search runs on: cropped to the largest possible reach,
+    (ALT - clearance - lowest terrain) x max ground glide ratio + 5 %, + 5 km; pooled (max,
+    so closed stays closed) only when `resolution_m` asks for a coarser grid or the crop has
+    more than MAX_NATIVE_NODES nodes. Returns (search terrain, pooling factor, notes, the
+    unpooled crop: paths are flown over it)."""
+    lat0, lon0, alt = problem.start
+    t = problem.terrain
+    notes: list[str] = []
+    zmin = float(np.nanmin(t.z))
+    reach = max(alt - clearance - zmin, 0.0) * max_ratio
+    margin = reach * 1.05 + 5000.0
+    dlat = math.degrees(margin / EARTH_RADIUS_M)
+    coslat = max(math.cos(math.radians(min(abs(lat0) + dlat, 89.0))), 1e-3)
+    dlon = math.degrees(margin / (EARTH_RADIUS_M * coslat))
+    fine = t.crop(lat0 - dlat, lat0 + dlat, lon0 - dlon, lon0 + dlon)
+    ny, nx = fine.shape
+    factor = max(1, math.ceil(math.sqrt(ny * nx / MAX_NATIVE_NODES)))
+    if problem.resolution_m is not None:
+        asked = max(1, round(problem.resolution_m / max(fine.spacing_m[1], 1e-9)))
+        if problem.resolution_m < 0.5 * fine.spacing_m[1]:
+            notes.append(f"resolution {problem.resolution_m:g} m is finer than the terrain "
+                         f"({fine.spacing_m[1]:.0f} m): the terrain's own grid is used")
+        factor = asked
+    factor = min(factor, max(1, (min(ny, nx) - 1) // 3))
+    if factor == 1:
+        return fine, 1, notes, fine
+    lat, lon, z = fine.pooled_max(factor, reach=factor)
+    notes.append(f"the terrain is max-pooled by {factor} ({factor * fine.spacing_m[1]:.0f} m "
+                 "cells): a pass or gap narrower than about two cells is closed; run at the "
+                 "terrain's own resolution (no --resolution) to judge passes")
+    return Terrain(lat, lon, z, fine.sources, fine.warnings), factor, notes, fine

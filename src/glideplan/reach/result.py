@@ -60,6 +60,10 @@ class ReachPoint:
     max_offset_m: float | None
     note: str
     track: Track | None = None
+    #: altitude (m) missing to reach the field (None when reachable or unknown)
+    short_by_m: float | None = None
+    #: the field lies on missing terrain (void or no tile): not judged
+    terrain_missing: bool = False
 
     def to_dict(self) -> dict[str, Any]:
         p = self.landable
@@ -81,6 +85,8 @@ class ReachPoint:
             "front_arrival_altitude_m": _num(self.front_arrival_altitude_m),
             "endpoint_error_m": _num(self.endpoint_error_m),
             "note": self.note,
+            "short_by_m": _num(self.short_by_m),
+            "terrain_missing": self.terrain_missing,
             "track": track,
         }
 
@@ -112,6 +118,10 @@ class ReachResult:
     front_steps: int = 0
     timings: dict[str, float] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
+    #: en-route terrain clearance (m) and arrival height above a field (m); None: both are
+    #: `safety_height` (results built before the two heights existed)
+    terrain_clearance: float | None = None
+    arrival_height: float | None = None
 
     @property
     def ok(self) -> bool:
@@ -129,6 +139,10 @@ class ReachResult:
             "start": {"lat": lat, "lon": lon, "altitude_m": alt,
                       "ground_m": _num(float(self.terrain.elevation(lat, lon)))},
             "safety_height_m": self.safety_height,
+            "terrain_clearance_m": (self.safety_height if self.terrain_clearance is None
+                                    else self.terrain_clearance),
+            "arrival_height_m": (self.safety_height if self.arrival_height is None
+                                 else self.arrival_height),
             "glide": self.glide.to_dict(),
             "polar": self.glide.polar.name,
             "grid": {"resolution_m": self.resolution_m, "pooling": self.pooling,

@@ -18,26 +18,33 @@ import math
 import pathlib
 import time
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
-from glideplan.reach.flight import FlownPath, fly, front_candidates
 from glideplan.reach.footprint import clearance_margin, footprint_polygons
-from glideplan.reach.grid import ReachGrid, reach_grid
+from glideplan.reach.grid import ReachGrid, cell_nodes
 from glideplan.reach.model import Glide
+from glideplan.reach.native import native_search
+from glideplan.reach.points import native_point
 from glideplan.reach.problem import Landable, ReachProblem
-from glideplan.reach.result import ReachPoint, ReachResult, flown_track
+from glideplan.reach.result import ReachPoint, ReachResult
 from glideplan.sailplane.polar import SailplanePolar
 from glideplan.solution import Status
 from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
 
-__all__ = ["descend_reached", "front_problem", "glide_reach", "interp_arrival", "snap_to_reached",
+__all__ = ["DEFAULT_ARRIVAL_HEIGHT_M", "DEFAULT_TERRAIN_CLEARANCE_M", "descend_reached",
+           "front_problem", "glide_reach", "interp_arrival", "snap_to_reached",
            "solve_front"]
 
 FloatArray = NDArray[np.float64]
+
+#: XCSoar's defaults: terrain clearance en route and arrival height above a field (m).
+DEFAULT_TERRAIN_CLEARANCE_M = 150.0
+DEFAULT_ARRIVAL_HEIGHT_M = 300.0
 
 #: Radius of the exact start disk, in grid spacings: 6 makes the front's first-order error
 #: near the source negligible (a 2-cell disk costs about one cell of altitude everywhere);
@@ -199,92 +206,6 @@ def descend_reached(arrival: FloatArray, glat: FloatArray, glon: FloatArray, la:
     return (np.array([glat[a] for a, _ in nodes]), np.array([glon[b] for _, b in nodes]))
 
 
-def _offset_m(path: FlownPath, lat0: float, lon0: float, lat1: float, lon1: float) -> float:
-    """Largest distance (m) of the path's waypoints from the straight line start -> goal."""
-    c = math.cos(math.radians(lat0))
-    x = EARTH_RADIUS_M * c * np.radians(path.waypoints_lon - lon0)
-    y = EARTH_RADIUS_M * np.radians(path.waypoints_lat - lat0)
-    gx = EARTH_RADIUS_M * c * math.radians(lon1 - lon0)
-    gy = EARTH_RADIUS_M * math.radians(lat1 - lat0)
-    L = math.hypot(gx, gy)
-    if L == 0:
-        return float(np.max(np.hypot(x, y)))
-    s = np.clip((x * gx + y * gy) / L**2, 0.0, 1.0)
-    return float(np.max(np.hypot(x - s * gx, y - s * gy)))
-
-
-def _point(problem: ReachProblem, grid: ReachGrid, fp: Any, res: Any, state: Any,
-           lnd: Landable) -> tuple[ReachPoint, str | None]:
-    from glideplan.fronts import backtrack
-
-    lat0, lon0, alt = problem.start
-    safety = problem.safety_height
-    glide, terrain = problem.glide, problem.terrain
-
-    def empty(note: str, front_alt: float | None = None) -> ReachPoint:
-        return ReachPoint(lnd, False, None, None, None, False, None, False, front_alt, None,
-                          None, None, note)
-
-    if not math.isfinite(float(terrain.elevation(lnd.lat, lnd.lon))):
-        return empty("outside the terrain"), f"{lnd.name}: outside the terrain"
-    T = interp_arrival(res.arrival, grid.lat, grid.lon, lnd.lat, lnd.lon)
-    front_alt = alt - T if math.isfinite(T) else None
-    candidates: list[FlownPath] = []
-    front_path: FlownPath | None = None
-    if math.isfinite(T):
-        ch = backtrack(fp, res.arrival, (lnd.lat, lnd.lon), T, 0.0, (lat0, lon0),
-                       state.start_radius_m)
-        if ch.complete:
-            sla, slo = snap_to_reached(ch.lat, ch.lon, res.arrival, grid.lat, grid.lon)
-            sla[0], slo[0], sla[-1], slo[-1] = lat0, lon0, lnd.lat, lnd.lon
-            found = front_candidates(glide, terrain, safety, sla, slo, alt)
-            candidates += found
-            front_path = found[-1]  # the last pulled path: what is reported if none is clear
-    straight = fly(glide, terrain, safety, np.array([lat0, lnd.lat]),
-                   np.array([lon0, lnd.lon]), alt)
-    candidates.append(straight)
-    clear = [c for c in candidates if c.clear and math.isfinite(c.arrival_altitude)]
-    if not clear and math.isfinite(T):
-        down = descend_reached(res.arrival, grid.lat, grid.lon, lnd.lat, lnd.lon)
-        if down is not None:
-            dla = np.concatenate([[lat0], down[0], [lnd.lat]])
-            dlo = np.concatenate([[lon0], down[1], [lnd.lon]])
-            found = front_candidates(glide, terrain, safety, dla, dlo, alt)
-            candidates += found
-            clear = [c for c in found if c.clear and math.isfinite(c.arrival_altitude)]
-    warning = None
-    if clear:
-        best = max(clear, key=lambda c: c.arrival_altitude)
-        verified = True
-    else:
-        # none keeps the safety height all along: report the best that at least stays above
-        # the terrain (out of reach over open ground: it says by how much), else the front's
-        above = [c for c in candidates if c.min_clearance_m >= 0.0
-                 and math.isfinite(c.arrival_altitude)]
-        if above:
-            best = max(above, key=lambda c: c.arrival_altitude)
-        elif front_path is not None and math.isfinite(front_path.arrival_altitude):
-            best = front_path
-        else:
-            why = "beyond reach" if front_alt is None else "no verified path"
-            return empty(why + " (the straight glide meets the terrain)", front_alt), None
-        verified = False
-        if front_alt is not None and front_alt >= lnd.elevation_m + safety:
-            warning = (f"{lnd.name}: the front reaches it but no path flown keeps the safety "
-                       f"height (best clearance {best.min_clearance_m:.1f} m < {safety:g} m): "
-                       "reported unreachable")
-    margin = best.arrival_altitude - lnd.elevation_m - safety
-    reachable = verified and margin >= -1e-6
-    offset = _offset_m(best, lat0, lon0, lnd.lat, lnd.lon)
-    note = "" if reachable else (
-        "arrives below the safety height" if margin < 0 else
-        "no path found keeps the safety height over the terrain")
-    return ReachPoint(lnd, reachable, best.arrival_altitude, margin, best.distance_m,
-                      offset > grid.spacing_m, best, verified, front_alt, best.min_clearance_m,
-                      best.endpoint_error_m, offset, note,
-                      flown_track(best, lat0, lon0)), warning
-
-
 def glide_reach(
     terrain: Terrain | Sequence[str | pathlib.Path],
     start: tuple[float, float, float],
@@ -293,20 +214,28 @@ def glide_reach(
     landables: Sequence[Landable] | str | pathlib.Path = (),
     mc: float = 0.0,
     wind: tuple[float, float] = (0.0, 0.0),
-    safety_height: float = 300.0,
+    safety_height: float | None = None,
     safety_glide_ratio: float | None = None,
     resolution_m: float | None = None,
     voids: str = "refuse",
+    terrain_clearance: float | None = None,
+    arrival_height: float | None = None,
+    progress: bool = False,
 ) -> ReachResult:
     """Where the glider at `start` = (lat, lon, altitude m MSL) can glide to, over `terrain`
-    in the steady `wind` (east, north m/s, towards), keeping `safety_height` (m) above the
-    terrain all along; each landable's path verified (module docstring).
+    in the steady `wind` (east, north m/s, towards), keeping `terrain_clearance` (m, default
+    150, XCSoar's) above the terrain all along and arriving `arrival_height` (m, default 300)
+    above a field; each landable's path verified (module docstring; `reach.native`).
 
-    terrain: a `Terrain` or .hgt/GeoTIFF paths (merged; `voids` as in `read_terrain`);
-    landables: `Landable`s or a SeeYou .cup file; mc: MacCready setting (m/s);
-    safety_glide_ratio: cap on the still-air glide ratio (`reach.model`); resolution_m: the
-    front grid's spacing (None: chosen for speed).
+    safety_height: the former single height: sets both (an explicit terrain_clearance or
+    arrival_height wins). terrain: a `Terrain` or .hgt/GeoTIFF paths (merged; `voids` as in
+    `read_terrain`); landables: `Landable`s or a SeeYou .cup file; mc: MacCready setting
+    (m/s); safety_glide_ratio: cap on the still-air glide ratio (`reach.model`);
+    resolution_m: a coarser search grid (max-pooled terrain: passes narrower than ~2 cells
+    close; None: the terrain's own). progress: a Rich bar on stderr after ~2 s.
     """
+    from glideplan.reach.grid import native_terrain
+
     t_all = time.perf_counter()
     warnings: list[str] = []
     if not isinstance(terrain, Terrain):
@@ -321,49 +250,188 @@ def glide_reach(
         if skipped:
             warnings.append(f"{skipped} waypoint(s) of the .cup file are not landable "
                             "(SeeYou style not 2-5) and were skipped")
+    clear_h, arrive_h = two_heights(safety_height, terrain_clearance, arrival_height)
     glide = Glide(polar, mc, wind, safety_glide_ratio)
-    problem = ReachProblem(terrain, start, glide, tuple(landables), safety_height, resolution_m)
-    lat0, lon0, alt = problem.start
+    start = (start[0], wrap_lon(terrain, start[1]), start[2])
+    problem = ReachProblem(terrain, start, glide, tuple(landables), arrive_h, resolution_m)
+    alt = problem.start[2]
     timings: dict[str, float] = {}
     t = time.perf_counter()
-    grid = reach_grid(problem, glide.max_ratio)
-    warnings += list(grid.notes)
-    fp = front_problem(grid, glide)
+    fine, factor, notes, crop = native_terrain(problem, glide.max_ratio, clear_h)
+    warnings += notes
     timings["grid_s"] = time.perf_counter() - t
     t = time.perf_counter()
-    t_max = alt - safety_height - float(np.nanmin(grid.z)) + 1.0
-    min_ratio = float(np.nanmin(glide.ratio(np.linspace(0, 2 * np.pi, 72, endpoint=False))))
-    state, res = solve_front(fp, lat0, lon0, t_max, grid.spacing_m, min_ratio)
+    bar = _SearchProgress(progress)
+    try:
+        search = native_search(fine, problem.start, glide, clear_h, on_chunk=bar)
+    finally:
+        bar.close()
     timings["front_s"] = time.perf_counter() - t
     t = time.perf_counter()
+    spacing = max(fine.spacing_m)
     points = []
     for lnd in problem.landables:
-        pt, warning = _point(problem, grid, fp, res, state, lnd)
-        points.append(pt)
-        if warning:
-            warnings.append(warning)
+        comp = replace(lnd, lon=wrap_lon(fine, lnd.lon))
+        if (math.isfinite(float(terrain.elevation(comp.lat, comp.lon)))
+                and not math.isfinite(float(crop.elevation(comp.lat, comp.lon)))):
+            pt = _beyond_crop(problem.start, glide, comp, arrive_h)
+        else:
+            pt = native_point(fine, problem.start, glide, search, comp, clear_h, arrive_h,
+                              spacing, crop)
+        points.append(replace(pt, landable=lnd))
+    points = _shortfalls(points, fine, problem.start, glide, clear_h, arrive_h)
     timings["paths_s"] = time.perf_counter() - t
     t = time.perf_counter()
-    margin = clearance_margin(res.arrival, grid.z, alt, safety_height, fp.grid.hx, fp.grid.hy,
-                              glide)
-    polys = footprint_polygons(grid.lat, grid.lon, margin)
+    z = np.asarray(fine.z, dtype=float)
+    hx = EARTH_RADIUS_M * np.cos(np.radians(fine.lat)) * math.radians(fine.dlon)
+    hy = EARTH_RADIUS_M * math.radians(fine.dlat)
+    margin = clearance_margin(search.loss, z, alt, arrive_h, hx, hy, glide)
+    burn_in_points(margin, fine, points)
+    polys = footprint_polygons(fine.lat, fine.lon, margin)
     timings["footprint_s"] = time.perf_counter() - t
     timings["total_s"] = time.perf_counter() - t_all
-    clipped = _clipped(margin, grid, terrain)
+    grid = ReachGrid(fine.lat, fine.lon, z, search.block, fine, factor, spacing, ())
+    clipped = _clipped(margin, grid, terrain) + _voids_touched(search.loss, z)
     if clipped:
         warnings.append("the footprint is clipped to the terrain's extent (it reaches the "
                         f"terrain's {', '.join(clipped)} edge(s) and may continue beyond)")
     n_ok = sum(p.reachable for p in points)
     message = (f"{n_ok} of {len(points)} landable(s) reachable; footprint "
-               f"{len(polys)} polygon(s) on a {grid.spacing_m:.0f} m grid"
+               f"{len(polys)} polygon(s) on a {spacing:.0f} m grid"
                + (f", clipped at the terrain's {'/'.join(clipped)} edge" if clipped else ""))
     return ReachResult(
         status=Status.SOLVED, message=message, start=problem.start,
-        safety_height=safety_height, glide=glide, points=tuple(points), footprint=polys,
-        lat=grid.lat, lon=grid.lon, arrival=res.arrival, margin=margin, z=grid.z,
-        terrain=grid.terrain, clipped=clipped, resolution_m=grid.spacing_m,
-        pooling=grid.factor, stop_reason=res.reason, front_steps=int(res.steps), timings=timings,
-        warnings=tuple(warnings))
+        safety_height=arrive_h, glide=glide, points=tuple(points), footprint=polys,
+        lat=fine.lat, lon=fine.lon, arrival=search.loss, margin=margin, z=z,
+        terrain=fine, clipped=clipped, resolution_m=spacing, pooling=factor,
+        stop_reason="the search settled every node it can reach", front_steps=search.pops,
+        timings=timings, warnings=tuple(warnings), terrain_clearance=clear_h,
+        arrival_height=arrive_h)
+
+
+def _beyond_crop(start: tuple[float, float, float], glide: Glide, lnd: Landable,
+                 arrive_h: float) -> ReachPoint:
+    """A field on the terrain but beyond the largest possible glide (outside the searched
+    crop): out of reach, short by at least the straight glide's deficit over flat ground,
+    elevation + arrival height + d / r(chi) - ALT (a lower bound: terrain only adds)."""
+    from glideplan.reach.flight import rhumb
+
+    d, chi = rhumb(np.array(start[0]), np.array(start[1]), np.array(lnd.lat),
+                   np.array(lnd.lon))
+    r = float(glide.ratio(float(chi))[0])
+    short = lnd.elevation_m + arrive_h + float(d) / r - start[2] if r > 0 else None
+    note = "beyond reach: farther than the longest glide over the lowest terrain" + (
+        f" (short by at least {short:.0f} m)" if short is not None else "")
+    return ReachPoint(lnd, False, None, None, None, False, None, False, None, None, None,
+                      None, note, None, short_by_m=short, terrain_missing=False)
+
+
+#: At most this many fields out of reach get their shortfall from a backward search.
+MAX_SHORTFALL_SEARCHES = 8
+
+
+def _shortfalls(points: list[ReachPoint], t: Terrain, start: tuple[float, float, float],
+                glide: Glide, clear_h: float, arrive_h: float) -> list[ReachPoint]:
+    """`short_by_m` of the fields out of reach from a backward search from each
+    (`native.native_back_search`: the least start altitude that reaches it with both
+    heights, on the search's grid) when that is less than the flown estimate (the straight
+    glide's bound, or a clear path's arrival deficit). Up to MAX_SHORTFALL_SEARCHES
+    fields; the rest keep the flown estimate."""
+    from glideplan.reach.native import native_back_search, need_at
+
+    out = []
+    budget = MAX_SHORTFALL_SEARCHES
+    for p in points:
+        if p.reachable or p.terrain_missing or budget == 0:
+            out.append(p)
+            continue
+        budget -= 1
+        lnd = p.landable
+        lon = wrap_lon(t, lnd.lon)
+        ceiling = start[2] + (p.short_by_m if p.short_by_m is not None else 5000.0) + 1.0
+        back = native_back_search(t, (lnd.lat, lon, lnd.elevation_m + arrive_h), glide,
+                                  clear_h, ceiling)
+        need = need_at(back, t, glide, start[0], start[1])[0]
+        short = max(need - start[2], 0.0)
+        if math.isfinite(need) and (p.short_by_m is None or short < p.short_by_m):
+            note = f"out of reach: short by {short:.0f} m (the least start altitude that " \
+                   "reaches it, on the terrain's grid)"
+            p = replace(p, short_by_m=short, note=note)
+        out.append(p)
+    return out
+
+
+def two_heights(safety_height: float | None, terrain_clearance: float | None,
+                arrival_height: float | None) -> tuple[float, float]:
+    """(en-route terrain clearance, arrival height) m: explicit values, else the former
+    single `safety_height` for both, else XCSoar's defaults (150, 300)."""
+    from glideplan.validation import check_nonnegative
+
+    if safety_height is not None:
+        check_nonnegative("safety_height", safety_height)
+    clear_h = terrain_clearance if terrain_clearance is not None else (
+        safety_height if safety_height is not None else DEFAULT_TERRAIN_CLEARANCE_M)
+    arrive_h = arrival_height if arrival_height is not None else (
+        safety_height if safety_height is not None else DEFAULT_ARRIVAL_HEIGHT_M)
+    return (float(check_nonnegative("terrain_clearance", clear_h)),
+            float(check_nonnegative("arrival_height", arrive_h)))
+
+
+def wrap_lon(terrain: Terrain, lon: float) -> float:
+    """`lon` + 360 k nearest the terrain's middle (a merged tile pair over 180 deg runs to
+    181 E; a field at 179.9 W is then at 180.1 E)."""
+    mid = 0.5 * (float(terrain.lon[0]) + float(terrain.lon[-1]))
+    return float(lon + 360.0 * round((mid - lon) / 360.0))
+
+
+def burn_in_points(margin: FloatArray, t: Terrain, points: Sequence[ReachPoint]) -> None:
+    """The 4 nodes round each reachable field get at least its verified arrival margin, so
+    the drawn footprint holds every field a flown path reaches (the search is conservative
+    by up to 0.76 %, `reach.native`)."""
+    for p in points:
+        if not (p.reachable and p.arrival_margin_m is not None):
+            continue
+        lon = wrap_lon(t, p.landable.lon)
+        for i, j in cell_nodes(t.lat, t.lon, [(p.landable.lat, lon)]):
+            margin[i, j] = max(margin[i, j], p.arrival_margin_m)
+
+
+def _voids_touched(loss: FloatArray, z: FloatArray) -> tuple[str, ...]:
+    """("missing terrain",) when a reached node neighbours a node with no data."""
+    nan = ~np.isfinite(z)
+    if not nan.any():
+        return ()
+    from scipy.ndimage import binary_dilation
+
+    return ("missing terrain",) if bool(np.any(binary_dilation(nan) & np.isfinite(loss))) \
+        else ()
+
+
+class _SearchProgress:
+    """Rich progress on stderr for the native search, shown once it has run ~2 s: the
+    fraction (loss reached / largest loss)^2 and Rich's estimate of the time remaining."""
+
+    def __init__(self, enabled: bool) -> None:
+        self.enabled = enabled
+        self.started = time.perf_counter()
+        self.bar: Any = None
+        self.task: Any = None
+
+    def __call__(self, fraction: float) -> None:
+        if not self.enabled:
+            return
+        if self.bar is None:
+            if time.perf_counter() - self.started < 2.0:
+                return
+            from glideplan.progress import start_progress_bar
+
+            self.bar, self.task = start_progress_bar("glide reach: search", 1000.0)
+        self.bar.update(self.task, completed=round(1000 * fraction))
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.stop()
+            self.bar = None
 
 
 def _clipped(margin: FloatArray, grid: ReachGrid, terrain: Terrain) -> tuple[str, ...]:

@@ -6,21 +6,24 @@ A(s) = ALT - s / r_out. The turn-back point is the largest s (the first, going o
 which home is still reachable with the safety height: from (P(s), A(s)) a path to home that
 keeps A - terrain >= safety all along and arrives >= home elevation + safety.
 
-Why forward fronts from P(s), not one front from home backwards: the altitude needed at a
-point to reach home is the backward front's time only while the terrain does not bind; over
-a ridge it is floored by the ridge (required >= terrain + safety), a lower bound on the
-backward arrival ("cannot be entered before ..."), which the front's block times (an upper
-bound) do not express. So each probe is one forward front from (P(s), A(s)) with the reach's
-block times, stopped at home (`glideplan.fronts`), and the answer at the probe is the flown
-return path (`reach.flight`; front path string-pulled, or the straight glide).
+One backward search from home on the terrain's own grid (`reach.native.native_back_search`):
+the least altitude need(x) at every node from which home is reached keeping the safety
+height all along and arriving at home elevation + safety. Over a ridge the need is floored
+by the terrain (need >= terrain + safety along every edge), which a Dijkstra expresses
+exactly as need_v = max(need_u + loss, floor along the edge) (non-decreasing, so the search
+stays exact); a front's block times could not, which is why the former search ran one
+forward front per probe and, at fine grids, stopped after 24 probes a cell apart.
 
 Search: the straight glide home without terrain bounds s from above (terrain only adds
 constraints), as does the first point where the outbound glide itself loses the safety
-height over the terrain (s_hi). From the last reachable probe (first s = 0), its return
-path's tail (the waypoints after the first) is flown from points further out, bisecting to
-1 m the largest s from which it still works; then one front probe one grid cell further
-asks whether another way home works there; if it does, repeat from it, if not that s is the
-turn-back point (the first crossing, to the grid's resolution; usually 2-3 fronts).
+height over the terrain (s_hi). The course is walked in thirds of a DEM cell to the first
+point where A(s) < need(P(s)) (the first crossing); the return from the last point before
+it is the node path string-pulled and flown (`reach.flight`); if that flight does not
+verify, bisection on s with flown probes. Then the verified return's tail is flown from
+further out (bisection to 1 m) and a probe a third of a cell beyond asks whether another
+way works (the graph is conservative by <= 0.76 %), until one fails. At most _MAX_PROBES
+such steps: a stop there is reported as `limited_by` "search budget", the distance then a
+lower bound.
 Without terrain the ground is flat at the home's elevation and the straight glide home is
 optimal (uniform wind, convex set of velocities): no front is run.
 """
@@ -40,7 +43,6 @@ from glideplan.reach.flight import FlownPath, fly, front_candidates, rhumb
 from glideplan.reach.grid import ReachGrid, cell_nodes, reach_grid
 from glideplan.reach.model import Glide
 from glideplan.reach.problem import Landable, ReachProblem
-from glideplan.reach.solve import front_problem, interp_arrival, snap_to_reached, solve_front
 from glideplan.sailplane.polar import SailplanePolar
 from glideplan.solution import Status
 from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
@@ -50,7 +52,7 @@ __all__ = ["TurnbackResult", "turnback"]
 
 FloatArray = NDArray[np.float64]
 _REFINE_TOL_M = 1.0
-_MAX_FRONT_STEPS = 24
+_MAX_PROBES = 60
 
 
 def destination(lat: float, lon: float, chi: float, s: FloatArray) -> tuple[FloatArray, ...]:
@@ -200,7 +202,6 @@ def turnback(
     r_out = float(out.ratio[0])
     if not (math.isfinite(r_out) and r_out > 0):
         raise InvalidParameterError("course", course, "the wind allows no progress along it")
-    min_ratio = float(np.nanmin(glide.ratio(np.linspace(0, 2 * np.pi, 72, endpoint=False))))
     fine = problem.terrain
 
     def P(s: float) -> tuple[float, float, float]:
@@ -246,46 +247,45 @@ def turnback(
                         "the answer is clipped to the terrain's extent")
 
     probes: list[tuple[float, bool]] = []
+    spacing = grid.spacing_m  # the search's grid (the terrain's own unless pooled)
+    t = time.perf_counter()
+    home_in = bool(grid_contains(grid, np.array(home.lat), np.array(home.lon)))
+    back_s = None
+    if use_front and home_in:
+        from glideplan.reach.grid import native_terrain
+        from glideplan.reach.native import native_back_search
+
+        sterrain, _, notes, _ = native_terrain(problem, glide.max_ratio, safety_height)
+        warnings += notes
+        spacing = max(sterrain.spacing_m)
+        back_s = native_back_search(sterrain, (home.lat, home.lon,
+                                               home.elevation_m + safety_height),
+                                    glide, safety_height, alt + 1.0)
 
     def probe(s: float) -> tuple[bool, FlownPath | None]:
         la, lo, a = P(s)
-        block = a - grid.z - safety_height
-        block = np.where(np.isfinite(block), block, -np.inf)
-        for (i, j) in _special_nodes(grid, [(la, lo), (home.lat, home.lon)]):
-            zp = float(fine.elevation(grid.lat[i], grid.lon[j]))
-            if math.isfinite(zp):
-                block[i, j] = a - zp - safety_height
-        fp = front_problem(grid, glide, block_time=block)
         cands = [fly(glide, fine, safety_height, np.array([la, home.lat]),
                      np.array([lo, home.lon]), a)]
-        t_max = a - home.elevation_m - safety_height
-        if t_max > 0 and use_front and home_in:
-            from glideplan.fronts import backtrack
+        if back_s is not None:
+            from glideplan.reach.native import back_path, need_at
 
-            state, res = solve_front(fp, la, lo, t_max + 1.0, grid.spacing_m, min_ratio,
-                                     goal=(home.lat, home.lon))
-            T = interp_arrival(res.arrival, grid.lat, grid.lon, home.lat, home.lon)
-            if math.isfinite(T):
-                ch = backtrack(fp, res.arrival, (home.lat, home.lon), T, 0.0, (la, lo),
-                               state.start_radius_m)
-                if ch.complete:
-                    sla, slo = snap_to_reached(ch.lat, ch.lon, res.arrival, grid.lat,
-                                               grid.lon)
-                    sla[0], slo[0], sla[-1], slo[-1] = la, lo, home.lat, home.lon
-                    cands += front_candidates(glide, fine, safety_height, sla, slo, a)
+            nd, i, j = need_at(back_s, sterrain, glide, la, lo)
+            if math.isfinite(nd):
+                bla, blo = back_path(back_s, sterrain, i, j)
+                cands += front_candidates(glide, fine, safety_height,
+                                          np.concatenate([[la], bla, [home.lat]]),
+                                          np.concatenate([[lo], blo, [home.lon]]), a)
         good = [c for c in cands if c.clear and
                 c.arrival_altitude - home.elevation_m - safety_height >= -1e-6]
         best = max(good, key=lambda c: c.arrival_altitude) if good else None
         probes.append((s, best is not None))
         return best is not None, best
 
-    t = time.perf_counter()
-    home_in = bool(grid_contains(grid, np.array(home.lat), np.array(home.lon)))
     ok0, path0 = probe(0.0) if home_in else (False, None)
     if not ok0:
         return _result(Status.UNREACHABLE, "home is out of reach already: turn back is not "
                        "enough", problem, home, course, glide, 0.0, P(0.0), None, "glide home",
-                       None, None, probes, fine, grid, warnings, {"total_s": time.perf_counter()
+                       None, None, probes, fine, spacing, warnings, {"total_s": time.perf_counter()
                                                                   - t_all})
     timings: dict[str, float] = {}
 
@@ -322,11 +322,15 @@ def turnback(
     if ok_hi and path_hi is not None:
         s_lo, back = s_hi, path_hi
     else:
-        # follow the last reachable probe's return path out with flights, then ask the front
-        # one cell further whether another way home still works (first crossing wins)
-        for _ in range(_MAX_FRONT_STEPS):
+        cell = min(sterrain.spacing_m) if back_s is not None else grid.spacing_m
+        if back_s is not None:
+            s_lo, back = _graph_crossing(back_s, sterrain, glide, P, s_hi, cell, probe,
+                                         s_lo, back)
+        # then the verified flights: the return path's tail flown from further out, and a
+        # probe a third of a cell beyond, until the probe fails (the first crossing)
+        for _ in range(_MAX_PROBES):
             s_lo, back = along_path(back, s_lo, s_hi)
-            s_next = s_lo + grid.spacing_m
+            s_next = s_lo + cell / 3.0
             if s_next >= s_hi:
                 break
             ok, path = probe(s_next)
@@ -334,8 +338,9 @@ def turnback(
                 break
             s_lo, back = s_next, path
         else:
-            warnings.append(f"the search stopped after {_MAX_FRONT_STEPS} front probes; the "
-                            "turn-back point may lie further out")
+            limited = "search budget"
+            warnings.append(f"the search stopped after {_MAX_PROBES} probes: the turn-back "
+                            f"point is at least {s_lo / 1000:.2f} km out (a lower bound)")
     timings["probes_s"] = time.perf_counter() - t
     s_star = s_lo
     outbound = fly(glide, fine, safety_height, np.array([lat0, P(s_star)[0]]),
@@ -348,7 +353,39 @@ def turnback(
            f"{P(s_star)[2]:.0f} m: home reached at {back.arrival_altitude:.0f} m "
            f"({margin:+.1f} m over the safety height); limited by {limited}")
     return _result(Status.SOLVED, msg, problem, home, course, glide, s_star, P(s_star),
-                   outbound, limited, back, margin, probes, fine, grid, warnings, timings)
+                   outbound, limited, back, margin, probes, fine, spacing, warnings, timings)
+
+
+def _graph_crossing(back_s: Any, sterrain: Terrain, glide: Glide, P: Any, s_hi: float,
+                    cell: float, probe: Any, s_lo: float, back: FlownPath
+                    ) -> tuple[float, FlownPath]:
+    """The backward search's answer along the course, verified: walk s in thirds of a cell
+    from 0 to the first point where the altitude there is below the altitude needed
+    (`native.need_at`), then the largest s before it whose return flies clear (a probe there;
+    if the flight does not verify, bisection on s with probes down to s_lo)."""
+    from glideplan.reach.native import need_at
+
+    ss = np.arange(0.0, s_hi, cell / 3.0)
+    s_graph = s_lo
+    for s in ss[1:]:
+        la, lo, a = P(float(s))
+        if need_at(back_s, sterrain, glide, la, lo)[0] > a:
+            break
+        s_graph = float(s)
+    if s_graph <= s_lo:
+        return s_lo, back
+    ok, path = probe(s_graph)
+    if ok and path is not None:
+        return s_graph, path
+    a_, b_ = s_lo, s_graph
+    while b_ - a_ > cell / 3.0:
+        mid = 0.5 * (a_ + b_)
+        ok, path = probe(mid)
+        if ok and path is not None:
+            a_, back = mid, path
+        else:
+            b_ = mid
+    return a_, back
 
 
 def grid_contains(grid: ReachGrid, lat: FloatArray, lon: FloatArray) -> NDArray[np.bool_]:
@@ -364,12 +401,12 @@ def _special_nodes(grid: ReachGrid, pts: list[tuple[float, float]]) -> list[tupl
 def _result(status: Status, message: str, problem: ReachProblem, home: Landable, course: float,
             glide: Glide, s: float, p: tuple[float, float, float], outbound: FlownPath | None,
             limited: str, back: FlownPath | None, margin: float | None,
-            probes: list[tuple[float, bool]], terrain: Terrain, grid: ReachGrid,
+            probes: list[tuple[float, bool]], terrain: Terrain, resolution_m: float,
             warnings: list[str], timings: dict[str, float]) -> TurnbackResult:
     return TurnbackResult(
         status=status, message=message, start=problem.start, home=home, course_deg=course,
         safety_height=problem.safety_height, glide=glide, distance_m=s, lat=p[0], lon=p[1],
         altitude_m=p[2], arrival_altitude_m=None if back is None else back.arrival_altitude,
         arrival_margin_m=margin, limited_by=limited, outbound=outbound, back=back,
-        probes=tuple(probes), terrain=terrain, resolution_m=grid.spacing_m,
+        probes=tuple(probes), terrain=terrain, resolution_m=resolution_m,
         warnings=tuple(warnings), timings=timings)

@@ -37,12 +37,24 @@ def _offset(value: float, origin: float, step: float, what: str) -> int:
     return round(k)
 
 
+def _unwrap_antimeridian(tiles: Sequence[Terrain]) -> list[Terrain]:
+    """Tiles on both sides of 180 deg (west edge < 0 and east edge near +180) are put on one
+    side: the western hemisphere's get longitude + 360 (S17W180 then follows S17E179)."""
+    west = min(float(t.lon[0]) for t in tiles)
+    east = max(float(t.lon[-1]) for t in tiles)
+    if east - west <= 180.0:
+        return list(tiles)
+    return [Terrain(t.lat, t.lon + 360.0, t.z, t.sources, t.warnings) if t.lon[-1] <= 0.0
+            else t for t in tiles]
+
+
 def merge_tiles(tiles: Sequence[Terrain]) -> Terrain:
     """One `Terrain` holding every tile (see the module docstring)."""
     if not tiles:
         raise InvalidParameterError("terrain", [], "needs at least one tile")
     if len(tiles) == 1:
         return tiles[0]
+    tiles = _unwrap_antimeridian(tiles)
     dlat, dlon = tiles[0].dlat, tiles[0].dlon
     for t in tiles[1:]:
         if abs(t.dlat - dlat) > 1e-6 * dlat or abs(t.dlon - dlon) > 1e-6 * dlon:
