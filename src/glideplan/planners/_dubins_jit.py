@@ -213,6 +213,46 @@ def _ccc_low(vx: float, vy: float, v2: float, psi: float, cap: float, right: boo
     return low_t + pm * (1.0 - 1e-15) + low_q - 1e-9
 
 
+@njit(cache=True, inline="always")
+def _may_beat(x: float, y: float, psi: float, sp: float, cp: float, cap: float) -> bool:
+    """Whether any word's bound (`_bounds`) is <= cap, stopping at the first that is."""
+    slack = 1e-9
+    lx, ly = x - sp, y + cp - 1.0
+    l2 = lx * lx + ly * ly
+    pl = math.sqrt(l2) * (1.0 - 1e-15)
+    if pl + psi - slack <= cap:  # LSL: t + q is psi or psi + 2 pi
+        if _in_sweep(lx, ly, pl, psi, sp, cp) != 0 or pl + psi + TWO_PI - slack <= cap:
+            return True
+    rx, ry = x + sp, y - cp + 1.0
+    r2 = rx * rx + ry * ry
+    pr = math.sqrt(r2) * (1.0 - 1e-15)
+    low = TWO_PI - psi if psi > 1e-6 else 0.0
+    if pr + low - slack <= cap:  # RSR: 2 pi - psi or 4 pi - psi
+        if _in_sweep(rx, ry, pr, psi, sp, cp) != 1 or pr + low + TWO_PI - slack <= cap:
+            return True
+    mixed = min(psi, TWO_PI - psi) - slack
+    ax, ay = x + sp, y - cp - 1.0
+    p2 = ax * ax + ay * ay - 4.0
+    if p2 + FEAS >= 0.0:
+        p = math.sqrt(max(p2, 0.0))
+        if p * (1.0 - 1e-15) + mixed <= cap:
+            phi = _atan2_near(ay * p + 2.0 * ax, ax * p - 2.0 * ay)
+            if _mod_low(phi) + p * (1.0 - 1e-15) + _mod_low(phi - psi) - slack <= cap:
+                return True
+    bx, by = x - sp, y + cp + 1.0
+    q2 = bx * bx + by * by - 4.0
+    if q2 + FEAS >= 0.0:
+        p = math.sqrt(max(q2, 0.0))
+        if p * (1.0 - 1e-15) + mixed <= cap:
+            phi = _atan2_near(by * p - 2.0 * bx, bx * p + 2.0 * by)
+            if _mod_low(-phi) + p * (1.0 - 1e-15) + _mod_low(psi - phi) - slack <= cap:
+                return True
+    if PI - slack > cap:
+        return False
+    return (_ccc_low(rx, ry, r2, psi, cap, True) <= cap
+            or _ccc_low(lx, ly, l2, psi, cap, False) <= cap)
+
+
 @njit(cache=True)
 def min_total(x: float, y: float, psi: float, sp: float, cp: float, cap: float) -> tuple[float, int]:
     """Shortest total length (unit radius) and its word (ties: first in `WORDS`); (inf, -1)
@@ -316,7 +356,10 @@ def dp_leg(value: np.ndarray, x: np.ndarray, y: np.ndarray, a: np.ndarray, b: np
             cap = INF if bi < 0 else (best - v) / rs * (1.0 + 1e-12) + 1e-12
             sp = sb[j] * ca[i] - cb[j] * sa[i]  # sin(b - a), cos(b - a) as in leg_costs
             cp = cb[j] * ca[i] + sb[j] * sa[i]
-            tot, _ = min_total(x[i], y[i], _mod(bj - a[i]), sp, cp, cap)
+            psi = _mod(bj - a[i])
+            if bi >= 0 and not _may_beat(x[i], y[i], psi, sp, cp, cap):
+                continue
+            tot, _ = min_total(x[i], y[i], psi, sp, cp, cap)
             if tot == INF:
                 continue
             c = tot * radius
