@@ -254,7 +254,8 @@ def _may_beat(x: float, y: float, psi: float, sp: float, cp: float, cap: float) 
 
 
 @njit(cache=True)
-def min_total(x: float, y: float, psi: float, sp: float, cp: float, cap: float) -> tuple[float, int]:
+def min_total(x: float, y: float, psi: float, sp: float, cp: float,
+              cap: float) -> tuple[float, int]:
     """Shortest total length (unit radius) and its word (ties: first in `WORDS`); (inf, -1)
     when no word is shorter than or equal to `cap` (pass inf for the plain minimum)."""
     lb = _bounds(x, y, psi, sp, cp, cap)
