@@ -94,16 +94,16 @@ def test_ties_go_to_the_first_word_as_in_numpy():
     np.testing.assert_array_equal(k, ref_k)
 
 
-def test_dubins_distance_is_the_same_on_both_paths():
-    # a batch above the compiled threshold against the NumPy kernel on the same queries
+def test_compiled_lengths_equal_dubins_distance_on_a_batch():
+    # 5,000 random queries: `dubins_distance` (NumPy) and the compiled kernel
     rng = np.random.default_rng(3)
     n = 5000
     s = np.c_[rng.uniform(-5, 5, (n, 2)), rng.uniform(-4, 4, n)]
     g = np.c_[rng.uniform(-5, 5, (n, 2)), rng.uniform(-4, 4, n)]
     d, k = dubins_distance(s, g, 1.5, return_index=True)
-    ref, ref_k = _reference(s, g, 1.5)
-    np.testing.assert_allclose(d, ref * 1.5, rtol=1e-12)
-    assert np.mean(k == ref_k) > 0.999
+    got, got_k = compiled_min_lengths(s, g, np.float64(1.5))
+    np.testing.assert_allclose(got * 1.5, d, rtol=1e-12)
+    assert np.mean(got_k == k) > 0.999
 
 
 @settings(max_examples=25, deadline=None)

@@ -26,12 +26,10 @@ from glideplan.path import Path
 from glideplan.planners.dubins_kernel import (
     DIRECTIONS,
     WORDS,
-    compiled_min_lengths,
     flat_word_totals,
     mod_2pi_snapped,
     segment_table,
     shortest_word,
-    use_compiled,
 )
 from glideplan.planning import PlannerOutput, Problem, register_planner
 from glideplan.pose import TWO_PI as TWO_PI  # re-exported: callers use dubins.TWO_PI
@@ -153,12 +151,6 @@ def dubins_distance(
     (ties go to the first word).
     """
     s, g, r, shape = _flat_queries(start, goal, radius)
-    if use_compiled(s.shape[0]):  # large batches: the compiled kernel (same lengths)
-        length, idx = compiled_min_lengths(s, g, r)
-        length *= r
-        if return_index:
-            return length.reshape(shape), idx.reshape(shape)
-        return length.reshape(shape)
     tot = flat_word_totals(s, g, r)
     length = tot[0].copy()
     if return_index:

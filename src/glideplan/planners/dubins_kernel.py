@@ -20,7 +20,6 @@ words) and `missions.leg_costs` (K x K heading matrices) — are thin wrappers a
 from __future__ import annotations
 
 import math
-import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -42,7 +41,6 @@ __all__ = [
     "ops_for",
     "segment_table",
     "shortest_word",
-    "use_compiled",
     "word_segments",
     "word_totals",
 ]
@@ -343,20 +341,7 @@ def flat_word_totals(start: np.ndarray, goal: np.ndarray, radius: np.ndarray) ->
     return tot
 
 
-# ----- the compiled kernel (numba), used for large batches --------------------------------
-
-COMPILED_FROM = 4096
-"""Batches of at least this many queries use the compiled kernel (`_dubins_jit`); smaller
-ones stay on NumPy unless numba is already loaded (importing numba costs ~0.3 s: a one-query
-CLI command would pay more for it than it saves)."""
-
-
-def use_compiled(m: int) -> bool:
-    """Whether a batch of `m` queries goes to the compiled kernel (numba importable)."""
-    if m < COMPILED_FROM and "numba" not in sys.modules:
-        return False
-    return _jit() is not None
-
+# ----- the compiled kernel (numba): the heading DP's and the benchmark's -----------------------
 
 def _jit() -> Any:
     """The compiled module, or None when numba cannot be imported."""
