@@ -46,6 +46,7 @@ __all__ = [
 ]
 
 _COMPILED_FROM = 512  # headings per call from which the compiled kernel pays for numba's import
+COMPILED = True  # False: always the NumPy kernel (the benchmarks' baseline, the tests' reference)
 SATURATED_LABEL = "Bsat"  # the constant-speed piece of a B arc whose speed is clipped
 
 
@@ -215,7 +216,7 @@ class Kernel:
         phi, lam = np.broadcast_arrays(np.asarray(phi, dtype=float), np.asarray(lam, dtype=float))
         shape = phi.shape
         phi, lam = phi.reshape(-1), lam.reshape(-1)
-        if phi.size >= _COMPILED_FROM or "numba" in sys.modules:
+        if COMPILED and (phi.size >= _COMPILED_FROM or "numba" in sys.modules):
             return self._compiled(phi, lam, shape)
         phi_s, phi_m = self.clip_angles(lam)
         k = np.floor((phi + math.pi) / TWO_PI)
