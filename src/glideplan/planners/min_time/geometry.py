@@ -25,13 +25,19 @@ __all__ = [
 def tangent(h: np.ndarray) -> np.ndarray:
     """Unit vectors (cos h, sin h), shape h.shape + (2,)."""
     h = np.asarray(h, dtype=float)
-    return np.stack([np.cos(h), np.sin(h)], axis=-1)
+    out = np.empty((*h.shape, 2))  # filled in place: np.stack costs more than the sines here
+    out[..., 0] = np.cos(h)
+    out[..., 1] = np.sin(h)
+    return out
 
 
 def normal(h: np.ndarray) -> np.ndarray:
     """Left unit normals (-sin h, cos h), shape h.shape + (2,)."""
     h = np.asarray(h, dtype=float)
-    return np.stack([-np.sin(h), np.cos(h)], axis=-1)
+    out = np.empty((*h.shape, 2))
+    out[..., 0] = -np.sin(h)
+    out[..., 1] = np.cos(h)
+    return out
 
 
 def rotate(h: np.ndarray, v: np.ndarray) -> np.ndarray:
