@@ -9,6 +9,7 @@ parameter) and free of Python loops over samples.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -34,6 +35,9 @@ def tangent(h: np.ndarray) -> np.ndarray:
 def normal(h: np.ndarray) -> np.ndarray:
     """Left unit normals (-sin h, cos h), shape h.shape + (2,)."""
     h = np.asarray(h, dtype=float)
+    if h.ndim == 0:  # one heading (most calls): math's sin and cos are NumPy's, bit for bit
+        v = float(h)
+        return np.array([-math.sin(v), math.cos(v)])
     out = np.empty((*h.shape, 2))
     out[..., 0] = -np.sin(h)
     out[..., 1] = np.cos(h)
