@@ -16,9 +16,11 @@ one word. A word is skipped only when its bound exceeds the best by more than ro
 ties still go to the first word in `WORDS`.
 
 `dp_leg` is one step of the heading dynamic programme (missions.headings): for each goal
-heading b, min over start headings a of V(a) + c(a, b), scanning a in increasing V(a) and
-stopping once V(a) plus the straight-line distance exceeds the best (the Dubins length is at
-least the distance), and asking each entry only whether it beats the best so far.
+heading b, min over start headings a of V(a) + c(a, b), scanning a in increasing V(a) + a
+lower bound of every leg from a (`_to_point`), stopping once that exceeds the best, and asking
+each entry only whether it beats the best so far (`_may_beat`, then `min_total` with the cap).
+The NumPy kernel is the better one for flat batches of random queries (`dubins_distance`):
+there the four sines and cosines per query dominate, and they cost the same compiled.
 
 Serial kernels (no prange): callers run them one per process. Imported lazily: importing
 this module imports numba (`glideplan` itself does not).
