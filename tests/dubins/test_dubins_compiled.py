@@ -60,7 +60,7 @@ def _reference(s: np.ndarray, g: np.ndarray, r: float) -> tuple[np.ndarray, np.n
     return np.maximum(tot.min(axis=0), 0.0), np.argmin(tot, axis=0)
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=30, deadline=None)
 @given(st.lists(st.tuples(pose, pose, special, st.floats(0.0, 1.0), st.booleans()),
                 min_size=1, max_size=40), st.floats(0.3, 3.0))
 def test_compiled_lengths_and_words_equal_the_numpy_kernel(rows, r):
@@ -106,7 +106,7 @@ def test_compiled_lengths_equal_dubins_distance_on_a_batch():
     assert np.mean(got_k == k) > 0.999
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=15, deadline=None)
 @given(st.floats(0.3, 6.0), st.floats(-math.pi, math.pi), st.integers(8, 60),
        st.floats(0.5, 2.0), st.floats(0.0, 3.0), st.integers(0, 2**31))
 def test_dp_step_equals_the_matrix_minimum(dist, bearing, k, r, spread, seed):

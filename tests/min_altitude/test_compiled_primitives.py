@@ -17,7 +17,7 @@ from glideplan.vehicles import dg1001m
 pytest.importorskip("numba")
 
 
-@settings(max_examples=30, deadline=None)
+@settings(max_examples=20, deadline=None)
 @given(st.lists(st.tuples(st.floats(-20.0, 20.0), st.just(0.0) | st.floats(1e-3, 60.0)),
                 min_size=1, max_size=50))
 def test_compiled_primitives_equal_numpy(rows):
