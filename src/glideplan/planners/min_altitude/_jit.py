@@ -51,13 +51,22 @@ def _principal(r: float, lam: float, phi_s: float, phi_m: float, vms: float, v_s
 def primitives(phi: np.ndarray, lam: np.ndarray, vms: float, v_stall: float, v_max: float,
                a: float, w_ms: float, w_stall: float, w_max: float, P: np.ndarray,
                W: np.ndarray, S: np.ndarray) -> None:
-    """P, W, S (flat, same length as phi and lam) of `Kernel.primitives`."""
+    """P, W, S (flat, same length as phi) of `Kernel.primitives`; lam[i % lam.size] goes with
+    phi[i] (a lam row repeated over the rows of phi is passed once)."""
     lo = vms - v_stall
     hi = v_max - vms
+    m = lam.size
+    band_s = np.empty(m)
+    band_m = np.empty(m)
+    for j in range(m):  # the clip angles once per lambda (the same expressions as before)
+        lm = lam[j]
+        band_s[j] = math.acos(min(max(lo / lm, -1.0), 1.0)) if lm > lo else 0.0
+        band_m[j] = math.acos(min(max(hi / lm, -1.0), 1.0)) if lm > hi else 0.0
     for i in range(phi.size):
-        lm = lam[i]
-        phi_s = math.acos(min(max(lo / lm, -1.0), 1.0)) if lm > lo else 0.0
-        phi_m = math.acos(min(max(hi / lm, -1.0), 1.0)) if lm > hi else 0.0
+        j = i % m
+        lm = lam[j]
+        phi_s = band_s[j]
+        phi_m = band_m[j]
         k = math.floor((phi[i] + math.pi) / TWO_PI)
         r = phi[i] - TWO_PI * k
         p, w, s = _principal(r, lm, phi_s, phi_m, vms, v_stall, v_max, a, w_ms, w_stall, w_max)

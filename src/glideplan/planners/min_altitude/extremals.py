@@ -215,9 +215,12 @@ class Kernel:
         """
         phi, lam = np.broadcast_arrays(np.asarray(phi, dtype=float), np.asarray(lam, dtype=float))
         shape = phi.shape
-        phi, lam = phi.reshape(-1), lam.reshape(-1)
         if COMPILED and (phi.size >= _COMPILED_FROM or "numba" in sys.modules):
-            return self._compiled(phi, lam, shape)
+            # a lambda row repeated over the leading axis (chains) is passed once
+            row = lam.ndim > 1 and lam.strides[0] == 0
+            return self._compiled(phi.reshape(-1), lam[0].reshape(-1) if row else
+                                  lam.reshape(-1), shape)
+        phi, lam = phi.reshape(-1), lam.reshape(-1)
         phi_s, phi_m = self.clip_angles(lam)
         k = np.floor((phi + math.pi) / TWO_PI)
         r = phi - TWO_PI * k
