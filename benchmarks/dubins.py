@@ -2,7 +2,10 @@
 
 Same random start/goal pairs for both; OMPL's states are allocated and filled before timing,
 so its loop times only the `distance` calls. Targets (issue 2): lengths agree within 1e-9,
-glideplan >= 3 million optimal lengths per second and >= 2.5 x OMPL's loop.
+glideplan >= 3 million optimal lengths per second and >= 2.5 x OMPL's loop; issue 28: the
+compiled kernel (numba, `planners._dubins_jit`) >= 10 x OMPL's loop, equal to the NumPy
+kernel (`dubins_distance`, timed in the same run) within 1e-12 relative. The machine's load
+(1-minute average) is printed with the times: the machine is shared.
 
     .venv/bin/python benchmarks/dubins.py [--n 1000000] [--repeat 3]
 """
@@ -28,6 +31,7 @@ from glideplan.planners.dubins import (  # noqa: E402
     dubins_distance,
     dubins_segment_lengths,
 )
+from glideplan.planners.dubins_kernel import compiled_min_lengths  # noqa: E402
 
 
 def random_queries(n: int, seed: int = 0, half_width: float = 10.0) -> tuple[np.ndarray, ...]:
@@ -128,9 +132,19 @@ def main() -> None:
     dubins_distance(starts[:1000], goals[:1000], radius)  # warm-up
     ours = dubins_distance(starts, goals, radius)
     t_ours = best_time(lambda: dubins_distance(starts, goals, radius), args.repeat)
+    r = np.float64(radius)
+    compiled_min_lengths(starts[:10], goals[:10], r)  # compiles or loads the cache
+    jit = compiled_min_lengths(starts, goals, r)[0] * radius
+    t_jit = best_time(lambda: compiled_min_lengths(starts, goals, r), args.repeat)
 
     print(f"queries: {n:,}  radius: {radius}  (one process, BLAS/OpenMP threads = 1)")
-    print(f"glideplan dubins_distance : {t_ours:8.3f} s  {n / t_ours / 1e6:6.2f} M lengths/s")
+    print(f"load average (1 min) at start: {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores")
+    print(f"glideplan dubins_distance : {t_ours:8.3f} s  {n / t_ours / 1e6:6.2f} M lengths/s"
+          "  (NumPy kernel)")
+    print(f"compiled kernel (numba)   : {t_jit:8.3f} s  {n / t_jit / 1e6:6.2f} M lengths/s"
+          f"  = {t_ours / t_jit:.2f} x the NumPy kernel")
+    rel = np.abs(jit - ours) / np.maximum(ours, 1e-300)
+    print(f"compiled vs NumPy kernel  : max relative difference {rel.max():.2e} (target 1e-12)")
     try:
         ref, t_ompl = ompl_lengths(starts, goals, radius, args.repeat)
     except ImportError:
@@ -141,11 +155,13 @@ def main() -> None:
     t_set = ompl_set_and_distance_seconds(starts, goals, radius)
     print(f"OMPL set+distance loop    : {t_set:8.3f} s  {n / t_set / 1e6:6.2f} M lengths/s")
     print(f"speed-up vs distance loop : {t_ompl / t_ours:8.2f} x   (target >= 2.5 x)")
+    print(f"compiled vs distance loop : {t_ompl / t_jit:8.2f} x   (issue 28 target >= 10 x)")
     print(f"speed-up vs set+distance  : {t_set / t_ours:8.2f} x")
     print(f"throughput target         : {'met' if n / t_ours >= 3e6 else 'NOT met'} (>= 3 M/s)")
     diff = np.abs(ours - ref)
     bad = np.flatnonzero(diff > 1e-9)
     print(f"max |glideplan - OMPL|    : {diff.max():.3e}  (target <= 1e-9)")
+    print(f"load average (1 min) at end: {os.getloadavg()[0]:.2f}")
     print(f"queries differing > 1e-9  : {bad.size}")
     for i in bad[:10]:
         print(f"  #{i}: ours {ours[i]:.12f}, OMPL {ref[i]:.12f}: ", end="")

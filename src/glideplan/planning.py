@@ -13,7 +13,7 @@ import math
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from glideplan.errors import InvalidParameterError
 from glideplan.objectives import get_objective
@@ -21,6 +21,9 @@ from glideplan.pose import Pose, wrap_to_pi
 from glideplan.solution import Candidate, Solution, Status
 from glideplan.vehicles.base import Vehicle
 from glideplan.verify import EndpointError, endpoint_error
+
+if TYPE_CHECKING:
+    from glideplan.path import Path
 
 __all__ = [
     "POSITION_LIMIT_M",
@@ -239,6 +242,14 @@ def _same_pose_solution(
     )
 
 
+def _placed(path: Path, start: Pose, vehicle: Vehicle) -> Path:
+    """`path` (planned from the origin) moved to `start` and flown by `vehicle`; the same
+    object when nothing changes (a start at the origin maps every point to itself)."""
+    if start.x != 0.0 or start.y != 0.0 or start.heading != 0.0:
+        path = path.transformed(start)
+    return path if path.vehicle is vehicle else path.with_vehicle(vehicle)
+
+
 def plan(
     start: Pose | tuple[float, float, float],
     goal: Pose | tuple[float, float, float],
@@ -306,7 +317,7 @@ def plan(
                 c.word,
                 c.family,
                 c.cost,
-                c.path.transformed(start_p).with_vehicle(vehicle) if c.path is not None else None,
+                _placed(c.path, start_p, vehicle) if c.path is not None else None,
                 c.status,
                 c.info,
             )

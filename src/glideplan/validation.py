@@ -44,6 +44,8 @@ def _as_float(name: str, value: Any) -> float:
 
 def check_finite(name: str, value: Any) -> float:
     """Return `value` as a float; it must be finite (no NaN or infinity)."""
+    if type(value) is float and math.isfinite(value):  # the common case, without the checks
+        return value
     out = _as_float(name, value)
     if not math.isfinite(out):
         raise InvalidParameterError(name, value, "must be finite (no NaN or infinity)")

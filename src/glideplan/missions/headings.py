@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
-from glideplan.missions.leg_costs import dubins_length_matrix
+from glideplan.missions.leg_costs import dubins_dp_step, dubins_length_matrix
 from glideplan.missions.wind_costs import convected_times
 from glideplan.planners.dubins import dubins_distance
 from glideplan.pose import TWO_PI, mod_2pi
@@ -70,7 +70,7 @@ class StillAirCost:
     points: NDArray[np.float64]
     radius: float
     scale: float = 1.0  # 1 for length, 1 / speed for time
-    precision: str = "single"  # of the DP matrices ("double": exact to rounding)
+    precision: str = "single"  # of `matrix` ("double": exact to rounding); `dp_step` is float64
 
     def __post_init__(self) -> None:
         if self.precision not in ("single", "double"):
@@ -89,6 +89,14 @@ class StillAirCost:
         s = np.column_stack([np.broadcast_to(self.points[i], (a.size, 2)), a])
         g = np.column_stack([np.broadcast_to(self.points[i + 1], (b.size, 2)), b])
         return np.asarray(dubins_distance(s, g, self.radius)) * self.scale
+
+    def dp_step(
+        self, i: int, value: NDArray[np.float64], a: NDArray[np.float64], b: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.intp]] | None:
+        """One DP step over leg i (compiled, float64, without the K x K matrix); None: use
+        `matrix`."""
+        return dubins_dp_step(value, self.points[i], self.points[i + 1], a, b, self.radius,
+                              self.scale)
 
 
     def pairs_many(
@@ -215,10 +223,15 @@ def _dynamic_programme(
     """Exact minimum over the candidate sets (forward values, backward choice)."""
     value = np.zeros(sets[0].size)
     back = []
+    step = getattr(cost, "dp_step", None)
     for i in range(len(sets) - 1):
-        total = value[:, None] + cost.matrix(i, sets[i], sets[i + 1])  # float64 sums
-        arg = np.argmin(total, axis=0)
-        value = total[arg, np.arange(arg.size)]
+        done = step(i, value, sets[i], sets[i + 1]) if step is not None else None
+        if done is not None:  # compiled: the same minimum without the matrix
+            value, arg = done
+        else:
+            total = value[:, None] + cost.matrix(i, sets[i], sets[i + 1])  # float64 sums
+            arg = np.argmin(total, axis=0)
+            value = total[arg, np.arange(arg.size)]
         back.append(arg)
         if progress is not None:
             progress("headings", i + 1, len(sets) - 1)

@@ -22,7 +22,7 @@ from numpy.typing import ArrayLike, NDArray
 from glideplan.planners.dubins_kernel import ops_for, word_totals
 from glideplan.pose import mod_2pi
 
-__all__ = ["dubins_length_matrix"]
+__all__ = ["dubins_dp_step", "dubins_length_matrix"]
 
 _BLOCK = 32768  # matrix entries per block: its ~10 temporaries stay in the L2 cache (measured:
 # 200 waypoints x K = 360 take ~1.0 s at 32768 against ~1.8 s at 65536 on the CI machine)
@@ -66,3 +66,42 @@ def dubins_length_matrix(
         np.minimum.reduce(word_totals(x, y, psi, sp, cp, o), out=out[i : i + rows])
     out *= dt.type(radius)
     return out
+
+
+def dubins_dp_step(
+    value: NDArray[np.float64],
+    p0: ArrayLike,
+    p1: ArrayLike,
+    headings0: ArrayLike,
+    headings1: ArrayLike,
+    radius: float,
+    scale: float = 1.0,
+) -> tuple[NDArray[np.float64], NDArray[np.intp]] | None:
+    """One step of the heading DP, compiled: min_j value[j] + scale * D(p0, a_j; p1, b_k).
+
+    Returns the new values `(len(headings1),)` and the first minimising index j of each, the
+    same as `argmin(value[:, None] + scale * dubins_length_matrix(..., float64), axis=0)`
+    (section 2.7; the lengths to rounding) without forming the matrix: only the entries whose
+    lower bounds are below the running minimum are evaluated (`planners._dubins_jit.dp_leg`).
+    None when numba cannot be imported.
+    """
+    from glideplan.planners.dubins_kernel import _jit
+
+    jit = _jit()
+    if jit is None:  # pragma: no cover - numba is a dependency
+        return None
+    p0a = np.asarray(p0, dtype=float)
+    p1a = np.asarray(p1, dtype=float)
+    a = np.ascontiguousarray(mod_2pi(np.asarray(headings0, dtype=float).ravel()), dtype=float)
+    b = np.ascontiguousarray(mod_2pi(np.asarray(headings1, dtype=float).ravel()), dtype=float)
+    inv = 1.0 / float(radius)
+    dx = float((p1a[0] - p0a[0]) * inv)
+    dy = float((p1a[1] - p0a[1]) * inv)
+    ca, sa = np.cos(a), np.sin(a)
+    x = ca * dx + sa * dy  # the goal in each start frame, as in dubins_length_matrix
+    y = ca * dy - sa * dx
+    new = np.empty(b.size)
+    arg = np.empty(b.size, dtype=np.intp)
+    jit.dp_leg(np.ascontiguousarray(value, dtype=float), x, y, a, b, dx, dy, float(radius),
+               float(scale), new, arg)
+    return new, arg

@@ -36,6 +36,7 @@ __all__ = [
     "WORDS",
     "WORD_FUNCTIONS",
     "Ops",
+    "compiled_min_lengths",
     "mod_2pi_snapped",
     "ops_for",
     "segment_table",
@@ -338,3 +339,32 @@ def flat_word_totals(start: np.ndarray, goal: np.ndarray, radius: np.ndarray) ->
         psi = o.mod(g[:, 2] - s[:, 2])
         tot[:, i:j] = word_totals(x, y, psi, np.sin(psi), np.cos(psi), o)
     return tot
+
+
+# ----- the compiled kernel (numba): the heading DP's and the benchmark's -----------------------
+
+def _jit() -> Any:
+    """The compiled module, or None when numba cannot be imported."""
+    try:
+        from glideplan.planners import _dubins_jit
+    except ImportError:  # pragma: no cover - numba is a dependency
+        return None
+    return _dubins_jit
+
+
+def compiled_min_lengths(
+    start: np.ndarray, goal: np.ndarray, radius: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Shortest total (units of R) and word index of flat `(m, 3)` poses, compiled.
+
+    The same lengths as the minimum of `flat_word_totals` (to rounding; ties to the first
+    word); `radius` scalar or `(m,)`.
+    """
+    jit = _jit()
+    m = start.shape[0]
+    out = np.empty(m)
+    idx = np.empty(m, dtype=np.intp)
+    inv = np.ascontiguousarray(np.atleast_1d(1.0 / np.asarray(radius, dtype=float)))
+    jit.min_lengths(np.ascontiguousarray(start, dtype=float),
+                    np.ascontiguousarray(goal, dtype=float), inv, out, idx)
+    return out, idx

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import sys
 from dataclasses import dataclass
 
 import numpy as np
@@ -44,6 +45,8 @@ __all__ = [
     "straight_change",
 ]
 
+_COMPILED_FROM = 512  # headings per call from which the compiled kernel pays for numba's import
+COMPILED = True  # False: always the NumPy kernel (the benchmarks' baseline, the tests' reference)
 SATURATED_LABEL = "Bsat"  # the constant-speed piece of a B arc whose speed is clipped
 
 
@@ -212,6 +215,11 @@ class Kernel:
         """
         phi, lam = np.broadcast_arrays(np.asarray(phi, dtype=float), np.asarray(lam, dtype=float))
         shape = phi.shape
+        if COMPILED and (phi.size >= _COMPILED_FROM or "numba" in sys.modules):
+            # a lambda row repeated over the leading axis (chains) is passed once
+            row = lam.ndim > 1 and lam.strides[0] == 0
+            return self._compiled(phi.reshape(-1), lam[0].reshape(-1) if row else
+                                  lam.reshape(-1), shape)
         phi, lam = phi.reshape(-1), lam.reshape(-1)
         phi_s, phi_m = self.clip_angles(lam)
         k = np.floor((phi + math.pi) / TWO_PI)
@@ -226,6 +234,21 @@ class Kernel:
             P[wrapped] += kk * 2.0 * Pp.real
             W[wrapped] += kk * 2.0 * Wp
             S[wrapped] += kk * 2.0 * Sp
+        return P.reshape(shape), W.reshape(shape), S.reshape(shape)
+
+
+    def _compiled(
+        self, phi: np.ndarray, lam: np.ndarray, shape: tuple[int, ...]
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """`primitives` by the compiled kernel (`min_altitude._jit`): the same values."""
+        from glideplan.planners.min_altitude._jit import primitives
+
+        P = np.empty(phi.size, dtype=complex)
+        W = np.empty(phi.size)
+        S = np.empty(phi.size)
+        primitives(np.ascontiguousarray(phi), np.ascontiguousarray(lam), self.v_ms,
+                   self.v_stall, self.v_max, self.a, self.w_ms, self.w_stall, self.w_max,
+                   P, W, S)
         return P.reshape(shape), W.reshape(shape), S.reshape(shape)
 
 

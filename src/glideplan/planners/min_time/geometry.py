@@ -9,6 +9,7 @@ parameter) and free of Python loops over samples.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -25,13 +26,22 @@ __all__ = [
 def tangent(h: np.ndarray) -> np.ndarray:
     """Unit vectors (cos h, sin h), shape h.shape + (2,)."""
     h = np.asarray(h, dtype=float)
-    return np.stack([np.cos(h), np.sin(h)], axis=-1)
+    out = np.empty((*h.shape, 2))  # filled in place: np.stack costs more than the sines here
+    out[..., 0] = np.cos(h)
+    out[..., 1] = np.sin(h)
+    return out
 
 
 def normal(h: np.ndarray) -> np.ndarray:
     """Left unit normals (-sin h, cos h), shape h.shape + (2,)."""
     h = np.asarray(h, dtype=float)
-    return np.stack([-np.sin(h), np.cos(h)], axis=-1)
+    if h.ndim == 0:  # one heading (most calls): math's sin and cos are NumPy's, bit for bit
+        v = float(h)
+        return np.array([-math.sin(v), math.cos(v)])
+    out = np.empty((*h.shape, 2))
+    out[..., 0] = -np.sin(h)
+    out[..., 1] = np.cos(h)
+    return out
 
 
 def rotate(h: np.ndarray, v: np.ndarray) -> np.ndarray:
