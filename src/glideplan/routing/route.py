@@ -106,6 +106,14 @@ def route(
                            straight_line_duration_s=0.0, grid_duration_s=0.0, method="none",
                            stats=stats, **common)
 
+    from glideplan.routing import extract
+
+    cone = extract.drift_cone(problem, phases.spacing_for(problem))
+    if cone is not None:  # outside the drift cone: no front needed, at any resolution
+        lap("drift_cone")
+        return RouteResult(status=Status.UNREACHABLE, message=cone.message,
+                           warnings=tuple(warnings), best_distance_m=problem.distance_m,
+                           unreachable_reason="outside_drift_cone", stats=stats, **common)
     rg = phases.grid(problem)
     tolerance = settings.endpoint_tolerance_cells * rg.spacing_m
     lap("grid")
@@ -130,7 +138,12 @@ def route(
                            unreachable_reason=why, stats=stats, **common)
 
     grid_T = fo.goal_time - problem.t0
-    g = phases.backtrack(problem, rg, fo)
+    # where the current reaches the vehicle's speed, the characteristic's own controls
+    # (extract.py); else (or when it fails) the polyline held leg by leg
+    strong = extract.swept(problem, rg, fo.goal_time)
+    g = extract.characteristic_candidate(problem, rg, fo) if strong else None
+    if g is None:
+        g = phases.backtrack(problem, rg, fo)
     lap("backtrack")
     best, flown, note = g, None, ""
     refined_T = None
@@ -166,6 +179,14 @@ def route(
         flown = flown_g if flown_g is not None else phases.verify(problem, rg, g)
         lap("verify_grid")
     ok = phases.flown_ok(flown, tolerance)
+    if not ok:
+        rescued = extract.rescue(problem, rg, fo, tolerance, tried=g.method == "characteristic")
+        lap("rescue")
+        if rescued is not None:
+            best, flown = rescued
+            ok = True
+            note = _join(note, f"the {best.method} route is the verified one (the others "
+                         "missed the goal)")
     if flown.filled:
         warnings.append(f"verification: the field's interpolation stencil touched land at "
                         f"{flown.filled} of its evaluations; the nearest water current was "
