@@ -44,6 +44,7 @@ become the controls that the verification flies again.
 
 from __future__ import annotations
 
+import itertools
 import math
 from typing import Any
 
@@ -127,7 +128,7 @@ def drift_disk_time(t: FloatArray, u: FloatArray, v: FloatArray, goal_xy: FloatA
     sample interval cut into `substeps`, exact for a current linear in time). Returns
     (time or None, the smallest |g - D| - V (t - t0) over the span, m)."""
     tt = np.unique(np.concatenate([np.linspace(a, b, substeps + 1)
-                                   for a, b in zip(t[:-1], t[1:], strict=True)]))
+                                   for a, b in itertools.pairwise(t)]))
     uu, vv = np.interp(tt, t, u), np.interp(tt, t, v)
     dt = np.diff(tt)
     dx = np.concatenate([[0.0], np.cumsum(0.5 * (uu[1:] + uu[:-1]) * dt)])
@@ -175,8 +176,9 @@ def _box_cone(fld: Any, goal_xy: FloatArray, speed: float, horizon: float,
     if within.any():
         return DriftCone(
             f"the goal lies outside the drift cone within the "
-            f"{_LIMIT.get(limit, 'time limit')} ({horizon / 3600:.4g} h): even the field's most favourable current "
-            f"(u {umin:.2g}..{umax:.2g}, v {vmin:.2g}..{vmax:.2g} m/s) added to the vehicle's "
+            f"{_LIMIT.get(limit, 'time limit')} ({horizon / 3600:.4g} h): even the field's "
+            f"most favourable current (u {umin:.2g}..{umax:.2g}, v {vmin:.2g}..{vmax:.2g} "
+            f"m/s) added to the vehicle's "
             f"{speed:g} m/s cannot carry it there in time, at any resolution", "box")
     return None
 
