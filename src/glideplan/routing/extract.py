@@ -21,7 +21,10 @@ about the start
   the time limit T, no heading ever reaches the goal: it lies outside the drift cone at any
   resolution.
 
-Either case answers `unreachable` with reason "outside_drift_cone" at once (no front). On the
+Either case answers `unreachable` at once (no front): reason "outside_drift_cone" when no
+duration would do (the current is faster than the vehicle and sets it away from the goal),
+else the limit that comes first ("time_span" / "max_duration"), with the sentence saying the
+drift envelope proved it. On the
 sphere the local plane (azimuthal equidistant about the start) and the compass components of
 the current differ by the rotation of north across the route (<= |dlon| sin(lat)); the test
 only claims unreachable beyond a margin of CONE_MARGIN of the distance plus two grid
@@ -46,6 +49,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -79,13 +83,16 @@ CONE_SLACK = 0.05
 CONE_MAX_DISTANCE_M = 500_000.0
 
 
+@dataclass(frozen=True)
 class DriftCone:
-    """Why the goal lies outside the drift cone: `message` (one sentence), `kind`
-    ("disk" for a spatially uniform current, "box" for the field's velocity bounds)."""
+    """Why no heading reaches the goal, found without a front: `message` (one sentence),
+    `kind` ("disk" for a spatially uniform current, "box" for the field's velocity bounds),
+    `reason` ("outside_drift_cone" at any duration, else the time limit's reason:
+    "time_span" / "max_duration")."""
 
-    def __init__(self, message: str, kind: str) -> None:
-        self.message = message
-        self.kind = kind
+    message: str
+    kind: str
+    reason: str = "outside_drift_cone"
 
 
 def _local(start: tuple[float, float], goal: tuple[float, float]) -> FloatArray:
@@ -168,9 +175,9 @@ def _box_cone(fld: Any, goal_xy: FloatArray, speed: float, horizon: float,
         k = int(np.argmax(np.where(cone, ahead, -np.inf)))
         brg = (90.0 - math.degrees(ang[k])) % 360.0
         return DriftCone(
-            f"the goal lies outside the drift cone: everywhere in the field the current "
-            f"carries the vehicle away from it faster than its speed {speed:g} m/s (towards "
-            f"bearing {(brg + 180) % 360:.0f} deg by at least {-h[k]:.2g} m/s), so no heading "
+            f"the goal lies outside the drift cone: along bearing {brg:.0f} deg (towards the "
+            f"goal) every current in the field sets the vehicle back by more than its speed "
+            f"{speed:g} m/s makes good (net at least {-h[k]:.2g} m/s away), so no heading "
             "reaches it at any resolution or duration", "box")
     within = (ahead > horizon * np.maximum(h + slack, 0.0) + margin) & (h + slack > 0)
     if within.any():
@@ -179,7 +186,7 @@ def _box_cone(fld: Any, goal_xy: FloatArray, speed: float, horizon: float,
             f"{_LIMIT.get(limit, 'time limit')} ({horizon / 3600:.4g} h): even the field's "
             f"most favourable current (u {umin:.2g}..{umax:.2g}, v {vmin:.2g}..{vmax:.2g} "
             f"m/s) added to the vehicle's "
-            f"{speed:g} m/s cannot carry it there in time, at any resolution", "box")
+            f"{speed:g} m/s cannot carry it there in time, at any resolution", "box", limit)
     return None
 
 
@@ -215,7 +222,8 @@ def drift_cone(problem: Any, spacing_m: float) -> DriftCone | None:
                 f"the goal lies outside the drift cone within the {limit} "
                 f"({horizon / 3600:.4g} h): in this spatially uniform current the drift disk "
                 f"|goal - start - integral(c dt)| <= V t never contains the goal (it stays "
-                f"{gap / 1000:.3g} km short), so no heading reaches it at any resolution", "disk")
+                f"{gap / 1000:.3g} km short), so no heading reaches it at any resolution", "disk",
+                problem.limit_reason)
         return None
     return _box_cone(problem.field_, g, problem.speed, horizon, margin,
                      problem.limit_reason)

@@ -111,9 +111,10 @@ def route(
     cone = extract.drift_cone(problem, phases.spacing_for(problem))
     if cone is not None:  # outside the drift cone: no front needed, at any resolution
         lap("drift_cone")
+        stats["spacing_m"] = phases.spacing_for(problem)
         return RouteResult(status=Status.UNREACHABLE, message=cone.message,
                            warnings=tuple(warnings), best_distance_m=problem.distance_m,
-                           unreachable_reason="outside_drift_cone", stats=stats, **common)
+                           unreachable_reason=cone.reason, stats=stats, **common)
     rg = phases.grid(problem)
     tolerance = settings.endpoint_tolerance_cells * rg.spacing_m
     lap("grid")
@@ -142,6 +143,8 @@ def route(
     # (extract.py); else (or when it fails) the polyline held leg by leg
     strong = extract.swept(problem, rg, fo.goal_time)
     g = extract.characteristic_candidate(problem, rg, fo) if strong else None
+    if g is not None and not phases.flown_ok(phases.verify(problem, rg, g), tolerance):
+        g = None
     if g is None:
         g = phases.backtrack(problem, rg, fo)
     lap("backtrack")
@@ -179,8 +182,8 @@ def route(
         flown = flown_g if flown_g is not None else phases.verify(problem, rg, g)
         lap("verify_grid")
     ok = phases.flown_ok(flown, tolerance)
-    if not ok:
-        rescued = extract.rescue(problem, rg, fo, tolerance, tried=g.method == "characteristic")
+    if not ok and settings.refine:
+        rescued = extract.rescue(problem, rg, fo, tolerance, tried=strong)
         lap("rescue")
         if rescued is not None:
             best, flown = rescued
