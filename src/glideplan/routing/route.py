@@ -142,11 +142,15 @@ def route(
     # where the current reaches the vehicle's speed, the characteristic's own controls
     # (extract.py); else (or when it fails) the polyline held leg by leg
     strong = extract.swept(problem, rg, fo.goal_time)
-    g = extract.characteristic_candidate(problem, rg, fo) if strong else None
-    if g is not None and not phases.flown_ok(phases.verify(problem, rg, g), tolerance):
-        g = None
+    swept_route = extract.rescue(problem, rg, fo, tolerance, tried=False) if strong else None
+    g = swept_route[0] if swept_route is not None else None
     if g is None:
-        g = phases.backtrack(problem, rg, fo)
+        try:
+            g = phases.backtrack(problem, rg, fo)
+        except InvalidParameterError:  # the polyline's legs outlast the field (swept along)
+            g = extract.characteristic_candidate(problem, rg, fo)
+            if g is None:
+                raise
     lap("backtrack")
     best, flown, note = g, None, ""
     refined_T = None
@@ -182,8 +186,8 @@ def route(
         flown = flown_g if flown_g is not None else phases.verify(problem, rg, g)
         lap("verify_grid")
     ok = phases.flown_ok(flown, tolerance)
-    if not ok and settings.refine:
-        rescued = extract.rescue(problem, rg, fo, tolerance, tried=strong)
+    if not ok and settings.refine and not strong:
+        rescued = extract.rescue(problem, rg, fo, tolerance, tried=False)
         lap("rescue")
         if rescued is not None:
             best, flown = rescued
