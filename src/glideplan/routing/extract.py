@@ -255,11 +255,11 @@ def swept(problem: Any, rg: Any, t_end: float) -> bool:
     return bool(np.any(np.isfinite(s)) and float(np.nanmax(s)) >= problem.speed)
 
 
-def rescue(problem: Any, rg: Any, fo: Any, tolerance: float, tried: bool) -> tuple[
-        Any, Any] | None:
+def rescue(problem: Any, rg: Any, fo: Any, tolerance: float, tried: bool,
+           track: bool = True) -> tuple[Any, Any] | None:
     """A verified route from the characteristic when the other routes failed: its own
-    controls (unless `tried`), then flown closed-loop (`tracking_candidate`); (candidate,
-    flown) or None."""
+    controls (unless `tried`), then (with `track`, a refinement) flown closed-loop
+    (`tracking_candidate`); (candidate, flown) or None."""
     from glideplan.routing.phases import flown_ok, verify
 
     ref = characteristic_candidate(problem, rg, fo)
@@ -269,6 +269,8 @@ def rescue(problem: Any, rg: Any, fo: Any, tolerance: float, tried: bool) -> tup
         flown = verify(problem, rg, ref)
         if flown_ok(flown, tolerance):
             return ref, flown
+    if not track:
+        return None
     tracked = tracking_candidate(problem, rg, ref)
     if tracked is None:
         return None

@@ -142,7 +142,8 @@ def route(
     # where the current reaches the vehicle's speed, the characteristic's own controls
     # (extract.py); else (or when it fails) the polyline held leg by leg
     strong = extract.swept(problem, rg, fo.goal_time)
-    swept_route = extract.rescue(problem, rg, fo, tolerance, tried=False) if strong else None
+    swept_route = extract.rescue(problem, rg, fo, tolerance, tried=False,
+                                 track=settings.refine) if strong else None
     g = swept_route[0] if swept_route is not None else None
     if g is None:
         try:
