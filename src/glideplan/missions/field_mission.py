@@ -243,7 +243,7 @@ def plan_mission_in_field(
     if progress and route.n > 2:
         from glideplan.progress import start_progress_bar
 
-        bar, task = start_progress_bar("legs", route.n - 1)
+        bar, task = start_progress_bar("legs", route.n - 1, with_rate=True)
     try:
         legs, info = _route_legs(route, flow, speed, depart, depth_range, resolution,
                                  land_clearance_m, bar, task)
