@@ -3,7 +3,7 @@ field at the speed of their legs").
 
 Run: `.venv/bin/python benchmarks/mission_field.py [--legs 1200] [--router-legs 10]`.
 
-Field: a Copernicus-like file at 1/12 deg (39.5-41.5 N, 71-69 W), hourly for 60 days: a
+Field: a Copernicus-like file at 1/12 deg (39.5-41.5 N, 71-69 W), hourly for 120 days: a
 tidal current (M2, <= 0.15 m/s east, <= 0.05 m/s north, varying in space over a few cells),
 written to NetCDF and read back with `open_field`. Route: `--legs` legs of 1-5 km (random
 bearings, kept inside 40.0-41.0 N, 70.6-69.4 W; seed 28) at 0.5 m/s through the water,
@@ -27,7 +27,7 @@ import time
 import numpy as np
 
 
-def write_field(path: pathlib.Path, days: int = 60) -> None:
+def write_field(path: pathlib.Path, days: int = 120) -> None:
     from glideplan.fields.synthetic import copernicus_dataset
 
     lat = np.arange(39.5, 41.5001, 1 / 12)
@@ -81,6 +81,9 @@ def main() -> None:
         t_fast = time.perf_counter() - clock
         methods = [leg.result.method for leg in fast.legs]
         n_local = sum(m == "zermelo-local" for m in methods)
+        for leg in fast.legs:
+            if not leg.ok:
+                print(f"leg {leg.index + 1}: {leg.result.status}: {leg.result.message}")
         print(f"{len(fast.legs)} legs, status {fast.status}: {t_fast:.1f} s, "
               f"{t_fast / len(fast.legs):.3f} s per leg ({n_local} by local shooting)")
         k = args.router_legs

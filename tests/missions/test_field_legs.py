@@ -85,3 +85,37 @@ def test_mission_counts_its_legs(tidal_field, capsys):
     for prev, nxt in zip(m.legs[:-1], m.legs[1:], strict=True):
         assert nxt.result.depart_s == pytest.approx(prev.result.depart_s + prev.duration_s)
     assert "4/4" in capsys.readouterr().err
+
+
+def test_steady_field_legs_run_on_the_batch_runner(monkeypatch):
+    """A steady field and 8 legs (the batch threshold lowered to 4 here): the legs run on
+    the batch runner (independent), then are chained in time; the same legs and times as
+    routed one after the other."""
+    from glideplan.fields.field import GriddedField
+    from glideplan.missions import field_legs, plan_mission_in_field
+    from glideplan.missions.route import Route
+
+    lat = np.arange(39.5, 41.5001, 1 / 12)
+    lon = np.arange(-71.0, -68.999, 1 / 12)
+    LA, LO = np.meshgrid(lat, lon, indexing="ij")
+    fld = GriddedField(times=np.array([0.0]), lat=lat, lon=lon,
+                       u=(0.1 * np.cos((LA - 40) * 3))[None], v=(0.05 * np.sin(LO + 70))[None],
+                       epoch=np.datetime64("2026-01-01T00:00", "ns"))
+    rng = np.random.default_rng(3)
+    wl = 40.5 + np.cumsum(rng.uniform(-0.02, 0.02, 9))
+    wo = -70.0 + np.cumsum(rng.uniform(-0.03, 0.03, 9))
+    route = Route.from_geographic([f"W{i}" for i in range(9)], wl, wo)
+    monkeypatch.setattr(field_legs, "BATCH_MIN_LEGS", 4)
+    monkeypatch.setattr(field_legs, "LEGS_PER_TASK", 4)
+    calls = []
+    real = field_legs.steady_legs
+    monkeypatch.setattr(field_legs, "steady_legs", lambda *a, **k: calls.append(1) or real(
+        *a, **k))
+    batch = plan_mission_in_field(route, fld, speed=V, depart=3600.0)
+    monkeypatch.setattr(field_legs, "BATCH_MIN_LEGS", 10**6)
+    seq = plan_mission_in_field(route, fld, speed=V, depart=3600.0)
+    assert calls == [1] and batch.ok and seq.ok and len(batch.legs) == 8
+    for a, b in zip(batch.legs, seq.legs, strict=True):
+        assert a.duration_s == pytest.approx(b.duration_s, rel=1e-9)
+        assert a.result.depart_s == pytest.approx(b.result.depart_s, rel=1e-12)
+    assert batch.legs[0].result.depart_s == 3600.0

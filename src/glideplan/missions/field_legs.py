@@ -36,12 +36,16 @@ from numpy.typing import NDArray
 
 from glideplan.routing.sphere import EARTH_RADIUS_M
 
-__all__ = ["FAST_MAX_DISTANCE_M", "LocalCube", "fast_leg"]
+__all__ = ["BATCH_MIN_LEGS", "FAST_MAX_DISTANCE_M", "LocalCube", "fast_leg", "steady_legs"]
 
 FloatArray = NDArray[np.float64]
 
 #: Legs up to this long (m) are tried by local shooting first.
 FAST_MAX_DISTANCE_M = 20_000.0
+#: Missions in a steady field with at least this many legs run on the batch runner.
+BATCH_MIN_LEGS = 40
+#: Legs per batch task (the field is pickled once per task).
+LEGS_PER_TASK = 25
 #: Metres per degree of latitude on the router's sphere.
 M_PER_DEG = math.radians(1.0) * EARTH_RADIUS_M
 #: RK4 steps of the shooting flight (the verification uses four times as many).
@@ -305,3 +309,38 @@ def fast_leg(fld: Any, start: tuple[float, float], goal: tuple[float, float], sp
         straight_line_duration_s=None, grid_duration_s=None, refined_duration_s=float(sol[1]),
         method="zermelo-local", land_clearance_m=float(clear),
         field_info=fld.describe(), stats={"spacing_m": h, "cube_nodes": list(cube.u.shape)})
+
+
+def route_one(fld: Any, a: tuple[float, float], b: tuple[float, float], speed: float,
+              depart: Any, resolution: float | None, land_clearance_m: float | None) -> Any:
+    """One leg: local shooting when it applies, else `glideplan.routing.route`."""
+    from glideplan.routing import RouteSettings, route
+
+    res = fast_leg(fld, a, b, speed, depart, resolution, land_clearance_m)
+    if res is None:
+        res = route(fld, a, b, speed, depart=depart,
+                    settings=RouteSettings(resolution=resolution,
+                                           land_clearance_m=land_clearance_m))
+    return res
+
+
+def _chunk_task(item: tuple[Any, list[tuple[tuple[float, float], tuple[float, float]]], float,
+                            float | None, float | None]) -> list[Any]:
+    fld, pairs, speed, resolution, clearance = item
+    return [route_one(fld, a, b, speed, None, resolution, clearance) for a, b in pairs]
+
+
+def steady_legs(route: Any, fld: Any, speed: float, resolution: float | None,
+                land_clearance_m: float | None, progress: bool) -> list[Any]:
+    """Every leg of `route` through a steady field on the batch runner (`glideplan.batch`,
+    local processes), LEGS_PER_TASK legs per task; the `RouteResult`s in leg order, each
+    departing at the field's time (`missions.field_mission` chains them)."""
+    from glideplan.batch import run_batch
+
+    pairs = [((float(route.lat[i]), float(route.lon[i])),
+              (float(route.lat[i + 1]), float(route.lon[i + 1]))) for i in range(route.n - 1)]
+    items = [(fld, pairs[k:k + LEGS_PER_TASK], speed, resolution, land_clearance_m)
+             for k in range(0, len(pairs), LEGS_PER_TASK)]
+    out = run_batch(_chunk_task, items, progress=progress,
+                    description=f"legs ({LEGS_PER_TASK} per task)")
+    return [r for chunk in out for r in chunk]

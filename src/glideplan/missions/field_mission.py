@@ -239,17 +239,24 @@ def plan_mission_in_field(
         from glideplan.fields import open_field
 
         flow, depth_range = open_field(flow, depth_range=depth_range), None
-    bar, task = None, None
-    if progress and route.n > 2:
-        from glideplan.progress import start_progress_bar
+    from glideplan.missions.field_legs import BATCH_MIN_LEGS, steady_legs
 
-        bar, task = start_progress_bar("legs", route.n - 1, with_rate=True)
-    try:
-        legs, info = _route_legs(route, flow, speed, depart, depth_range, resolution,
-                                 land_clearance_m, bar, task)
-    finally:
-        if bar is not None:
-            bar.stop()
+    if flow.time_span is None and route.n - 1 >= BATCH_MIN_LEGS:
+        # a steady field: the legs are independent (only their departure times chain)
+        legs, info = _chain(steady_legs(route, flow, speed, resolution, land_clearance_m,
+                                        progress), flow, depart)
+    else:
+        bar, task = None, None
+        if progress and route.n > 2:
+            from glideplan.progress import start_progress_bar
+
+            bar, task = start_progress_bar("legs", route.n - 1, with_rate=True)
+        try:
+            legs, info = _route_legs(route, flow, speed, depart, depth_range, resolution,
+                                     land_clearance_m, bar, task)
+        finally:
+            if bar is not None:
+                bar.stop()
     if radius is not None and all(leg.ok for leg in legs):
         legs = _fly_legs(legs, flow, speed, radius)
     h = np.full(route.n, np.nan)
@@ -327,6 +334,32 @@ def _route_legs(route: Route, flow: FlowField, speed: float, depart: Any,
                              length_m=float(res.distance_m), duration_s=duration))
         t = float(res.depart_s) + duration
     return legs, info
+
+
+def _chain(results: list[RouteResult], flow: FlowField, depart: Any) -> tuple[
+        list[FieldLeg], dict[str, Any]]:
+    """Legs routed independently in a steady field, chained in time: leg i + 1 departs when
+    leg i arrives (the first at `depart`, or the first leg's own departure); stop at a
+    failed leg."""
+    from dataclasses import replace
+
+    from glideplan.fields.field import to_seconds
+
+    legs: list[FieldLeg] = []
+    t = float(results[0].depart_s) if depart is None else float(to_seconds(depart, flow.epoch))
+    for i, res in enumerate(results):
+        when = None if flow.epoch is None else flow.epoch + np.timedelta64(round(t * 1e3), "ms")
+        res = replace(res, depart_s=t, depart=when)
+        if not res.ok:
+            legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res, length_m=math.nan,
+                                 duration_s=math.nan))
+            break
+        duration = float(res.duration_s or 0.0)
+        legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res,
+                             length_m=float(res.distance_m), duration_s=duration))
+        t += duration
+    return legs, dict(results[0].field_info)
+
 
 def _fly_legs(legs: list[FieldLeg], flow: FlowField, speed: float, radius: float) -> list[FieldLeg]:
     """Each leg's flyable path, ending on the next leg's initial ground course, followed in
