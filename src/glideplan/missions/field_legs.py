@@ -289,6 +289,13 @@ def fast_leg(fld: Any, start: tuple[float, float], goal: tuple[float, float], sp
     f = _fly(cube, speed, problem.t0, problem.start, sol[0], sol[1], STEPS)
     assert f is not None
     ts, la, lo, chi, _ = f
+    # the track keeps the clearance from the cube's edge (beyond which land may lie)
+    m_lat = math.degrees(0.5 * dist / EARTH_RADIUS_M)
+    m_lon = m_lat / max(math.cos(math.radians(float(np.max(np.abs(la))))), 1e-6)
+    a, b = problem.start, problem.goal
+    if (np.min(la) < min(a[0], b[0]) - m_lat or np.max(la) > max(a[0], b[0]) + m_lat
+            or np.min(lo) < min(a[1], b[1]) - m_lon or np.max(lo) > max(a[1], b[1]) + m_lon):
+        return None
     # the verification: the headings flown again, four times finer, through the cube
     check = _fly(cube, speed, problem.t0, problem.start, sol[0], sol[1], 4 * STEPS,
                  controls=(ts, chi))
