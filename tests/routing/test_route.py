@@ -170,15 +170,20 @@ def test_double_gyre_beats_crabbing_and_refinement_not_slower():
 def test_unreachable_reports_best_distance():
     """A 0.4 m/s current against a 0.3 m/s vehicle: the goal upstream cannot be reached.
 
-    Every point reachable after t = 0 lies downstream, so the closest approach is the start
-    (to within a grid spacing: the front's nodes). The front never stops growing (it drifts
-    away), so the answer is the duration limit, here 1.5 still-water times.
+    Every point reachable after t = 0 lies downstream (the drift cone of half-angle
+    asin(0.3 / 0.4) about the current), so no duration helps: the answer is
+    "outside_drift_cone", found before any front (no front statistics), the closest
+    approach the start. A 0.2 m/s current is beaten at 0.1 m/s net, 3 still-water times:
+    within 1.5 of them the drift disk says "max_duration", also without a front.
     """
     start, goal = (30.0, -40.0), (30.0, -39.7)
     dist = float(gc_distance(*start, *goal))
     r = route(UniformField(-0.4, 0.0), start, goal, V, cells=60, max_duration=1.5 * dist / V)
     assert r.status == "unreachable" and r.duration_s is None and not r.ok
-    assert r.unreachable_reason == "max_duration"
-    assert r.to_dict()["unreachable_reason"] == "max_duration"
+    assert r.unreachable_reason == "outside_drift_cone"
+    assert r.to_dict()["unreachable_reason"] == "outside_drift_cone"
+    assert "front_s" not in r.stats and "drift cone" in r.message
     assert r.best_distance_m == pytest.approx(dist, abs=r.stats["spacing_m"])
+    slow = route(UniformField(-0.2, 0.0), start, goal, V, cells=60, max_duration=1.5 * dist / V)
+    assert slow.unreachable_reason == "max_duration" and "front_s" not in slow.stats
     assert r.straight_line_duration_s is None

@@ -261,8 +261,9 @@ def test_absurd_speed_is_refused_and_start_equal_goal_is_solved(files, run_cli, 
 
 
 def test_unreachable_states_its_reason_and_draws_the_furthest_reach(files, run_cli, tmp_path):
-    """0.05 m/s upstream against the 0.1 m/s current: never reachable, and the field's 48 h
-    end first: exit 1, reason "time_span", the figure drawn with the front's furthest reach."""
+    """0.05 m/s upstream against the 0.1 m/s current: never reachable (the current, faster
+    than the vehicle, sets it away from the goal everywhere in the field: outside the drift
+    cone, found without a front): exit 1, reason "outside_drift_cone", the figure drawn."""
     path, _ = files
     png = tmp_path / "u.png"
     code, out, err = run_cli("route", "--field", str(path), "--from", "44.5", "-8.5", "--to",
@@ -270,8 +271,9 @@ def test_unreachable_states_its_reason_and_draws_the_furthest_reach(files, run_c
                              "--json", "--plot", str(png))
     assert code == 1, err
     data = json.loads(out)
-    assert data["status"] == "unreachable" and data["unreachable_reason"] == "time_span"
-    assert data["best_distance_m"] > 0
+    assert data["status"] == "unreachable"
+    assert data["unreachable_reason"] == "outside_drift_cone"
+    assert data["best_distance_m"] > 0 and "front_s" not in data["stats"]
     import matplotlib.image
 
     assert matplotlib.image.imread(png).ndim == 3

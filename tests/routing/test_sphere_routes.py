@@ -233,7 +233,8 @@ def _lake_file(tmp_path):
 def test_unreachable_reasons(tmp_path):
     """Unreachable only when it is, and why: a goal in a lake ringed by land ->
     "front_stopped"; a field that ends before the still-water time -> "time_span"; a
-    current out of the field faster than the vehicle -> "field_extent"."""
+    uniform current faster than the vehicle away from the goal -> "outside_drift_cone"; one
+    out of the field that is not everywhere faster -> "field_extent"."""
     fld = open_field(_lake_file(tmp_path))
     r = route(fld, (30.2, -40.4), (30.5, -40.0), 0.5, cells=40)
     assert r.status == "unreachable" and r.unreachable_reason == "front_stopped"
@@ -249,6 +250,15 @@ def test_unreachable_reasons(tmp_path):
 
     west = tmp_path / "west.nc"
     copernicus_dataset(lat, lon, HOURLY[:1], [0.5], u[:1] - 0.5, u[:1]).to_netcdf(west)
+    r = route(open_field(west), (30.0, -40.0), (30.0, -39.8), 0.3, cells=40)
+    # uniform and faster than the vehicle, away from the goal: outside the drift cone
+    assert r.status == "unreachable" and r.unreachable_reason == "outside_drift_cone"
+    assert r.front is None
+    # still water along the north edge: the drift cone (the field's velocity box) no longer
+    # excludes the goal, and the front drifts out of the field's west edge first
+    slack = u[:1] - 0.5
+    slack[..., -1, :] = 0.0
+    copernicus_dataset(lat, lon, HOURLY[:1], [0.5], slack, u[:1]).to_netcdf(west)
     r = route(open_field(west), (30.0, -40.0), (30.0, -39.8), 0.3, cells=40)
     assert r.status == "unreachable" and r.unreachable_reason == "field_extent"
     assert r.front is not None and np.isfinite(r.front.arrival).any()

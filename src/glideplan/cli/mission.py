@@ -256,6 +256,11 @@ def _plan_in_field(r: Any, path: pathlib.Path, speed: float, radius: float, when
         flow = open_field(path, depth_range=depth_range)
     check_depart(flow, when)
     # its warnings (the field's, the routes', headings not enforced) are printed by the caller
+    if r.n > 2:  # a bar that counts the legs, with an ETA (terminals only)
+        import sys
+
+        return plan_mission_in_field(r, flow, speed=speed, depart=when, radius=radius,
+                                     progress=sys.stderr.isatty())
     return solving("routing the legs", lambda: plan_mission_in_field(
         r, flow, speed=speed, depart=when, radius=radius))
 

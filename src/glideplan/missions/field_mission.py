@@ -216,6 +216,7 @@ def plan_mission_in_field(
     speed: float, depart: Any = None,
     depth_range: tuple[float, float] | None = None, resolution: float | None = None,
     radius: float | None = None, land_clearance_m: float | None = None,
+    progress: bool = False,
 ) -> FieldMission:
     """Route every leg of a geographic `route` through `flow` (a FlowField or file paths).
 
@@ -226,10 +227,7 @@ def plan_mission_in_field(
     (module docstring). A leg that would depart at or after the field's last time raises
     `PlanningError`.
     """
-    from glideplan.errors import PlanningError
     from glideplan.fields.field import FlowField
-    from glideplan.routing import RouteSettings
-    from glideplan.routing import route as route_leg
 
     speed = check_positive("speed", speed)
     if radius is not None:
@@ -241,29 +239,24 @@ def plan_mission_in_field(
         from glideplan.fields import open_field
 
         flow, depth_range = open_field(flow, depth_range=depth_range), None
-    legs: list[FieldLeg] = []
-    t = depart
-    info: dict[str, Any] = {}
-    for i in range(route.n - 1):
-        if i > 0 and flow.time_span is not None and float(t) >= flow.time_span[1]:
-            raise PlanningError(
-                f"leg {i + 1} ({route.names[i]} -> {route.names[i + 1]}) would depart at "
-                f"{flow.format_time(float(t))}, at or after the field's last time "
-                f"{flow.format_time(flow.time_span[1])}")
-        res = route_leg(flow, (float(route.lat[i]), float(route.lon[i])),
-                        (float(route.lat[i + 1]), float(route.lon[i + 1])), speed,
-                        depart=t, depth_range=depth_range,
-                        settings=RouteSettings(resolution=resolution,
-                                               land_clearance_m=land_clearance_m))
-        info = dict(res.field_info)
-        if not res.ok:
-            legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res, length_m=math.nan,
-                                 duration_s=math.nan))
-            break
-        duration = float(res.duration_s or 0.0)
-        legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res,
-                             length_m=float(res.distance_m), duration_s=duration))
-        t = float(res.depart_s) + duration
+    from glideplan.missions.field_legs import BATCH_MIN_LEGS, steady_legs
+
+    if flow.time_span is None and route.n - 1 >= BATCH_MIN_LEGS:
+        # a steady field: the legs are independent (only their departure times chain)
+        legs, info = _chain(steady_legs(route, flow, speed, resolution, land_clearance_m,
+                                        progress), flow, depart)
+    else:
+        bar, task = None, None
+        if progress and route.n > 2:
+            from glideplan.progress import start_progress_bar
+
+            bar, task = start_progress_bar("legs", route.n - 1, with_rate=True)
+        try:
+            legs, info = _route_legs(route, flow, speed, depart, depth_range, resolution,
+                                     land_clearance_m, bar, task)
+        finally:
+            if bar is not None:
+                bar.stop()
     if radius is not None and all(leg.ok for leg in legs):
         legs = _fly_legs(legs, flow, speed, radius)
     h = np.full(route.n, np.nan)
@@ -298,6 +291,74 @@ def plan_mission_in_field(
                  "router steers a point mass)" for name in stats["headings_not_enforced"]]
     return FieldMission(route=route, headings=np.nan_to_num(h), legs=tuple(legs), speed=speed,
                         field_info=info, stats=stats, radius=radius, warnings=tuple(warnings))
+
+
+
+def _route_legs(route: Route, flow: FlowField, speed: float, depart: Any,
+                depth_range: tuple[float, float] | None, resolution: float | None,
+                land_clearance_m: float | None, bar: Any, task: Any) -> tuple[
+                    list[FieldLeg], dict[str, Any]]:
+    """Route the legs in turn (leg i + 1 departs when leg i arrives); stop at a failed leg."""
+    from glideplan.errors import PlanningError
+    from glideplan.missions.field_legs import fast_leg
+    from glideplan.routing import RouteSettings
+    from glideplan.routing import route as route_leg
+
+    assert route.lat is not None and route.lon is not None
+    legs: list[FieldLeg] = []
+    t = depart
+    info: dict[str, Any] = {}
+    for i in range(route.n - 1):
+        if i > 0 and flow.time_span is not None and float(t) >= flow.time_span[1]:
+            raise PlanningError(
+                f"leg {i + 1} ({route.names[i]} -> {route.names[i + 1]}) would depart at "
+                f"{flow.format_time(float(t))}, at or after the field's last time "
+                f"{flow.format_time(flow.time_span[1])}")
+        a, b = (float(route.lat[i]), float(route.lon[i])), (float(route.lat[i + 1]),
+                                                              float(route.lon[i + 1]))
+        # a short leg in open water: Zermelo shooting in its own cube of nodes (field_legs)
+        res = fast_leg(flow, a, b, speed, t, resolution, land_clearance_m)
+        if res is None:
+            res = route_leg(flow, a, b, speed, depart=t, depth_range=depth_range,
+                            settings=RouteSettings(resolution=resolution,
+                                                   land_clearance_m=land_clearance_m))
+        if bar is not None:
+            bar.update(task, advance=1)
+        info = dict(res.field_info)
+        if not res.ok:
+            legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res, length_m=math.nan,
+                                 duration_s=math.nan))
+            break
+        duration = float(res.duration_s or 0.0)
+        legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res,
+                             length_m=float(res.distance_m), duration_s=duration))
+        t = float(res.depart_s) + duration
+    return legs, info
+
+
+def _chain(results: list[RouteResult], flow: FlowField, depart: Any) -> tuple[
+        list[FieldLeg], dict[str, Any]]:
+    """Legs routed independently in a steady field, chained in time: leg i + 1 departs when
+    leg i arrives (the first at `depart`, or the first leg's own departure); stop at a
+    failed leg."""
+    from dataclasses import replace
+
+    from glideplan.fields.field import to_seconds
+
+    legs: list[FieldLeg] = []
+    t = float(results[0].depart_s) if depart is None else float(to_seconds(depart, flow.epoch))
+    for i, res in enumerate(results):
+        when = None if flow.epoch is None else flow.epoch + np.timedelta64(round(t * 1e3), "ms")
+        res = replace(res, depart_s=t, depart=when)
+        if not res.ok:
+            legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res, length_m=math.nan,
+                                 duration_s=math.nan))
+            break
+        duration = float(res.duration_s or 0.0)
+        legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res,
+                             length_m=float(res.distance_m), duration_s=duration))
+        t += duration
+    return legs, dict(results[0].field_info)
 
 
 def _fly_legs(legs: list[FieldLeg], flow: FlowField, speed: float, radius: float) -> list[FieldLeg]:

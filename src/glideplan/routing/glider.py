@@ -207,7 +207,8 @@ def follow_route(
         gamma=speed / radius, boundary_layer=0.2,
         dt=dt if dt is not None else 0.1 * radius / speed, timeout_factor=3.0,
     )
-    current = FieldDisturbance(_local_velocity(field_, proj), t0=float(t0))
+    current = FieldDisturbance(_follower_velocity(result, field_, proj, radius, speed),
+                               t0=float(t0))
     res = follow_paths(fp.path, current.stream(1, settings.dt), settings=settings,
                        disturbance_bound=eps * speed, record=True)
     assert res.tracks is not None and res.cross_track is not None
@@ -238,6 +239,66 @@ def follow_route(
         track=Track(every * settings.dt, px, py, course, lat=lat, lon=lon),
         flyable=fp,
     )
+
+
+#: Legs up to this long (m) are followed through the current sampled once on a grid
+#: (`routing.local_sampler`) of this spacing (m).
+SAMPLED_MAX_M, SAMPLED_SPACING_M = 30_000.0, 100.0
+
+
+def _follower_velocity(result: RouteResult, field_: FlowField, proj: LocalProjection,
+                       radius: float, speed: float) -> VelocityFunction:
+    """The follower's current: `_local_velocity`, sampled on the leg's box for short legs
+    (the box grown by 5 R0 + 10 %, the field's levels over 3x the route's duration)."""
+    exact = _local_velocity(field_, proj)
+    x, y = proj.to_local(np.asarray(result.lat, dtype=float), np.asarray(result.lon, float))
+    w, h = float(np.ptp(x)), float(np.ptp(y))
+    if max(w, h) > SAMPLED_MAX_M or result.duration_s is None:
+        return exact
+    pad = 5 * radius + 0.1 * max(w, h) + SAMPLED_SPACING_M
+    box = (float(np.min(x)) - pad, float(np.max(x)) + pad, float(np.min(y)) - pad,
+           float(np.max(y)) + pad)
+    t0, t1 = float(result.depart_s), float(result.depart_s) + 3.0 * float(result.duration_s)
+    levels = field_.time_levels
+    if levels is None:
+        times = np.array([t0]) if field_.time_span is None else None
+    else:
+        k0 = max(int(np.searchsorted(levels, t0, side="right")) - 1, 0)
+        k1 = min(int(np.searchsorted(levels, t1)) + 1, levels.size)
+        times = np.asarray(levels[k0:k1], dtype=float)
+    if times is None or times.size == 0:
+        return exact
+    from glideplan.routing.local_sampler import sampled_velocity
+
+    try:
+        fast = sampled_velocity(exact, box, times, SAMPLED_SPACING_M,
+                                sample=_levels(field_, proj))
+    except InvalidParameterError:
+        return exact
+    if times.size == 1:  # steady: one level answers every time
+        return lambda t, xx, yy: fast(float(times[0]), xx, yy)
+    return fast
+
+
+def _levels(field_: FlowField, proj: LocalProjection) -> Any:
+    """(times, x, y) -> (u, v) (nt, n) in local axes: `local_current` at many times, the
+    points' lat/lon and rotation computed once."""
+    from glideplan.routing.grid import local_rotation, rotate_to_local
+
+    def sample(times: FloatArray, x: FloatArray, y: FloatArray) -> tuple[FloatArray,
+                                                                         FloatArray]:
+        lat, lon = proj.to_geographic(x, y)
+        lat, lon = np.atleast_1d(lat), np.atleast_1d(lon)
+        cg, sg = local_rotation(proj, lat, lon)
+        us, vs = [], []
+        for t in times:
+            u, v = field_.velocity(float(t), lat, lon)
+            cx, cy = rotate_to_local(np.atleast_1d(u), np.atleast_1d(v), cg, sg)
+            us.append(cx)
+            vs.append(cy)
+        return np.array(us), np.array(vs)
+
+    return sample
 
 
 def _local_velocity(field_: FlowField, proj: LocalProjection) -> VelocityFunction:

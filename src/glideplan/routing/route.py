@@ -106,14 +106,27 @@ def route(
                            straight_line_duration_s=0.0, grid_duration_s=0.0, method="none",
                            stats=stats, **common)
 
+    from glideplan.routing import extract
+
+    cone = extract.drift_cone(problem, phases.spacing_for(problem))
+    if cone is not None:  # outside the drift cone: no front needed, at any resolution
+        lap("drift_cone")
+        stats["spacing_m"] = phases.spacing_for(problem)
+        return RouteResult(status=Status.UNREACHABLE, message=cone.message,
+                           warnings=tuple(warnings), best_distance_m=problem.distance_m,
+                           unreachable_reason=cone.reason, stats=stats, **common)
     rg = phases.grid(problem)
     tolerance = settings.endpoint_tolerance_cells * rg.spacing_m
     lap("grid")
     fo, rg = phases.front(problem, rg)
     g0 = None
     if fo.goal_time is not None:
-        g0 = phases.backtrack(problem, rg, fo)
-        if g0.method == phases.CLOSED:  # closed at the full clearance: the front again
+        try:
+            g0 = phases.backtrack(problem, rg, fo)
+        except InvalidParameterError:  # swept along: extract.py below takes it
+            g0 = None
+        # closed at the full clearance: the front again
+        if g0 is not None and g0.method == phases.CLOSED:
             rg = phases.strict_grid(problem, rg)
             fo, rg = phases.front(problem, rg)
             g0 = None
@@ -146,7 +159,19 @@ def route(
                            unreachable_reason=why, stats=stats, **common)
 
     grid_T = fo.goal_time - problem.t0
-    g = g0 if g0 is not None else phases.backtrack(problem, rg, fo)
+    # where the current reaches the vehicle's speed, the characteristic's own controls
+    # (extract.py); else (or when it fails) the polyline held leg by leg
+    strong = extract.swept(problem, rg, fo.goal_time)
+    swept_route = extract.rescue(problem, rg, fo, tolerance, tried=False,
+                                 track=settings.refine) if strong else None
+    g = swept_route[0] if swept_route is not None else g0
+    if g is None:
+        try:
+            g = phases.backtrack(problem, rg, fo)
+        except InvalidParameterError:  # the polyline's legs outlast the field (swept along)
+            g = extract.characteristic_candidate(problem, rg, fo)
+            if g is None:
+                raise
     lap("backtrack")
     best, flown, note = g, None, ""
     refined_T = None
@@ -182,6 +207,14 @@ def route(
         flown = flown_g if flown_g is not None else phases.verify(problem, rg, g)
         lap("verify_grid")
     ok = phases.flown_ok(flown, tolerance)
+    if not ok and settings.refine and not strong:
+        rescued = extract.rescue(problem, rg, fo, tolerance, tried=False)
+        lap("rescue")
+        if rescued is not None:
+            best, flown = rescued
+            ok = True
+            note = _join(note, f"the {best.method} route is the verified one (the others "
+                         "missed the goal)")
     if flown.filled:
         warnings.append(f"verification: the field's interpolation stencil touched land at "
                         f"{flown.filled} of its evaluations; the nearest water current was "
