@@ -264,7 +264,7 @@ class _Flyer:
         t = np.asarray(self.t) - self.t0
         keep = np.r_[True, np.diff(t) > 1.0]  # drop the millisecond heading switches
         keep[-1] = True
-        dur = None if self.t_arrive is None else self.t_arrive - self.t0
+        dur = None if self.t_arrive is None else float(self.t_arrive - self.t0)
         return Flight(self.status or "unreachable", dur,
                       None if self.status == "solved" else (self.reason or "max_duration"),
                       t[keep], np.asarray(self.lat)[keep], np.asarray(self.lon)[keep], plans)
@@ -315,11 +315,12 @@ def _plan(fld: FlowField, pos: tuple[float, float], goal: tuple[float, float], s
         r = route(fld, pos, goal, speed, depart=t, resolution=res, refine=False,
                   max_duration=max(horizon - t, 3600.0), progress=False)
     except InvalidParameterError:
-        return Plan(t - t0, issued, "failed", None, empty, empty, empty, empty)
+        return Plan(float(t - t0), issued, "failed", None, empty, empty, empty, empty)
     if r.status.value == "unreachable" or not r.track.size:
-        return Plan(t - t0, issued, r.status.value, None, empty, empty, empty, empty)
+        return Plan(float(t - t0), issued, r.status.value, None, empty, empty, empty, empty)
     chi = math.pi / 2 - np.asarray(r.track.heading, dtype=float)
-    return Plan(t - t0, issued, r.status.value, r.duration_s, np.asarray(r.track.t) + t - t0,
+    return Plan(float(t - t0), issued, r.status.value, float(r.duration_s or 0.0),
+                np.asarray(r.track.t) + t - t0,
                 r.lat.copy(), r.lon.copy(), chi)
 
 
@@ -426,6 +427,11 @@ def replay(truth: FlowField, forecasts: list[Forecast], mission: Mission,
     hind_plan = _plan(truth, mission.start, mission.goal, mission.speed, t0, t_end, t0,
                       "truth", s)
     hindsight = _open_loop(truth, mission, t0, t_end, s, hind_plan if hind_plan.t.size else None)
+    if warnings:
+        warnings = [f"{len(warnings)} of the {len(flight.plans)} plans ran past their "
+                    "forecast's last time step: planned on with its last field held "
+                    "(persistence keeps its eddies where it put them; the next forecast "
+                    "replaces it); first: " + warnings[0]]
     stats = {"replay_s": round(t_replay, 3), "total_s": round(timer.perf_counter() - clock, 3),
              "replans": len(flight.plans)}
     return ReplayResult(mission, flight, {"naive": naive, "plan_once": once,
