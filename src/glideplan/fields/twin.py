@@ -1,4 +1,4 @@
-"""An identical-twin ocean: a small equivalent-barotropic QG model (NumPy FFTs), truth and forecasts.
+"""An identical-twin ocean: a small equivalent-barotropic QG model (NumPy FFTs), truth, forecasts.
 
 The model (doubly periodic, pseudo-spectral, 2/3 dealiased, RK4 in time):
 
@@ -32,7 +32,7 @@ from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
 
-__all__ = ["QGModel", "TwinConfig", "TwinFiles", "forecast_skill", "write_twin"]
+__all__ = ["QGModel", "TwinConfig", "TwinFiles", "forecast_skill", "twin_missions", "write_twin"]
 
 FloatArray = NDArray[np.float64]
 EARTH_RADIUS_M = 6_371_000.0
@@ -131,8 +131,8 @@ class QGModel:
         """Integrate `seconds` (RK4 + filter); return the final state and, with `every_s`, the
         states at 0, every_s, 2 every_s, ... (inclusive of the end when it falls on one)."""
         dt = self.cfg.dt_s
-        steps = int(round(seconds / dt))
-        keep = int(round(every_s / dt)) if every_s else 0
+        steps = round(seconds / dt)
+        keep = round(every_s / dt) if every_s else 0
         out = [qh.copy()] if keep else []
         for i in range(steps):
             k1 = self._rhs(qh, scale)
@@ -189,8 +189,9 @@ class TwinFiles:
 
 
 def _grid(cfg: TwinConfig) -> tuple[FloatArray, FloatArray]:
-    idx = np.arange(cfg.n) - (cfg.n - 1) / 2
-    return cfg.centre[0] + idx * cfg.step_deg, cfg.centre[1] + idx * cfg.step_deg
+    idx = np.arange(cfg.n, dtype=float) - (cfg.n - 1) / 2
+    return (np.asarray(cfg.centre[0] + idx * cfg.step_deg, dtype=float),
+            np.asarray(cfg.centre[1] + idx * cfg.step_deg, dtype=float))
 
 
 def _write(path: pathlib.Path, cfg: TwinConfig, model: QGModel, states: Sequence[Any],
@@ -211,8 +212,8 @@ def _write(path: pathlib.Path, cfg: TwinConfig, model: QGModel, states: Sequence
     attrs = {"Conventions": "CF-1.8", "title": "glideplan twin experiment (QG model)",
              "source": "glideplan.fields.twin"}
     if issue_h is not None:
-        ref = epoch + np.timedelta64(int(round(issue_h * 3600)), "s")
-        data["forecast_reference_time"] = ((), np.datetime64(ref, "ns"),
+        ref = epoch + np.timedelta64(round(issue_h * 3600), "s")
+        data["forecast_reference_time"] = ((), ref.astype("datetime64[ns]"),
                                            {"standard_name": "forecast_reference_time"})
         attrs["forecast_reference_time"] = str(ref) + "Z"
     ds = xr.Dataset(data, coords={
@@ -244,9 +245,10 @@ def write_twin(out_dir: str | pathlib.Path, config: TwinConfig | None = None,
     every = cfg.out_h * 3600.0
     _, truth = model.run(q0, cfg.days * DAY, every_s=every, scale=scale)
     _write(out / "truth.nc", cfg, model, truth, 0.0, ep, None)
-    per_day = int(round(DAY / every))
+    per_day = round(DAY / every)
     rng = np.random.default_rng(cfg.seed + 2)
-    paths, errs = [], {}
+    paths: list[pathlib.Path] = []
+    errs: dict[int, list[float]] = {}
     for d in range(cfg.forecasts):
         start = truth[d * per_day]
         q = perturb(model, start, cfg.perturbation, rng)
@@ -270,3 +272,36 @@ def forecast_skill(cfg: TwinConfig | None = None) -> dict[str, float]:
 
     with tempfile.TemporaryDirectory() as tmp:
         return write_twin(tmp, replace(cfg or TwinConfig(), forecasts=3, days=6.0)).skill
+
+
+def twin_missions(files: TwinFiles, n: int, seed: int = 0, speed: float = 0.5,
+                  distance_km: tuple[float, float] = (150.0, 300.0),
+                  slack: tuple[float, float] = (0.9, 1.15), max_hours: float = 192.0,
+                  goal_radius_m: float = 2000.0, depart_days: tuple[float, float] = (0.0, 5.0),
+                  margin_deg: float = 0.4) -> list[dict[str, Any]]:
+    """n random missions in the twin's box (rows of missions.csv): start and goal `margin_deg`
+    inside it, `distance_km` apart; the time limit is the still-water time d / V times a
+    factor drawn from `slack` (tight limits are where knowing the currents matters), at most
+    `max_hours`; departure a whole hour drawn from `depart_days` after the truth's start."""
+    from glideplan.routing.sphere import destination, gc_distance
+
+    rng = np.random.default_rng(seed)
+    la0, la1 = files.lat[0] + margin_deg, files.lat[1] - margin_deg
+    lo0, lo1 = files.lon[0] + margin_deg, files.lon[1] - margin_deg
+    ep = np.datetime64(files.epoch.rstrip("Z"), "s")
+    out: list[dict[str, Any]] = []
+    while len(out) < n:
+        a = (rng.uniform(la0, la1), rng.uniform(lo0, lo1))
+        d = rng.uniform(*distance_km) * 1e3
+        la, lo = destination(a[0], a[1], rng.uniform(0, 2 * np.pi), d)
+        if not (la0 <= la <= la1 and lo0 <= lo <= lo1):
+            continue
+        hours = min(max_hours, float(gc_distance(a[0], a[1], la, lo)) / speed / 3600.0
+                    * rng.uniform(*slack))
+        dep = ep + np.timedelta64(int(rng.uniform(*depart_days) * 24), "h")
+        out.append({"id": f"m{len(out):03d}", "start_lat": round(float(a[0]), 5),
+                    "start_lon": round(float(a[1]), 5), "goal_lat": round(float(la), 5),
+                    "goal_lon": round(float(lo), 5), "depart": str(dep) + "Z",
+                    "speed_mps": speed, "goal_radius_m": goal_radius_m,
+                    "max_hours": round(hours, 3)})
+    return out

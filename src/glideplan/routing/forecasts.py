@@ -1,4 +1,4 @@
-"""Forecast files for replanning at sea: issue times, the newest forecast, the field a pilot plans on.
+"""Forecast files for replanning at sea: issue times, the newest forecast, the field planned on.
 
 A forecast is one file, or several files with the same issue time (merged, e.g. u and v
 apart). Its issue time is its CF `forecast_reference_time` -- a variable (scalar or 1-D) or a
@@ -78,7 +78,7 @@ def forecast_issue_time(path: str | pathlib.Path) -> np.datetime64:
 
 
 def open_forecasts(pattern: str | list[str]) -> list[Forecast]:
-    """Every forecast matched by a glob (or a list of files), grouped by issue time, oldest first."""
+    """Every forecast of a glob (or a list of files), grouped by issue time, oldest first."""
     from glideplan.fields.io import open_field
 
     if isinstance(pattern, str):
@@ -132,7 +132,7 @@ def planning_field(fc: Forecast, epoch: np.datetime64, t_now: float, horizon: fl
         u, v = np.concatenate([u[:1], u]), np.concatenate([v[:1], v])
     if times[-1] < horizon:
         last = fld.format_time(fld.times[-1])
-        warnings.append(f"the forecast issued {str(fc.issued)}Z ends at {last}: planned past it "
+        warnings.append(f"the forecast issued {fc.issued!s}Z ends at {last}: planned past it "
                         "with its last field held (persistence keeps its eddies where it put "
                         "them; the next forecast replaces it)")
         times = np.r_[times, horizon + 3600.0]

@@ -142,7 +142,7 @@ class ReplayResult:
         f = self.flight
         dep = self.mission.depart
         arrival = None if f.duration_s is None else str(
-            (dep + np.timedelta64(int(round(f.duration_s)), "s")).astype("datetime64[s]")) + "Z"
+            (dep + np.timedelta64(round(f.duration_s), "s")).astype("datetime64[s]")) + "Z"
         return {
             "status": f.status, "unreachable_reason": f.reason, "duration_s": f.duration_s,
             "depart": str(dep.astype("datetime64[s]")) + "Z", "arrival_time": arrival,
@@ -172,8 +172,8 @@ class _Flyer:
         self.t_arrive: float | None = None
 
     def _rhs(self, t: float, y: FloatArray, chi: float) -> FloatArray:
-        u, v = self.truth.velocity(t, y[0], y[1])
-        u, v = float(u), float(v)
+        ua, va = self.truth.velocity(t, y[0], y[1])
+        u, v = float(ua), float(va)
         if not (math.isfinite(u) and math.isfinite(v)):
             raise _Aground
         V = self.m.speed
@@ -350,7 +350,7 @@ def _closed_loop(truth: FlowField, forecasts: list[Forecast], m: Mission, t0: fl
     plans: list[Plan] = []
     t = t0
     while True:
-        now = epoch + np.timedelta64(int(round(t)), "s")
+        now = epoch + np.timedelta64(round(t), "s")
         fc = newest(forecasts, now)
         assert fc is not None
         pos = (fl.lat[-1], fl.lon[-1])
