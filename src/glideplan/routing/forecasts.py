@@ -146,7 +146,9 @@ def planning_field(fc: Forecast, epoch: np.datetime64, t_now: float, horizon: fl
         w_t = np.exp(-np.clip(times - t_fix, 0.0, None) / max(time_s, 1e-9))
         w = w_t[:, None, None] * w_xy[None]
         u, v = u + bias[0] * w, v + bias[1] * w
-    out = GriddedField(times=np.asarray(times, dtype=float), lat=fld.lat, lon=fld.lon,
+    from glideplan.fields.scalar import ScalarGridded
+
+    out = ScalarGridded(times=np.asarray(times, dtype=float), lat=fld.lat, lon=fld.lon,
                        u=np.asarray(u, dtype=float), v=np.asarray(v, dtype=float), epoch=epoch,
                        info=dict(fld.info), warnings=())
     return out, warnings

@@ -416,7 +416,10 @@ def check_coverage(truth: FlowField, forecasts: list[Forecast], m: Mission) -> t
 def replay(truth: FlowField, forecasts: list[Forecast], mission: Mission,
            settings: ReplaySettings | None = None) -> ReplayResult:
     """Fly the replanning controller and the baselines through the truth (module docstring)."""
+    from glideplan.fields.scalar import scalar_gridded
+
     s = settings or ReplaySettings()
+    truth = scalar_gridded(truth)
     t0, t_end = check_coverage(truth, forecasts, mission)
     clock = timer.perf_counter()
     warnings: list[str] = []
