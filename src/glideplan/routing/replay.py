@@ -75,7 +75,10 @@ class Mission:
 class ReplaySettings:
     """step_s: integration step (s, <= 900); fix_every_s: the vehicle's fixes (s); bias_length_m
     / bias_time_s: reach of the measured-current correction (0 length: none); resolution:
-    the planner's grid spacing (m; None: distance / cells, at least 2 km); cells."""
+    the planner's grid spacing (m; None: distance / cells, at least 2 km); cells; follow:
+    "track" (steer at the plan's point `lookahead_m` ahead of the nearest, with the crab angle
+    for the current the vehicle expects: the plan's field, corrected by its measurement) or
+    "headings" (the plan's headings in time, open loop)."""
 
     step_s: float = 600.0
     fix_every_s: float = 3 * 3600.0
@@ -83,6 +86,12 @@ class ReplaySettings:
     bias_time_s: float = 12 * 3600.0
     resolution: float | None = None
     cells: int = 60
+    follow: str = "track"
+    lookahead_m: float = 6000.0
+
+    def __post_init__(self) -> None:
+        if self.follow not in ("track", "headings"):
+            raise InvalidParameterError("follow", self.follow, "must be 'track' or 'headings'")
 
 
 @dataclass(frozen=True, eq=False)
@@ -299,6 +308,69 @@ def _follow(plan: Plan, t0: float, goal: tuple[float, float]) -> Callable[[float
     return heading
 
 
+def crab(east: float, north: float, cu: float, cv: float, V: float) -> float:
+    """Compass heading (rad) whose water velocity V plus current c moves along (east, north):
+    w = -c_perp n + sqrt(V^2 - c_perp^2) e (all of V against c_perp when |c_perp| >= V)."""
+    n = math.hypot(east, north)
+    if n == 0.0:
+        return 0.0
+    ex, ey = east / n, north / n
+    if not (math.isfinite(cu) and math.isfinite(cv)):
+        cu = cv = 0.0
+    perp = -cu * ey + cv * ex  # component along n = (-ey, ex)
+    if abs(perp) >= V:
+        wx, wy = -math.copysign(V, perp) * -ey, -math.copysign(V, perp) * ex
+    else:
+        along = math.sqrt(V * V - perp * perp)
+        wx, wy = -perp * -ey + along * ex, -perp * ex + along * ey
+    return math.atan2(wx, wy)
+
+
+def _tracker(plan: Plan, goal: tuple[float, float], V: float, current: Any,
+             lookahead: float) -> Callable[[float, float, float], float]:
+    """Steer at the plan's point `lookahead` m beyond its point nearest the vehicle (the
+    goal past its end), crabbing for `current(t, lat, lon)` (None: still water)."""
+    lat0 = math.radians(float(np.mean(plan.lat)))
+    kx = math.radians(1.0) * R_EARTH * math.cos(lat0)
+    ky = math.radians(1.0) * R_EARTH
+    x, y = plan.lon * kx, plan.lat * ky
+    keep = np.r_[True, np.hypot(np.diff(x), np.diff(y)) > 1.0]  # drop repeated vertices
+    x, y = x[keep], y[keep]
+    seg = np.hypot(np.diff(x), np.diff(y))
+    cum = np.r_[0.0, np.cumsum(seg)]
+    gx, gy = goal[1] * kx, goal[0] * ky
+    state = {"k": 0}
+
+    def heading(t: float, lat: float, lon: float) -> float:
+        px, py = lon * kx, lat * ky
+        if seg.size:  # the nearest point on the polyline's segments (from the last one on)
+            k0 = state["k"]
+            sl = slice(k0, min(k0 + 40, seg.size))
+            ax, ay, dx, dy = x[sl], y[sl], np.diff(x)[sl], np.diff(y)[sl]
+            f = np.clip(((px - ax) * dx + (py - ay) * dy) / np.maximum(seg[sl] ** 2, 1e-9),
+                        0.0, 1.0)
+            d2 = (ax + f * dx - px) ** 2 + (ay + f * dy - py) ** 2
+            j = int(np.argmin(d2))
+            state["k"] = k0 + j
+            s = cum[k0 + j] + f[j] * seg[k0 + j] + lookahead
+        else:
+            s = math.inf
+        if s >= cum[-1]:
+            tx, ty = gx, gy
+        else:
+            tx, ty = float(np.interp(s, cum, x)), float(np.interp(s, cum, y))
+        cu = cv = 0.0
+        if current is not None:
+            try:
+                u, v = current(t, lat, lon)
+                cu, cv = float(u), float(v)
+            except InvalidParameterError:
+                pass
+        return crab(tx - px, ty - py, cu, cv, V)
+
+    return heading
+
+
 # ------------------------------------------------------------------------------ planning
 
 
@@ -324,11 +396,27 @@ def _plan(fld: FlowField, pos: tuple[float, float], goal: tuple[float, float], s
                 r.lat.copy(), r.lon.copy(), chi)
 
 
-def _fly_plan(fl: _Flyer, plan: Plan, t_stop: float) -> bool:
-    """Fly the plan's headings (then at the goal) until t_stop."""
-    nodes = plan.t + fl.t0 if plan.t.size else None
-    heading = _follow(plan, fl.t0, fl.m.goal) if plan.t.size else _naive(fl.m.goal)
-    return fl.fly(t_stop, heading, nodes)
+def _fly_plan(fl: _Flyer, plan: Plan, t_stop: float, s: ReplaySettings,
+              expected: FlowField | None = None) -> bool:
+    """Fly the plan until t_stop: its track (crabbing for the `expected` current) or its
+    headings (then at the goal); without a plan, at the goal."""
+    if not plan.t.size:
+        return fl.fly(t_stop, _naive(fl.m.goal))
+    if s.follow == "track":
+        cur = None if expected is None else _expected(expected)
+        return fl.fly(t_stop, _tracker(plan, fl.m.goal, fl.m.speed, cur, s.lookahead_m))
+    return fl.fly(t_stop, _follow(plan, fl.t0, fl.m.goal), plan.t + fl.t0)
+
+
+def _expected(fld: FlowField) -> Callable[[float, float, float], tuple[Any, Any]]:
+    """The current the vehicle expects: `fld` at (t clipped into its span, lat, lon)."""
+    span = fld.time_span
+
+    def current(t: float, lat: float, lon: float) -> tuple[Any, Any]:
+        tt = t if span is None else min(max(t, span[0]), span[1])
+        return fld.velocity(tt, lat, lon)
+
+    return current
 
 
 def _events(forecasts: list[Forecast], epoch: np.datetime64, t0: float, t_end: float,
@@ -341,7 +429,8 @@ def _events(forecasts: list[Forecast], epoch: np.datetime64, t0: float, t_end: f
 
 
 def _closed_loop(truth: FlowField, forecasts: list[Forecast], m: Mission, t0: float,
-                 t_end: float, s: ReplaySettings, warnings: list[str]) -> tuple[Flight, Plan]:
+                 t_end: float, s: ReplaySettings, warnings: list[str]) -> tuple[
+                     Flight, Plan, FlowField]:
     """The replanning controller (module docstring); also returns its departure plan."""
     epoch = truth.epoch
     assert epoch is not None
@@ -358,33 +447,40 @@ def _closed_loop(truth: FlowField, forecasts: list[Forecast], m: Mission, t0: fl
         bias = (0.0, 0.0)
         horizon = t + 1.5 * (t_end - t) + 86400.0
         fld, warn = planning_field(fc, epoch, t, horizon)
+        if not plans:
+            first_field = fld
         if meas is not None:
             fu, fv = mean_current(fld, meas[2], meas[3], meas[4])
             bias = (meas[0] - fu, meas[1] - fv)
             fld, warn = planning_field(fc, epoch, t, horizon, bias, pos, t, s.bias_length_m,
                                        s.bias_time_s)
         warnings.extend(w for w in warn if w not in warnings)
-        plan = _plan(fld, pos, m.goal, m.speed, t, t_end, t0, str(fc.issued) + "Z", s)
+        # planned up to the field's horizon, past the time limit: a late plan is still the
+        # fastest way there (an "unreachable" answer would leave only heading at the goal)
+        plan = _plan(fld, pos, m.goal, m.speed, t, horizon - 3600.0, t0,
+                     str(fc.issued) + "Z", s)
         plans.append(plan)
         nxt = next((e for e in events if e > t + 1.0), t_end)
+        if not plan.t.size:  # no plan: head at the goal, try again in 3 h
+            nxt = min(nxt, t + 3 * 3600.0)
         if plan.planned_duration_s is not None and plan.t.size:
             plan_end = t + plan.planned_duration_s
             if plan_end < nxt - 1.0 and fl.goal_distance(*pos) > 4 * m.goal_radius_m:
                 nxt = max(plan_end, t + 3600.0)  # the plan ran out before the goal: replan
-        if not _fly_plan(fl, plan, nxt):
+        if not _fly_plan(fl, plan, nxt, s, fld):
             break
         t = fl.t[-1]
-    return fl.flight(tuple(plans)), plans[0]
+    return fl.flight(tuple(plans)), plans[0], first_field
 
 
 def _open_loop(truth: FlowField, m: Mission, t0: float, t_end: float, s: ReplaySettings,
-               plan: Plan | None) -> Flight:
-    """A plan's headings then at the goal (plan None: naive all the way)."""
+               plan: Plan | None, expected: FlowField | None = None) -> Flight:
+    """A plan flown without replanning, then at the goal (plan None: naive all the way)."""
     fl = _Flyer(truth, m, t0, t_end, s.step_s)
     if plan is None:
         fl.fly(t_end, _naive(m.goal))
     else:
-        _fly_plan(fl, plan, t_end)
+        _fly_plan(fl, plan, t_end, s, expected)
     return fl.flight(() if plan is None else (plan,))
 
 
@@ -423,13 +519,15 @@ def replay(truth: FlowField, forecasts: list[Forecast], mission: Mission,
     t0, t_end = check_coverage(truth, forecasts, mission)
     clock = timer.perf_counter()
     warnings: list[str] = []
-    flight, first = _closed_loop(truth, forecasts, mission, t0, t_end, s, warnings)
+    flight, first, first_field = _closed_loop(truth, forecasts, mission, t0, t_end, s, warnings)
     t_replay = timer.perf_counter() - clock
-    once = _open_loop(truth, mission, t0, t_end, s, first if first.t.size else None)
+    once = _open_loop(truth, mission, t0, t_end, s, first if first.t.size else None,
+                      first_field)
     naive = _open_loop(truth, mission, t0, t_end, s, None)
     hind_plan = _plan(truth, mission.start, mission.goal, mission.speed, t0, t_end, t0,
                       "truth", s)
-    hindsight = _open_loop(truth, mission, t0, t_end, s, hind_plan if hind_plan.t.size else None)
+    hindsight = _open_loop(truth, mission, t0, t_end, s, hind_plan if hind_plan.t.size else None,
+                           truth)
     if warnings:
         warnings = [f"{len(warnings)} of the {len(flight.plans)} plans ran past their "
                     "forecast's last time step: planned on with its last field held "
