@@ -66,6 +66,10 @@ def route_replay_command(
     resolution: Annotated[float | None, typer.Option(
         "--resolution", metavar="METRES", show_default=False,
         help="Planner grid spacing (m; default: distance / 60, at least 2 km).")] = None,
+    follow: Annotated[str, typer.Option(
+        "--follow", metavar="HOW", help="track: steer along each plan's track with the crab "
+        "angle for the expected current; headings: its headings in time, open loop.")
+    ] = "track",
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
     plot: Annotated[pathlib.Path | None, typer.Option(
         "--plot", metavar="FILE", help="Draw the replay to FILE (.png/.pdf/.svg).")] = None,
@@ -109,7 +113,9 @@ def route_replay_command(
         max_s = max_duration * 3600.0
     mission = Mission(from_, to, speed, when, goal_radius, max_s,
                       None if replan_every is None else replan_every * 3600.0)
-    res = replay(flow, fcs, mission, ReplaySettings(resolution=resolution))
+    if follow not in ("track", "headings"):
+        raise InvalidParameterError("--follow", follow, "must be track or headings")
+    res = replay(flow, fcs, mission, ReplaySettings(resolution=resolution, follow=follow))
     out = res.to_dict()
     out["truth"] = str(truth)
     out["forecasts"] = [p for fc in fcs for p in fc.paths]

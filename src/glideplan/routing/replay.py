@@ -13,9 +13,16 @@ the planner never sees), from the same start at the same departure:
 - `hindsight`: the route planned on the truth itself (the best possible), flown the same way;
 - `naive`: heading straight at the goal all the way (pure pursuit).
 
-A plan's headings are flown until its planned arrival; then (and when planning fails) the
-vehicle heads straight at the goal. Motion (the truth's current c plus the water velocity of
-compass heading chi):
+How a plan is flown (`ReplaySettings.follow`): "track" (default) -- as a glider flies
+waypoints, the vehicle steers at the plan's point `lookahead_m` (6 km) beyond its point nearest
+the vehicle, with the crab angle for the current it expects (the field the plan was made on:
+the forecast corrected by its own measurement; the truth for hindsight; still water for
+none); past the plan's end, at the goal. "headings" -- the plan's headings in time, open loop,
+then straight at the goal. Open-loop headings diverge from the plan in eddies within hours
+(measured on the QG twin: the hindsight plan flown by its headings through the very field it
+was planned on missed missions it reaches by tracking), so tracking is the default. When
+planning fails the vehicle heads straight at the goal and tries again 3 h later. Motion (the
+truth's current c plus the water velocity of compass heading chi):
 
     dlat/dt = (V cos chi + c_north) / R,   dlon/dt = (V sin chi + c_east) / (R cos lat)
 
