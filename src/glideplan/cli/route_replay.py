@@ -76,9 +76,9 @@ def route_replay_command(
     geojson: Annotated[pathlib.Path | None, typer.Option(
         "--geojson", metavar="FILE", help="Write the flown track and the plans.")] = None,
 ) -> None:
-    """Replay a mission: plan on the newest forecast, fly its headings through the truth,
-    replan at each new forecast (and every --replan-every h); with the baselines naive,
-    plan_once and hindsight. Exit 0 reached, 1 not reached, 2 bad input."""
+    """Replay a mission (`glideplan route replay`): plan on the newest forecast, fly the plan
+    through the truth, replan at each new forecast (and every --replan-every h); with the
+    baselines naive, plan_once and hindsight. Exit 0 reached, 1 not reached, 2 bad input."""
     import numpy as np
 
     from glideplan.cli.common import announce, check_figure_file, print_json
