@@ -85,7 +85,9 @@ class ReplaySettings:
     the planner's grid spacing (m; None: distance / cells, at least 2 km); cells; follow:
     "track" (steer at the plan's point `lookahead_m` ahead of the nearest, with the crab angle
     for the current the vehicle expects: the plan's field, corrected by its measurement) or
-    "headings" (the plan's headings in time, open loop)."""
+    "headings" (the plan's headings in time, open loop); switch_margin: a new plan replaces
+    the one being flown only when it is faster, on the new forecast, than the rest of the old
+    path by this fraction (0: always)."""
 
     step_s: float = 600.0
     fix_every_s: float = 3 * 3600.0
@@ -95,6 +97,7 @@ class ReplaySettings:
     cells: int = 60
     follow: str = "track"
     lookahead_m: float = 6000.0
+    switch_margin: float = 0.03
 
     def __post_init__(self) -> None:
         if self.follow not in ("track", "headings"):
@@ -466,6 +469,8 @@ def _closed_loop(truth: FlowField, forecasts: list[Forecast], m: Mission, t0: fl
         # fastest way there (an "unreachable" answer would leave only heading at the goal)
         plan = _plan(fld, pos, m.goal, m.speed, t, horizon - 3600.0, t0,
                      str(fc.issued) + "Z", s)
+        if plans and s.switch_margin > 0:
+            plan = _keep_or_switch(plans[-1], plan, fld, pos, m, t, t0, s.switch_margin)
         plans.append(plan)
         nxt = next((e for e in events if e > t + 1.0), t_end)
         if not plan.t.size:  # no plan: head at the goal, try again in 3 h
@@ -489,6 +494,33 @@ def _open_loop(truth: FlowField, m: Mission, t0: float, t_end: float, s: ReplayS
     else:
         _fly_plan(fl, plan, t_end, s, expected)
     return fl.flight(() if plan is None else (plan,))
+
+
+def _keep_or_switch(old: Plan, new: Plan, fld: FlowField, pos: tuple[float, float],
+                    m: Mission, t: float, t0: float, margin: float) -> Plan:
+    """The new plan, unless the rest of the old path (from its vertex nearest the vehicle on),
+    timed on the new forecast with the crab angle, is within `margin` of it: then the old
+    path, re-timed ("kept"). A pilot does not change course for a forecast's noise: switching
+    between two near-equal paths round an eddy loses time at each switch."""
+    from glideplan.routing.sphere import crab_controls, gc_distance
+
+    if not old.lat.size:
+        return new
+    d = gc_distance(pos[0], pos[1], old.lat, old.lon)
+    k = int(np.argmin(d))
+    lat = np.r_[pos[0], old.lat[k + 1:]]
+    lon = np.r_[pos[1], old.lon[k + 1:]]
+    if lat.size < 2 or float(gc_distance(lat[-1], lon[-1], *m.goal)) > 2 * m.goal_radius_m:
+        return new
+    try:
+        times, chi, ok = crab_controls(fld, m.speed, t, lat, lon)
+    except InvalidParameterError:
+        return new
+    t_old = float(times[-1] - t)
+    if not ok or (new.planned_duration_s is not None and new.t.size
+                  and new.planned_duration_s < (1 - margin) * t_old):
+        return new
+    return Plan(new.time_s, new.issued, "kept", t_old, times - t0, lat, lon, chi)
 
 
 def check_coverage(truth: FlowField, forecasts: list[Forecast], m: Mission) -> tuple[float,
