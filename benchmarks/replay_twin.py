@@ -71,7 +71,7 @@ def main() -> None:
         from distributed import LocalCluster
 
         with LocalCluster(n_workers=args.workers, threads_per_worker=1,
-                          processes=True, dashboard_address=None) as cluster:
+                          processes=True, dashboard_address=":0") as cluster:
             answer, report = run_replay_study(files.truth, fcs, out / "missions.csv",
                                               out / "study", scheduler=cluster.scheduler_address)
     else:

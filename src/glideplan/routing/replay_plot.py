@@ -82,16 +82,10 @@ def _h(s: float | None) -> str:
 
 def plot_replay(res: ReplayResult, truth: Any, path: str | pathlib.Path) -> pathlib.Path:
     """Draw `replay_figure` to a file."""
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
+    from glideplan.plotting import save_figure
 
     ax = replay_figure(res, truth)
-    ax.figure.tight_layout()
-    ax.figure.savefig(path, dpi=130)
-    plt.close(ax.figure)
-    return pathlib.Path(path)
+    return pathlib.Path(save_figure(ax.figure, pathlib.Path(path)))
 
 
 def write_replay_geojson(res: ReplayResult, path: str | pathlib.Path) -> pathlib.Path:

@@ -12,11 +12,10 @@ def plot_study(answer: dict[str, Any], path: str | pathlib.Path) -> pathlib.Path
     """Left: success rate of replan / plan_once / naive over the missions feasible in
     hindsight (and those feasible with 10 % to spare); right: each controller's duration over
     hindsight's, per mission that both reached."""
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
     import numpy as np
+
+    from glideplan.plotting import save_figure
 
     s = answer["summary"]
     ctrls = ["replan", "plan_once", "naive"]
@@ -48,7 +47,4 @@ def plot_study(answer: dict[str, Any], path: str | pathlib.Path) -> pathlib.Path
     b.set_xlabel("duration / hindsight duration")
     b.set_ylabel("missions")
     b.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return pathlib.Path(path)
+    return pathlib.Path(save_figure(fig, pathlib.Path(path)))
