@@ -60,8 +60,8 @@ def test_cross_current_pure_pursuit_closed_form():
     start, goal, V, c, r = (29.6, -60.0), (30.4, -60.0), 0.5, 0.25, 200.0
     d = float(gc_distance(*start, *goal))
     truth = uniform(c, 0.0)
-    res = replay(truth, [forecast_of(uniform(0.0, 0.0))], Mission(start, goal, V, EPOCH, r,
-                                                                  3 * DAY), ReplaySettings(cells=30))
+    m = Mission(start, goal, V, EPOCH, r, 3 * DAY)
+    res = replay(truth, [forecast_of(uniform(0.0, 0.0))], m, ReplaySettings(cells=30))
     T = d * V / (V * V - c * c)
     naive = res.baselines["naive"].duration_s
     assert naive is not None

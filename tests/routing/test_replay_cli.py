@@ -63,7 +63,7 @@ def test_route_replay_bad_input(twin, cli_error, tmp_path):
 
 def test_route_example_still_works(run_cli):
     """`route` keeps its options: the dispatch only rewrites `route replay`."""
-    code, out, err = run_cli("route", "--example", "double-gyre", "--from", "0.2", "0.2",
+    code, out, _ = run_cli("route", "--example", "double-gyre", "--from", "0.2", "0.2",
                              "--to", "0.5", "1.2", "--speed", "0.9", "--help")
     assert code == 0 and "--example" in out
 
