@@ -220,9 +220,24 @@ def _click_command() -> Any:
     return _BUILT[key]
 
 
+#: `glideplan route replay ...` runs the hidden command `route-replay` (`route` itself stays
+#: one command with options, so `glideplan route --field ...` is unchanged).
+_SUBCOMMANDS = {("route", "replay"): "route-replay"}
+
+
+def _subcommand(args: list[str]) -> list[str]:
+    """`route replay ...` -> `route-replay ...` (global flags before the command kept)."""
+    words = [i for i, a in enumerate(args) if a not in _GLOBAL_FLAGS]
+    if len(words) >= 2 and words[1] == words[0] + 1:
+        name = _SUBCOMMANDS.get((args[words[0]], args[words[1]]))
+        if name is not None:
+            return [*args[: words[0]], name, *args[words[1] + 1 :]]
+    return args
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the CLI with `argv` (default: sys.argv[1:]) and return the exit code."""
-    args = list(sys.argv[1:] if argv is None else argv)
+    args = _subcommand(list(sys.argv[1:] if argv is None else argv))
     debug = _debug_requested(args)
     load_commands(args)
     command = _click_command()

@@ -1,0 +1,491 @@
+"""Replay: plan on forecasts, fly the truth, replan -- and the baselines on the same truth.
+
+`replay(truth, forecasts, mission)` flies four controllers through the truth (a `FlowField`
+the planner never sees), from the same start at the same departure:
+
+- `replan` (the closed loop): at departure, whenever a newer forecast is issued, every
+  `replan_every_s` if given, and when a plan runs out before the goal, `route()` plans from the
+  vehicle's position on the newest forecast issued by then (`glideplan.routing.forecasts.
+  planning_field`: the last field held past the forecast's end; corrected near the vehicle by
+  the current it measured since its last fix, a fix every `fix_every_s`); its headings are
+  flown through the truth until the next replan;
+- `plan_once`: the departure plan's headings flown without replanning;
+- `hindsight`: the route planned on the truth itself (the best possible), flown the same way;
+- `naive`: heading straight at the goal all the way (pure pursuit).
+
+How a plan is flown (`ReplaySettings.follow`): "track" (default) -- as a glider flies
+waypoints, the vehicle steers at the plan's point `lookahead_m` (6 km) beyond its point nearest
+the vehicle, with the crab angle for the current it expects (the field the plan was made on:
+the forecast corrected by its own measurement; the truth for hindsight; still water for
+none); past the plan's end, at the goal. "headings" -- the plan's headings in time, open loop,
+then straight at the goal. Open-loop headings diverge from the plan in eddies within hours
+(measured on the QG twin: the hindsight plan flown by its headings through the very field it
+was planned on missed missions it reaches by tracking), so tracking is the default. When
+planning fails the vehicle heads straight at the goal and tries again 3 h later. Motion (the
+truth's current c plus the water velocity of compass heading chi):
+
+    dlat/dt = (V cos chi + c_north) / R,   dlon/dt = (V sin chi + c_east) / (R cos lat)
+
+integrated with RK4 in steps of at most `step_s` (restarting at every node of a plan's
+controls); the track is kept at every step (<= 15 min apart). The mission ends `solved` when
+the vehicle is within `goal_radius_m` of the goal (the crossing interpolated in the step), else
+`unreachable` with a reason: `max_duration` (time ran out), `field_extent` (left the truth's
+field) or `aground` (the truth's current is NaN: land).
+"""
+
+from __future__ import annotations
+
+import math
+import time as timer
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from glideplan.errors import InvalidParameterError
+from glideplan.fields.field import FlowField
+from glideplan.routing.forecasts import Forecast, mean_current, newest, planning_field
+from glideplan.routing.steering import _follow, _naive, _tracker
+
+__all__ = ["REASONS", "Flight", "Mission", "Plan", "ReplayResult", "ReplaySettings", "replay"]
+
+FloatArray = NDArray[np.float64]
+R_EARTH = 6_371_000.0
+REASONS = ("max_duration", "field_extent", "aground")
+
+
+@dataclass(frozen=True)
+class Mission:
+    """start/goal (lat, lon deg), speed (m/s), depart (datetime64), goal_radius_m,
+    max_duration_s, replan_every_s (None: at departure and at each new forecast only)."""
+
+    start: tuple[float, float]
+    goal: tuple[float, float]
+    speed: float
+    depart: np.datetime64
+    goal_radius_m: float = 2000.0
+    max_duration_s: float = 8 * 86400.0
+    replan_every_s: float | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("speed", "goal_radius_m", "max_duration_s"):
+            val = getattr(self, name)
+            if not (math.isfinite(val) and val > 0):
+                raise InvalidParameterError(name, val, "must be finite and > 0")
+        r = self.replan_every_s
+        if r is not None and not (math.isfinite(r) and r >= 600.0):
+            raise InvalidParameterError("replan_every", r, "must be >= 600 s (10 min)")
+
+
+@dataclass(frozen=True)
+class ReplaySettings:
+    """step_s: integration step (s, <= 900); fix_every_s: the vehicle's fixes (s); bias_length_m
+    / bias_time_s: reach of the measured-current correction (0 length: none); resolution:
+    the planner's grid spacing (m; None: distance / cells, at least 2 km); cells; follow:
+    "track" (steer at the plan's point `lookahead_m` ahead of the nearest, with the crab angle
+    for the current the vehicle expects: the plan's field, corrected by its measurement) or
+    "headings" (the plan's headings in time, open loop); switch_margin: a new plan replaces
+    the one being flown only when it is faster, on the new forecast, than the rest of the old
+    path by this fraction (0: always)."""
+
+    step_s: float = 600.0
+    fix_every_s: float = 3 * 3600.0
+    bias_length_m: float = 20e3
+    bias_time_s: float = 12 * 3600.0
+    resolution: float | None = None
+    cells: int = 60
+    follow: str = "track"
+    lookahead_m: float = 6000.0
+    switch_margin: float = 0.03
+
+    def __post_init__(self) -> None:
+        if self.follow not in ("track", "headings"):
+            raise InvalidParameterError("follow", self.follow, "must be 'track' or 'headings'")
+
+
+@dataclass(frozen=True, eq=False)
+class Plan:
+    """One plan: made at time_s (s after departure) on the forecast issued at `issued`; its
+    status, planned duration (s) and track (t s after departure, lat, lon, compass chi rad)."""
+
+    time_s: float
+    issued: str
+    status: str
+    planned_duration_s: float | None
+    t: FloatArray
+    lat: FloatArray
+    lon: FloatArray
+    chi: FloatArray
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"time_s": self.time_s, "forecast_reference_time": self.issued,
+                "status": self.status, "planned_duration_s": self.planned_duration_s}
+
+
+@dataclass(frozen=True, eq=False)
+class Flight:
+    """A controller's outcome: status, reason, duration (s), track (t s after departure)."""
+
+    status: str
+    duration_s: float | None
+    reason: str | None
+    t: FloatArray
+    lat: FloatArray
+    lon: FloatArray
+    plans: tuple[Plan, ...] = ()
+
+    def summary(self) -> dict[str, Any]:
+        return {"status": self.status, "duration_s": self.duration_s,
+                "unreachable_reason": self.reason}
+
+
+@dataclass(frozen=True, eq=False)
+class ReplayResult:
+    """The replay (closed loop) and its baselines (module docstring)."""
+
+    mission: Mission
+    flight: Flight
+    baselines: dict[str, Flight]
+    warnings: tuple[str, ...] = ()
+    stats: dict[str, Any] = field(default_factory=dict)
+
+    def regret_s(self) -> float | None:
+        """Replay duration minus hindsight duration (s), when both arrived."""
+        h = self.baselines["hindsight"].duration_s
+        d = self.flight.duration_s
+        return None if h is None or d is None else d - h
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON of `glideplan route replay --json`."""
+        f = self.flight
+        dep = self.mission.depart
+        arrival = None if f.duration_s is None else str(
+            (dep + np.timedelta64(round(f.duration_s), "s")).astype("datetime64[s]")) + "Z"
+        return {
+            "status": f.status, "unreachable_reason": f.reason, "duration_s": f.duration_s,
+            "depart": str(dep.astype("datetime64[s]")) + "Z", "arrival_time": arrival,
+            "track": {"time_s": f.t.tolist(), "lat": f.lat.tolist(),
+                      "lon": (((f.lon + 180.0) % 360.0) - 180.0).tolist()},
+            "replans": [p.to_dict() for p in f.plans],
+            "baselines": {k: b.summary() for k, b in self.baselines.items()},
+            "regret_s": self.regret_s(),
+            "warnings": list(self.warnings), "stats": dict(self.stats),
+        }
+
+
+# ------------------------------------------------------------------------------ flying
+
+
+class _Flyer:
+    """RK4 through the truth in the truth's clock (s since its epoch), recording the track."""
+
+    def __init__(self, truth: FlowField, mission: Mission, t0: float, t_end: float,
+                 step_s: float) -> None:
+        self.truth, self.m, self.t0, self.t_end = truth, mission, t0, t_end
+        self.step = min(step_s, 900.0)
+        self.t, self.lat, self.lon = [t0], [mission.start[0]], [mission.start[1]]
+        self.wx, self.wy = [0.0], [0.0]  # through-water displacement (m, east/north)
+        self.status: str | None = None
+        self.reason: str | None = None
+        self.t_arrive: float | None = None
+
+    def _rhs(self, t: float, y: FloatArray, chi: float) -> FloatArray:
+        ua, va = self.truth.velocity(t, y[0], y[1])
+        u, v = float(ua), float(va)
+        if not (math.isfinite(u) and math.isfinite(v)):
+            raise _Aground
+        V = self.m.speed
+        cl = max(math.cos(math.radians(y[0])), 1e-9)
+        return np.degrees([(V * math.cos(chi) + v) / R_EARTH,
+                           (V * math.sin(chi) + u) / (R_EARTH * cl)])
+
+    def goal_distance(self, lat: float, lon: float) -> float:
+        from glideplan.routing.sphere import gc_distance
+
+        return float(gc_distance(lat, lon, *self.m.goal))
+
+    def fly(self, t_stop: float, heading: Callable[[float, float, float], float],
+            nodes: FloatArray | None = None) -> bool:
+        """Fly until t_stop (or arrival / failure: then False) with heading(t, lat, lon)."""
+        t = self.t[-1]
+        t_stop = min(t_stop, self.t_end)
+        marks = [] if nodes is None else [n for n in nodes if t < n < t_stop]
+        bounds = [*marks, t_stop]
+        for b in bounds:
+            while t < b - 1e-9:
+                h = min(self.step, b - t)
+                if not self._step(t, h, heading):
+                    return False
+                t = self.t[-1]
+        if self.t[-1] >= self.t_end - 1e-9:
+            self.status, self.reason = "unreachable", "max_duration"
+            return False
+        return True
+
+    def _step(self, t: float, h: float, heading: Callable[[float, float, float], float]) -> bool:
+        y = np.array([self.lat[-1], self.lon[-1]])
+        try:
+            chi1 = heading(t, *y)
+            k1 = self._rhs(t, y, chi1)
+            chi2 = heading(t + h / 2, *(y + h / 2 * k1))
+            k2 = self._rhs(t + h / 2, y + h / 2 * k1, chi2)
+            k3 = self._rhs(t + h / 2, y + h / 2 * k2, chi2)
+            chi4 = heading(t + h, *(y + h * k3))
+            k4 = self._rhs(t + h, y + h * k3, chi4)
+        except _Aground:
+            self.status, self.reason = "unreachable", "aground"
+            return False
+        except InvalidParameterError:
+            self.status, self.reason = "unreachable", "field_extent"
+            return False
+        y1 = y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        chis = np.array([chi1, chi2, chi2, chi4])
+        wts = np.array([1, 2, 2, 1]) / 6.0
+        V = self.m.speed
+        dwx = h * V * float(np.sum(wts * np.sin(chis)))
+        dwy = h * V * float(np.sum(wts * np.cos(chis)))
+        d0 = self.goal_distance(*y)
+        d1 = self.goal_distance(*y1)
+        r = self.m.goal_radius_m
+        if d1 <= r:  # arrival within this step: interpolate the crossing
+            f = 1.0 if d0 <= d1 else float(np.clip((d0 - r) / (d0 - d1), 0.0, 1.0))
+            y1 = y + f * (y1 - y)
+            h, dwx, dwy = f * h, f * dwx, f * dwy
+            self.status, self.t_arrive = "solved", t + h
+        self.t.append(t + h)
+        self.lat.append(float(y1[0]))
+        self.lon.append(float(y1[1]))
+        self.wx.append(self.wx[-1] + dwx)
+        self.wy.append(self.wy[-1] + dwy)
+        return self.status is None
+
+    def measured_current(self, span: float) -> tuple[float, float, FloatArray, FloatArray,
+                                                     FloatArray] | None:
+        """The depth-averaged current the vehicle measured over its last `span` seconds:
+        (ground - through-water displacement) / time; with the segment's track points."""
+        t = np.asarray(self.t)
+        if t[-1] - t[0] < 60.0:
+            return None
+        ta = max(t[0], t[-1] - span)
+        k = int(np.searchsorted(t, ta))
+        k = min(k, t.size - 2)
+        lat, lon = np.asarray(self.lat), np.asarray(self.lon)
+        dt = t[-1] - t[k]
+        mid = math.radians(0.5 * (lat[k] + lat[-1]))
+        gx = math.radians(lon[-1] - lon[k]) * R_EARTH * math.cos(mid)
+        gy = math.radians(lat[-1] - lat[k]) * R_EARTH
+        cu = (gx - (self.wx[-1] - self.wx[k])) / dt
+        cv = (gy - (self.wy[-1] - self.wy[k])) / dt
+        return cu, cv, t[k:], lat[k:], lon[k:]
+
+    def flight(self, plans: tuple[Plan, ...] = ()) -> Flight:
+        t = np.asarray(self.t) - self.t0
+        keep = np.r_[True, np.diff(t) > 1.0]  # drop the millisecond heading switches
+        keep[-1] = True
+        dur = None if self.t_arrive is None else float(self.t_arrive - self.t0)
+        return Flight(self.status or "unreachable", dur,
+                      None if self.status == "solved" else (self.reason or "max_duration"),
+                      t[keep], np.asarray(self.lat)[keep], np.asarray(self.lon)[keep], plans)
+
+
+class _Aground(Exception):
+    pass
+
+
+# ------------------------------------------------------------------------------ planning
+
+
+def _plan(fld: FlowField, pos: tuple[float, float], goal: tuple[float, float], speed: float,
+          t: float, horizon: float, t0: float, issued: str, settings: ReplaySettings) -> Plan:
+    """route() from pos at t on `fld` (never the truth unless it is the hindsight plan)."""
+    from glideplan.routing import route
+    from glideplan.routing.sphere import gc_distance
+
+    dist = float(gc_distance(*pos, *goal))
+    res = settings.resolution or max(2000.0, dist / settings.cells)
+    empty = np.zeros(0)
+    try:
+        r = route(fld, pos, goal, speed, depart=t, resolution=res, refine=False,
+                  max_duration=max(horizon - t, 3600.0), progress=False)
+    except InvalidParameterError:
+        return Plan(float(t - t0), issued, "failed", None, empty, empty, empty, empty)
+    if r.status.value == "unreachable" or not r.track.size:
+        return Plan(float(t - t0), issued, r.status.value, None, empty, empty, empty, empty)
+    chi = math.pi / 2 - np.asarray(r.track.heading, dtype=float)
+    return Plan(float(t - t0), issued, r.status.value, float(r.duration_s or 0.0),
+                np.asarray(r.track.t) + t - t0,
+                r.lat.copy(), r.lon.copy(), chi)
+
+
+def _fly_plan(fl: _Flyer, plan: Plan, t_stop: float, s: ReplaySettings,
+              expected: FlowField | None = None) -> bool:
+    """Fly the plan until t_stop: its track (crabbing for the `expected` current) or its
+    headings (then at the goal); without a plan, at the goal."""
+    if not plan.t.size:
+        return fl.fly(t_stop, _naive(fl.m.goal))
+    if s.follow == "track":
+        cur = None if expected is None else _expected(expected)
+        return fl.fly(t_stop, _tracker(plan, fl.m.goal, fl.m.speed, cur, s.lookahead_m))
+    return fl.fly(t_stop, _follow(plan, fl.t0, fl.m.goal), plan.t + fl.t0)
+
+
+def _expected(fld: FlowField) -> Callable[[float, float, float], tuple[Any, Any]]:
+    """The current the vehicle expects: `fld` at (t clipped into its span, lat, lon)."""
+    span = fld.time_span
+
+    def current(t: float, lat: float, lon: float) -> tuple[Any, Any]:
+        tt = t if span is None else min(max(t, span[0]), span[1])
+        return fld.velocity(tt, lat, lon)
+
+    return current
+
+
+def _events(forecasts: list[Forecast], epoch: np.datetime64, t0: float, t_end: float,
+            every: float | None) -> list[float]:
+    """Replan times after departure: each newer forecast's issue, every `every` seconds."""
+    ev = {float((fc.issued - epoch) / np.timedelta64(1, "s")) for fc in forecasts}
+    if every:
+        ev |= set(np.arange(t0 + every, t_end, every).tolist())
+    return sorted(e for e in ev if t0 < e < t_end)
+
+
+def _closed_loop(truth: FlowField, forecasts: list[Forecast], m: Mission, t0: float,
+                 t_end: float, s: ReplaySettings, warnings: list[str]) -> tuple[
+                     Flight, Plan, FlowField]:
+    """The replanning controller (module docstring); also returns its departure plan."""
+    epoch = truth.epoch
+    assert epoch is not None
+    fl = _Flyer(truth, m, t0, t_end, s.step_s)
+    events = _events(forecasts, epoch, t0, t_end, m.replan_every_s)
+    plans: list[Plan] = []
+    t = t0
+    while True:
+        now = epoch + np.timedelta64(round(t), "s")
+        fc = newest(forecasts, now)
+        assert fc is not None
+        pos = (fl.lat[-1], fl.lon[-1])
+        meas = fl.measured_current(s.fix_every_s) if s.bias_length_m > 0 else None
+        bias = (0.0, 0.0)
+        horizon = t + 1.5 * (t_end - t) + 86400.0
+        fld, warn = planning_field(fc, epoch, t, horizon)
+        if not plans:
+            first_field = fld
+        if meas is not None:
+            fu, fv = mean_current(fld, meas[2], meas[3], meas[4])
+            bias = (meas[0] - fu, meas[1] - fv)
+            fld, warn = planning_field(fc, epoch, t, horizon, bias, pos, t, s.bias_length_m,
+                                       s.bias_time_s)
+        warnings.extend(w for w in warn if w not in warnings)
+        # planned up to the field's horizon, past the time limit: a late plan is still the
+        # fastest way there (an "unreachable" answer would leave only heading at the goal)
+        plan = _plan(fld, pos, m.goal, m.speed, t, horizon - 3600.0, t0,
+                     str(fc.issued) + "Z", s)
+        if plans and s.switch_margin > 0:
+            plan = _keep_or_switch(plans[-1], plan, fld, pos, m, t, t0, s.switch_margin)
+        plans.append(plan)
+        nxt = next((e for e in events if e > t + 1.0), t_end)
+        if not plan.t.size:  # no plan: head at the goal, try again in 3 h
+            nxt = min(nxt, t + 3 * 3600.0)
+        if plan.planned_duration_s is not None and plan.t.size:
+            plan_end = t + plan.planned_duration_s
+            if plan_end < nxt - 1.0 and fl.goal_distance(*pos) > 4 * m.goal_radius_m:
+                nxt = max(plan_end, t + 3600.0)  # the plan ran out before the goal: replan
+        if not _fly_plan(fl, plan, nxt, s, fld):
+            break
+        t = fl.t[-1]
+    return fl.flight(tuple(plans)), plans[0], first_field
+
+
+def _open_loop(truth: FlowField, m: Mission, t0: float, t_end: float, s: ReplaySettings,
+               plan: Plan | None, expected: FlowField | None = None) -> Flight:
+    """A plan flown without replanning, then at the goal (plan None: naive all the way)."""
+    fl = _Flyer(truth, m, t0, t_end, s.step_s)
+    if plan is None:
+        fl.fly(t_end, _naive(m.goal))
+    else:
+        _fly_plan(fl, plan, t_end, s, expected)
+    return fl.flight(() if plan is None else (plan,))
+
+
+def _keep_or_switch(old: Plan, new: Plan, fld: FlowField, pos: tuple[float, float],
+                    m: Mission, t: float, t0: float, margin: float) -> Plan:
+    """The new plan, unless the rest of the old path (from its vertex nearest the vehicle on),
+    timed on the new forecast with the crab angle, is within `margin` of it: then the old
+    path, re-timed ("kept"). A pilot does not change course for a forecast's noise: switching
+    between two near-equal paths round an eddy loses time at each switch."""
+    from glideplan.routing.sphere import crab_controls, gc_distance
+
+    if not old.lat.size:
+        return new
+    d = gc_distance(pos[0], pos[1], old.lat, old.lon)
+    k = int(np.argmin(d))
+    lat = np.r_[pos[0], old.lat[k + 1:]]
+    lon = np.r_[pos[1], old.lon[k + 1:]]
+    if lat.size < 2 or float(gc_distance(lat[-1], lon[-1], *m.goal)) > 2 * m.goal_radius_m:
+        return new
+    try:
+        times, chi, ok = crab_controls(fld, m.speed, t, lat, lon)
+    except InvalidParameterError:
+        return new
+    t_old = float(times[-1] - t)
+    if not ok or (new.planned_duration_s is not None and new.t.size
+                  and new.planned_duration_s < (1 - margin) * t_old):
+        return new
+    return Plan(new.time_s, new.issued, "kept", t_old, times - t0, lat, lon, chi)
+
+
+def check_coverage(truth: FlowField, forecasts: list[Forecast], m: Mission) -> tuple[float,
+                                                                                   float]:
+    """(t0, t_end) in the truth's clock; InvalidParameterError when the truth does not cover
+    the mission or no forecast is issued by the departure."""
+    if truth.epoch is None:
+        raise InvalidParameterError("--truth", "no time axis", "the truth needs dates")
+    t0 = float((m.depart - truth.epoch) / np.timedelta64(1, "s"))
+    t_end = t0 + m.max_duration_s
+    span = truth.time_span
+    if span is not None and (t0 < span[0] - 1e-6 or t_end > span[1] + 1e-6):
+        raise InvalidParameterError(
+            "--truth", f"{truth.format_time(span[0])}..{truth.format_time(span[1])}",
+            f"does not cover the mission {truth.format_time(t0)}..{truth.format_time(t_end)}: "
+            "give a longer truth, a later --depart or a shorter --max-duration")
+    truth.check_position(*m.start, name="--from")
+    truth.check_position(*m.goal, name="--to")
+    if newest(forecasts, m.depart) is None:
+        first = str(forecasts[0].issued) + "Z" if forecasts else "none"
+        raise InvalidParameterError(
+            "--forecasts", ", ".join(forecasts[0].paths) if forecasts else "",
+            f"no forecast is issued at or before the departure {str(m.depart)[:19]}Z (the "
+            f"first is issued {first}): depart later or add an earlier forecast")
+    return t0, t_end
+
+
+def replay(truth: FlowField, forecasts: list[Forecast], mission: Mission,
+           settings: ReplaySettings | None = None) -> ReplayResult:
+    """Fly the replanning controller and the baselines through the truth (module docstring)."""
+    from glideplan.fields.scalar import scalar_gridded
+
+    s = settings or ReplaySettings()
+    truth = scalar_gridded(truth)
+    t0, t_end = check_coverage(truth, forecasts, mission)
+    clock = timer.perf_counter()
+    warnings: list[str] = []
+    flight, first, first_field = _closed_loop(truth, forecasts, mission, t0, t_end, s, warnings)
+    t_replay = timer.perf_counter() - clock
+    once = _open_loop(truth, mission, t0, t_end, s, first if first.t.size else None,
+                      first_field)
+    naive = _open_loop(truth, mission, t0, t_end, s, None)
+    hind_plan = _plan(truth, mission.start, mission.goal, mission.speed, t0, t_end, t0,
+                      "truth", s)
+    hindsight = _open_loop(truth, mission, t0, t_end, s, hind_plan if hind_plan.t.size else None,
+                           truth)
+    if warnings:
+        warnings = [f"{len(warnings)} of the {len(flight.plans)} plans ran past their "
+                    "forecast's last time step: planned on with its last field held "
+                    "(persistence keeps its eddies where it put them; the next forecast "
+                    "replaces it); first: " + warnings[0]]
+    stats = {"replay_s": round(t_replay, 3), "total_s": round(timer.perf_counter() - clock, 3),
+             "replans": len(flight.plans)}
+    return ReplayResult(mission, flight, {"naive": naive, "plan_once": once,
+                                          "hindsight": hindsight}, tuple(warnings), stats)

@@ -1,0 +1,95 @@
+"""`glideplan route replay` and `glideplan study replay` end to end on a small QG twin."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+
+@pytest.fixture(scope="module")
+def twin(tmp_path_factory):
+    """A 32 x 32, 1/12 deg twin: 4 days, 3 daily forecasts of 2 days; two missions."""
+    from glideplan.fields.twin import TwinConfig, write_twin
+    from glideplan.studies.replay import write_missions
+
+    out = tmp_path_factory.mktemp("twin")
+    files = write_twin(out, TwinConfig(n=32, days=4.0, forecasts=3, lead_days=2.0,
+                                       spinup_days=30.0, seed=5))
+    rows = [{"id": "a", "start_lat": 29.5, "start_lon": -60.5, "goal_lat": 30.1,
+             "goal_lon": -59.7, "depart": "2026-03-01T00:00:00Z", "speed_mps": 0.5,
+             "goal_radius_m": 2000.0, "max_hours": 60.0},
+            {"id": "b", "start_lat": 30.3, "start_lon": -59.5, "goal_lat": 29.7,
+             "goal_lon": -60.3, "depart": "2026-03-01T12:00:00Z", "speed_mps": 0.5,
+             "goal_radius_m": 2000.0, "max_hours": 60.0}]
+    write_missions(out / "missions.csv", rows)
+    return files
+
+
+def test_route_replay_cli_json_plot_geojson(twin, run_cli, tmp_path):
+    fc = str(twin.truth.parent / "forecasts" / "*.nc")
+    code, out, err = run_cli("route", "replay", "--truth", str(twin.truth), "--forecasts", fc,
+                             "--from", "29.5", "-60.5", "--to", "30.1", "-59.7", "--speed",
+                             "0.5", "--depart", "2026-03-01T00:00Z", "--max-duration", "60",
+                             "--json", "--plot", str(tmp_path / "r.png"), "--geojson",
+                             str(tmp_path / "r.geojson"))
+    d = json.loads(out)
+    assert code == (0 if d["status"] == "solved" else 1), err
+    assert d["status"] in ("solved", "unreachable")
+    assert set(d["baselines"]) == {"naive", "plan_once", "hindsight"}
+    assert d["replans"][0]["forecast_reference_time"] == "2026-03-01T00:00:00Z"
+    assert (tmp_path / "r.png").stat().st_size > 10_000
+    gj = json.loads((tmp_path / "r.geojson").read_text())
+    kinds = [f["properties"]["kind"] for f in gj["features"]]
+    assert kinds[0] == "flown" and "plan" in kinds and "baseline" in kinds
+    # the flown track in the GeoJSON is the JSON's track
+    assert gj["features"][0]["geometry"]["coordinates"][-1] == pytest.approx(
+        [d["track"]["lon"][-1], d["track"]["lat"][-1]])
+
+
+def test_route_replay_bad_input(twin, cli_error, tmp_path):
+    fc = str(twin.truth.parent / "forecasts" / "*.nc")
+    base = ["route", "replay", "--truth", str(twin.truth), "--from", "29.5", "-60.5", "--to",
+            "30.1", "-59.7", "--speed", "0.5", "--max-duration", "20"]
+    line = cli_error(*base, "--forecasts", str(tmp_path / "*.nc"), "--depart",
+                     "2026-03-01T00:00Z")
+    assert "--forecasts" in line and "matches no file" in line
+    line = cli_error(*base, "--forecasts", fc, "--depart", "2026-02-28T00:00Z")
+    assert "--truth" in line and "does not cover the mission" in line
+    late = str(twin.truth.parent / "forecasts" / "fc_00[12].nc")
+    line = cli_error(*base, "--forecasts", late, "--depart", "2026-03-01T06:00Z")
+    assert "fc_001.nc" in line and "no forecast is issued at or before" in line
+
+
+def test_route_example_still_works(run_cli):
+    """`route` keeps its options: the dispatch only rewrites `route replay`."""
+    code, out, _ = run_cli("route", "--example", "double-gyre", "--from", "0.2", "0.2",
+                             "--to", "0.5", "1.2", "--speed", "0.9", "--help")
+    assert code == 0 and "--example" in out
+
+
+def test_study_replay_cli_resumes_and_reports(twin, run_cli, cli_error, tmp_path):
+    fc = str(twin.truth.parent / "forecasts" / "*.nc")
+    args = ["study", "replay", "--truth", str(twin.truth), "--forecasts", fc, "--missions",
+            str(twin.truth.parent / "missions.csv"), "--out", str(tmp_path / "s"),
+            "--workers", "1", "--json"]
+    code, out, err = run_cli(*args)
+    assert code == 0, err
+    d = json.loads(out)
+    assert [m["id"] for m in d["missions"]] == ["a", "b"]
+    s = d["summary"]
+    assert s["missions"] == 2
+    assert s["feasible"] == sum(m["baselines"]["hindsight"]["status"] == "solved"
+                                for m in d["missions"])
+    assert set(s["success_rate"]) == {"replan", "plan_once", "naive"}
+    for name in ("summary.json", "outcomes.csv", "summary.png", "results.sqlite"):
+        assert (tmp_path / "s" / name).exists()
+    code, out2, err = run_cli(*args)  # resumed: nothing runs again, same answer
+    d2 = json.loads(out2)
+    assert d2["run"]["ran"] == 0 and d2["run"]["skipped"] == 2
+    assert d2["summary"] == s
+    bad = tmp_path / "bad.csv"
+    bad.write_text("id,start_lat,start_lon,goal_lat,goal_lon,depart,speed_mps,max_hours\n"
+                   "x,29.5,-60.5,30,-60,2026-03-01T00:00Z,0.5,10\n")
+    line = cli_error(*args[:6], "--missions", str(bad), "--out", str(tmp_path / "t"))
+    assert "bad.csv" in line and "goal_radius_m" in line
