@@ -49,7 +49,7 @@ _CANCEL: contextvars.ContextVar[Callable[[], bool] | None] = contextvars.Context
     "glideplan_cancel", default=None)
 
 
-class ComputationCancelled(BaseException):  # noqa: N818 -- a signal, like KeyboardInterrupt
+class ComputationCancelled(BaseException):  # a signal, like KeyboardInterrupt
     """Raised by `checkpoint()` when the current thread's `cancel_scope` says so."""
 
 
