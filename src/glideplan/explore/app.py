@@ -694,6 +694,8 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
     pages: dict[str, Any] = {}
 
     def show(mode: str, q: dict[str, str]) -> None:
+        if "current" in pages:  # the page left behind: its running work is cancelled
+            pages["current"]._closed = True
         if mode == "route":
             from glideplan.explore.route_page import RoutePage
 
@@ -715,7 +717,13 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
 
     asked = query.get("planner", "")
     show(asked if asked in MAP_MODES.values() else "plane", query)
-    pn.state.onload(lambda: pages["current"].push_url())
+    def loaded() -> None:
+        from glideplan.explore.worker import resend_data
+
+        pages["current"].push_url()
+        resend_data(pn.state.curdoc)  # an answer that came while the page was built
+
+    pn.state.onload(loaded)
     doc = pn.state.curdoc
     if doc is not None:
         import jinja2

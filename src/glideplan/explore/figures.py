@@ -122,7 +122,7 @@ class PlanFigures:
         self.part_src = ColumnDataSource({"image": [], "x": [], "y": [], "dw": [], "dh": []})
         self.part_labels = ColumnDataSource({"x": [], "y": [], "text": []})
         self.cand_src = ColumnDataSource(empty_candidates())
-        self.path_src = ColumnDataSource({"x": [], "y": []})
+        self.path_src = ColumnDataSource({"x": [], "y": []}, name="gp-answer")
         self.air_src = ColumnDataSource({"x": [], "y": []})
         self.heading_src = ColumnDataSource({"x0": [], "y0": [], "x1": [], "y1": [], "c": []})
         # start, goal and their heading handles: one source, so one drag is one change

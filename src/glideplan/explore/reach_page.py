@@ -209,7 +209,7 @@ class ReachPage(MapPage):
             dw=float(lo.max() - lo.min()),
             dh=float(la.max() - la.min()),
         )
-        self.foot_src = ColumnDataSource({"xs": [], "ys": []})
+        self.foot_src = ColumnDataSource({"xs": [], "ys": []}, name="gp-answer")
         fig.multi_polygons(
             "xs",
             "ys",
@@ -220,7 +220,7 @@ class ReachPage(MapPage):
             line_width=1.5,
             legend_label="footprint (safety height kept)",
         )
-        self.land_src = ColumnDataSource({"x": [], "y": [], "c": [], "text": []})
+        self.land_src = ColumnDataSource({"x": [], "y": [], "c": [], "text": []}, name="gp-answer")
         fig.scatter(
             "x",
             "y",

@@ -357,7 +357,7 @@ class RoutePage(MapPage):
             text_color="#6c3483",
             text_baseline="middle",
         )
-        self.route_src = ColumnDataSource({"x": [], "y": []})
+        self.route_src = ColumnDataSource({"x": [], "y": []}, name="gp-answer")
         fig.line(
             "x",
             "y",
