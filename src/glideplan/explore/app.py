@@ -718,10 +718,11 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
     asked = query.get("planner", "")
     show(asked if asked in MAP_MODES.values() else "plane", query)
     def loaded() -> None:
-        from glideplan.explore.worker import resend_data
+        from glideplan.explore.worker import local_styles, resend_data
 
         pages["current"].push_url()
         resend_data(pn.state.curdoc)  # an answer that came while the page was built
+        local_styles(pn.state.curdoc)
 
     pn.state.onload(loaded)
     doc = pn.state.curdoc

@@ -18,7 +18,7 @@ from panel.io.state import set_curdoc
 
 from glideplan.compute import ComputationCancelled, cancel_scope
 
-__all__ = ["SessionWorker", "resend_data"]
+__all__ = ["SessionWorker", "local_styles", "resend_data"]
 
 
 class SessionWorker:
@@ -47,6 +47,7 @@ class SessionWorker:
             return
         with set_curdoc(self._doc), hold(self._doc):
             fn()
+            local_styles(self._doc)
 
     def _compute(self, state: Any) -> Any:
         raise NotImplementedError
@@ -127,3 +128,22 @@ def resend_data(doc: Any) -> None:
             if cols:
                 doc.callbacks.trigger_on_change(ColumnDataChangedEvent(doc, src, "data",
                                                                        cols=cols))
+
+
+def local_styles(doc: Any) -> None:
+    """Point the style sheets of models made after the page was served at this server.
+
+    Panel rewrites its components' CDN style sheet links (cdn.holoviz.org) to the server's
+    own copies only for the models present when the page is first served; a model made later
+    (a loading spinner, a column) kept its CDN link: a failed request offline, a request to a
+    third party online. Costs one walk over the document's style sheets (~0.1 ms).
+    """
+    from bokeh.models import ImportedStyleSheet
+    from panel.io.resources import CDN_DIST, patch_stylesheet
+
+    dist = getattr(doc, "_template_variables", {}).get("dist_url")
+    if not dist or dist == CDN_DIST:
+        return
+    for model in list(doc.models):
+        if isinstance(model, ImportedStyleSheet) and model.url.startswith(CDN_DIST):
+            patch_stylesheet(model, dist)
