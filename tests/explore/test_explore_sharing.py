@@ -175,3 +175,30 @@ def test_slow_route_replaced_by_fast_shows_fast_answer(server: str, context: Any
     assert status == "solved"
     assert cost == f"{ref.duration_s:.10g}"
     assert took < 3.0 * own + 5.0, (took, own)  # its own time, plus page and load slack
+
+
+def test_bad_goal_then_good_ones_raise_no_bokeh_error(server: str, context: Any):
+    """An unreadable Dubins goal, then readable ones: no script error in the page (was
+    "RangeError: Offset is outside the bounds of the DataView" on every later change) and
+    the last goal's cost is shown (reference: `plan()` for that goal)."""
+    import math
+
+    from glideplan import DubinsCar, Pose, plan
+
+    errors: list[str] = []
+    page = context.new_page()
+    page.on("pageerror", lambda exc: errors.append(str(exc)))
+    try:
+        page.goto(f"{server}/?{MODES['dubins']}")
+        page.wait_for_selector(".gp-cost", timeout=60_000)
+        box = page.locator(".gp-input-goal input")
+        for goal in ("abc", "nan,1,90", "5,3,90", "6,2,45"):
+            box.fill(goal)
+            box.press("Enter")
+            page.wait_for_timeout(400)
+        _, cost = _settled(page)
+    finally:
+        page.close()
+    assert not errors, errors
+    ref = plan(Pose(0, 0, 0), Pose(6, 2, math.radians(45)), DubinsCar(1.0, 1.0), "length")
+    assert float(cost) == pytest.approx(ref.cost, rel=1e-9)

@@ -415,10 +415,15 @@ class Explorer(SessionWorker):
         pts = empty_points()
         labels: dict[str, list[Any]] = {"x": [], "y": [], "name": [], "c": []}
         seg: dict[str, list[Any]] = {"x0": [], "y0": [], "x1": [], "y1": [], "c": []}
+        last = getattr(self, "_last_poses", {})
         for name, colour in (("start", START), ("goal", GOAL)):
-            p = poses[name]
-            if p is None:
+            # an unreadable pose keeps its last point: the sources keep their length (the
+            # draggable points' renderer threw BokehJS's "RangeError: Offset is outside the
+            # bounds of the DataView" on every later change once rows went missing)
+            p = poses[name] if poses[name] is not None else last.get(name)
+            if p is None or not all(math.isfinite(v) for v in p):
                 continue
+            last[name] = p
             hx, hy = p[0] + h * math.cos(p[2]), p[1] + h * math.sin(p[2])
             for row in (
                 (p[0], p[1], name, "pose", colour, colour, 15),
@@ -432,6 +437,7 @@ class Explorer(SessionWorker):
                 ("x0", "y0", "x1", "y1", "c"), (p[0], p[1], hx, hy, colour), strict=True
             ):
                 seg[k].append(v)
+        self._last_poses = last
         self._drawn = {
             (n, r): (x, y)
             for x, y, n, r in zip(pts["x"], pts["y"], pts["name"], pts["role"], strict=True)

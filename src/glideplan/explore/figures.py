@@ -16,7 +16,7 @@ from bokeh.plotting import figure
 
 from glideplan.explore.solve import View
 
-__all__ = ["ASPECT_JS", "PlanFigures", "equal_scales", "follow_url"]
+__all__ = ["ASPECT_JS", "PlanFigures", "columns", "equal_scales", "follow_url"]
 
 BLUE = "#1f5fa8"
 START = "#2e8540"
@@ -108,6 +108,17 @@ def empty_points() -> dict[str, list[Any]]:
 
 def empty_candidates() -> dict[str, list[Any]]:
     return {k: [] for k in ("xs", "ys", "word", "family", "cost", "cost_text", "status", "rank")}
+
+
+def columns(data: dict[str, Any]) -> dict[str, Any]:
+    """A data source's columns safe to send: all of one length (else every column emptied),
+    an empty NumPy array as an empty list (Bokeh's binary buffer of length 0 makes BokehJS
+    throw "RangeError: Offset is outside the bounds of the DataView" on this and every later
+    message -- seen after one unreadable Dubins goal)."""
+    lengths = {len(v) for v in data.values()}
+    if len(lengths) > 1:
+        return {k: [] for k in data}
+    return {k: [] if isinstance(v, np.ndarray) and v.size == 0 else v for k, v in data.items()}
 
 
 class PlanFigures:
@@ -312,9 +323,9 @@ class PlanFigures:
 
     def show(self, view: View, part: dict[str, Any] | None, candidates: bool) -> None:
         """Write a computed view into the sources (paths, candidates, profile, wind, map)."""
-        self.path_src.data = {"x": view.path["x"], "y": view.path["y"]}
+        self.path_src.data = columns({"x": view.path["x"], "y": view.path["y"]})
         air = view.air_path
-        self.air_src.data = {"x": air["x"], "y": air["y"]} if air else {"x": [], "y": []}
+        self.air_src.data = columns({"x": air["x"], "y": air["y"]} if air else {"x": [], "y": []})
         self.air_renderer.visible = air is not None
         items = [it for it in self._legend_items if it.renderers[0] is not self.air_renderer or air]
         if list(self.legend.items) != items:
@@ -335,9 +346,9 @@ class PlanFigures:
         cands = view.candidates or empty_candidates()
         if self.cand_src.selected.indices:
             self.cand_src.selected.indices = []
-        self.cand_src.data = {k: v for k, v in cands.items() if k != "cost"} | {
+        self.cand_src.data = columns({k: v for k, v in cands.items() if k != "cost"} | {
             "cost": np.asarray(cands["cost"], dtype=float)
-        }
+        })
         if self.cand_renderer.visible != visible:
             self.cand_renderer.visible = visible
 
@@ -350,12 +361,12 @@ class PlanFigures:
                 self.prof_src.data = {"t": [], "speed": [], "second": [], "third": []}
             return
         third = prof.get("third")
-        self.prof_src.data = {
+        self.prof_src.data = columns({
             "t": prof["t"],
             "speed": prof["speed"],
             "second": prof["second"],
             "third": third if third is not None else np.full_like(prof["t"], np.nan),
-        }
+        })
         if self.second_fig.yaxis[0].axis_label != view.profile_labels[1]:
             self.second_fig.yaxis.axis_label = view.profile_labels[1]
         if self.third_fig.visible != (third is not None):
