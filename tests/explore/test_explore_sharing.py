@@ -72,7 +72,7 @@ def context() -> Iterator[Any]:
 
 def _open_all(context: Any, urls: list[str], errors: list[str]) -> list[Any]:
     pages = []
-    for url in urls:
+    for _ in urls:
         page = context.new_page()
         page.on("pageerror", lambda exc: errors.append(str(exc)))
         page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
