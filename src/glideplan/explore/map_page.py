@@ -31,6 +31,7 @@ __all__ = [
     "page_layout",
     "strip_item",
     "text_inputs",
+    "warnings_item",
 ]
 
 
@@ -296,3 +297,11 @@ def busy_html(items: str, stale: bool) -> str:
         else ""
     )
     return f'<div class="gp-strip{" gp-stale" if stale else ""}">' + items + busy + "</div>"
+
+
+def warnings_item(result: Any) -> str:
+    """The result's warnings as one strip item (class `gp-warn`), or nothing."""
+    notes = tuple(getattr(result, "warnings", ()) or ())
+    if not notes:
+        return ""
+    return strip_item("warnings", "<br>".join(html.escape(n) for n in notes), "gp-warn")

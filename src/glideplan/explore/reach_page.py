@@ -33,6 +33,7 @@ from glideplan.explore.map_page import (
     page_layout,
     strip_item,
     text_inputs,
+    warnings_item,
 )
 from glideplan.explore.state import one_line
 from glideplan.explore.texts import FastHtml, html_pane
@@ -350,6 +351,7 @@ class ReachPage(MapPage):
         return busy_html(
             item("reachable landables", f"{html.escape(cost)} {total}", "gp-cost")
             + item("best margin", best, "gp-word")
-            + item("status", html.escape(status), "gp-small gp-status"),
+            + item("status", html.escape(status), "gp-small gp-status")
+            + warnings_item(r),
             stale,
         )

@@ -39,6 +39,7 @@ from glideplan.explore.map_page import (
     page_layout,
     strip_item,
     text_inputs,
+    warnings_item,
 )
 from glideplan.explore.state import one_line
 from glideplan.explore.texts import FastHtml, error_html, html_pane
@@ -366,6 +367,18 @@ class RoutePage(MapPage):
             line_width=3.5,
             legend_label="route",
         )
+        # a route the re-integration did not confirm: dashed, muted and labelled as such
+        self.unverified_src = ColumnDataSource({"x": [], "y": []})
+        fig.line(
+            "x",
+            "y",
+            source=self.unverified_src,
+            line_color="#b9770e",
+            line_width=3,
+            line_dash="dashed",
+            line_alpha=0.75,
+            legend_label="route (not verified)",
+        )
         self.points_src = ColumnDataSource({"x": [], "y": [], "name": [], "c": []})
         pts = named_points(fig, self.points_src, 15, "c", "c", (10, -8), "12px")
         finish_map(fig, pts, self.x_range, self.y_range, self.k, hide=True)
@@ -522,10 +535,15 @@ class RoutePage(MapPage):
         self.view = view
         self._show_errors(view)
         r = view.result
-        if r is not None and r.lat.size:
-            self.route_src.data = {"x": np.asarray(r.lon), "y": np.asarray(r.lat)}
-        else:
-            self.route_src.data = {"x": [], "y": []}
+        empty: dict[str, Any] = {"x": [], "y": []}
+        line = (
+            {"x": np.asarray(r.lon), "y": np.asarray(r.lat)}
+            if r is not None and r.lat.size
+            else empty
+        )
+        verified = r is not None and r.ok
+        self.route_src.data = line if verified else empty
+        self.unverified_src.data = empty if verified else line
         front = getattr(r, "front", None)
         if r is not None and front is not None:
             until = (
@@ -583,7 +601,8 @@ class RoutePage(MapPage):
                 "gp-small gp-status" + ("" if ok else " gp-status-bad"),
             )
             + item("endpoint error", err, "gp-small gp-endpoint")
-            + item("straight line", straight, "gp-small"),
+            + item("straight line", straight, "gp-small")
+            + warnings_item(r),
             stale,
         )
 
