@@ -37,7 +37,8 @@ north_label.data = {x: [nx], y: [y1 - 0.17 * h], text: ["N"]};
 
 def add_scale_and_north(fig: Any, x_range: Any, y_range: Any) -> None:
     """A scale bar (bottom left, km or m) and a north arrow (top right) on a lon/lat map."""
-    from bokeh.models import ColumnDataSource, CustomJS, NormalHead
+    from bokeh.models import ColumnDataSource, CustomJS
+    from bokeh.models.annotations.arrows import Arrow, NormalHead
 
     bar = ColumnDataSource({"xs": [], "ys": []})
     bar_label = ColumnDataSource({"x": [], "y": [], "text": []})
@@ -48,8 +49,6 @@ def add_scale_and_north(fig: Any, x_range: Any, y_range: Any) -> None:
     fig.text("x", "y", "text", source=bar_label, text_align="center", text_font_size="11px",
              text_color="#1b2733", text_font_style="bold", background_fill_color="white",
              background_fill_alpha=0.6)
-    from bokeh.models import Arrow
-
     fig.add_layout(Arrow(end=NormalHead(size=14, fill_color="#1b2733", line_color="white"),
                          source=north, x_start="x_start", y_start="y_start", x_end="x_end",
                          y_end="y_end", line_width=3, line_color="#1b2733"))
