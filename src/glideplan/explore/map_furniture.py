@@ -49,9 +49,10 @@ def add_scale_and_north(fig: Any, x_range: Any, y_range: Any) -> None:
     fig.text("x", "y", "text", source=bar_label, text_align="center", text_font_size="11px",
              text_color="#1b2733", text_font_style="bold", background_fill_color="white",
              background_fill_alpha=0.6)
+    body: dict[str, Any] = {"line_width": 3, "line_color": "#1b2733"}  # (typed as body_*)
     fig.add_layout(Arrow(end=NormalHead(size=14, fill_color="#1b2733", line_color="white"),
                          source=north, x_start="x_start", y_start="y_start", x_end="x_end",
-                         y_end="y_end", body_line_width=3, body_line_color="#1b2733"))
+                         y_end="y_end", **body))
     fig.text("x", "y", "text", source=north_label, text_align="center", text_baseline="top",
              text_font_size="13px", text_font_style="bold", text_color="#1b2733",
              background_fill_color="white", background_fill_alpha=0.6)
