@@ -32,11 +32,26 @@ bar_label.data = {x: [sx + dx / 2], y: [sy + 1.5 * t], text: [text]};
 const nx = x1 - 0.05 * w;
 north.data = {x_start: [nx], y_start: [y1 - 0.17 * h], x_end: [nx], y_end: [y1 - 0.07 * h]};
 north_label.data = {x: [nx], y: [y1 - 0.17 * h], text: ["N"]};
+if (wind != null) {
+  const d = wind.data, n = (d.to_deg || []).length;
+  if (n === 0) {
+    wind_arrow.data = {x_start: [], y_start: [], x_end: [], y_end: []};
+    wind_label.data = {x: [], y: [], text: []};
+  } else {
+    // towards `to_deg` (compass), 0.1 of the view's height long, centred below the N arrow
+    const a = d.to_deg[0] * Math.PI / 180, L = 0.1 * h, cx = x1 - 0.12 * w, cy = y1 - 0.33 * h;
+    const k = Math.cos(lat * Math.PI / 180);
+    const ex = 0.5 * L * Math.sin(a) / k, ey = 0.5 * L * Math.cos(a);
+    wind_arrow.data = {x_start: [cx - ex], y_start: [cy - ey], x_end: [cx + ex], y_end: [cy + ey]};
+    wind_label.data = {x: [cx], y: [cy - 0.09 * h], text: [d.text[0]]};
+  }
+}
 """
 
 
-def add_scale_and_north(fig: Any, x_range: Any, y_range: Any) -> None:
-    """A scale bar (bottom left, km or m) and a north arrow (top right) on a lon/lat map."""
+def add_scale_and_north(fig: Any, x_range: Any, y_range: Any, wind: Any = None) -> None:
+    """A scale bar (bottom left, km or m) and a north arrow (top right) on a lon/lat map; with
+    `wind` (a data source of `to_deg`, compass, and `text`), a wind arrow below the N."""
     from bokeh.models import ColumnDataSource, CustomJS
     from bokeh.models.annotations.arrows import Arrow, NormalHead
 
@@ -56,8 +71,21 @@ def add_scale_and_north(fig: Any, x_range: Any, y_range: Any) -> None:
     fig.text("x", "y", "text", source=north_label, text_align="center", text_baseline="top",
              text_font_size="13px", text_font_style="bold", text_color="#1b2733",
              background_fill_color="white", background_fill_alpha=0.6)
+    wind_arrow = ColumnDataSource({"x_start": [], "y_start": [], "x_end": [], "y_end": []})
+    wind_label = ColumnDataSource({"x": [], "y": [], "text": []})
+    if wind is not None:
+        blue: dict[str, Any] = {"line_width": 4, "line_color": "#0f7c8c"}
+        fig.add_layout(Arrow(end=NormalHead(size=16, fill_color="#0f7c8c", line_color="white"),
+                             source=wind_arrow, x_start="x_start", y_start="y_start",
+                             x_end="x_end", y_end="y_end", **blue))
+        fig.text("x", "y", "text", source=wind_label, text_align="center", text_baseline="top",
+                 text_font_size="11px", text_font_style="bold", text_color="#0f7c8c",
+                 background_fill_color="white", background_fill_alpha=0.7)
     cb = CustomJS(args={"xr": x_range, "yr": y_range, "bar": bar, "bar_label": bar_label,
-                        "north": north, "north_label": north_label}, code=_JS)
+                        "north": north, "north_label": north_label, "wind": wind,
+                        "wind_arrow": wind_arrow, "wind_label": wind_label}, code=_JS)
+    if wind is not None:
+        wind.js_on_change("data", cb)
     for model in (x_range, y_range):
         model.js_on_change("start", cb)
         model.js_on_change("end", cb)

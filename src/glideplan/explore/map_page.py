@@ -230,7 +230,8 @@ def named_points(
 
 
 def finish_map(
-    fig: Any, draggable: Any, x_range: Any, y_range: Any, k: float, hide: bool = False
+    fig: Any, draggable: Any, x_range: Any, y_range: Any, k: float, hide: bool = False,
+    wind: Any = None,
 ) -> None:
     """Drag `draggable`'s points, the legend top left (click hides a layer if `hide`), equal
     metres per pixel at cos(lat) = k, the view in the browser's address."""
@@ -247,7 +248,7 @@ def finish_map(
     follow_url(fig)
     from glideplan.explore.map_furniture import add_scale_and_north
 
-    add_scale_and_north(fig, x_range, y_range)
+    add_scale_and_north(fig, x_range, y_range, wind)
 
 
 def page_layout(

@@ -262,7 +262,9 @@ class ReachPage(MapPage):
             line_color="white",
             line_width=2,
         )
-        finish_map(fig, pts, self.x_range, self.y_range, self.k, hide=True)
+        self.wind_src = ColumnDataSource({"to_deg": [], "text": []})
+        self._draw_wind()
+        finish_map(fig, pts, self.x_range, self.y_range, self.k, hide=True, wind=self.wind_src)
         self.fig = fig
         self.start_src.on_change("data", self._on_points)
         self._draw_start()
@@ -296,6 +298,22 @@ class ReachPage(MapPage):
 
     def _redraw(self, old: ReachState) -> None:
         self._draw_start()
+        self._draw_wind()
+
+    def _draw_wind(self) -> None:
+        """The wind arrow's direction (towards, compass) and label (speed, FROM as typed)."""
+        try:
+            speed, frm = _numbers(self.state.wind, 2, "--wind", "")
+        except InvalidParameterError:
+            self.wind_src.data = {"to_deg": [], "text": []}
+            return
+        if speed <= 0:
+            self.wind_src.data = {"to_deg": [], "text": []}
+            return
+        self.wind_src.data = {
+            "to_deg": [(frm + 180.0) % 360.0],
+            "text": [f"wind {speed:g} m/s from {frm:g}\N{DEGREE SIGN}"],
+        }
 
     def _compute(self, state: ReachState) -> ReachView:
         return reach_view(self.example, self.polar, state)
