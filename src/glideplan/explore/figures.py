@@ -87,7 +87,7 @@ def follow_url(fig: Any) -> None:
 
 def plain_figure(x_range: Any, y_range: Any, x_label: str, y_label: str, **extra: Any) -> Any:
     """The explorer's figure: stretching, pan/zoom tools above, canvas drawn, on the ranges."""
-    return figure(
+    fig = figure(
         sizing_mode="stretch_both",
         min_width=240,
         min_height=240,
@@ -100,6 +100,11 @@ def plain_figure(x_range: Any, y_range: Any, x_label: str, y_label: str, **extra
         output_backend="canvas",
         **extra,
     )
+    from bokeh.models import WheelZoomTool
+
+    wheel = next(t for t in fig.toolbar.tools if isinstance(t, WheelZoomTool))
+    fig.toolbar.active_scroll = wheel  # the wheel zooms at once, no tool to pick first
+    return fig
 
 
 def empty_points() -> dict[str, list[Any]]:
