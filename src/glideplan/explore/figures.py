@@ -329,6 +329,7 @@ class PlanFigures:
     def show(self, view: View, part: dict[str, Any] | None, candidates: bool) -> None:
         """Write a computed view into the sources (paths, candidates, profile, wind, map)."""
         self.path_src.data = columns({"x": view.path["x"], "y": view.path["y"]})
+        self._mark_verified(view.solution is None or view.ok)
         air = view.air_path
         self.air_src.data = columns({"x": air["x"], "y": air["y"]} if air else {"x": [], "y": []})
         self.air_renderer.visible = air is not None
@@ -345,6 +346,21 @@ class PlanFigures:
             self.part_src.data = {"image": [], "x": [], "y": [], "dw": [], "dh": []}
         if self.part_legend.visible != (part is not None):
             self.part_legend.visible = part is not None
+
+    def _mark_verified(self, verified: bool) -> None:
+        """The optimal path solid blue, or dashed, muted orange and labelled when the
+        re-integration did not confirm it (status not_verified)."""
+        glyph = self.path_renderer.glyph
+        dash = "solid" if verified else "dashed"
+        if getattr(self, "_dash", "solid") != dash:  # change the glyph only when it changes
+            self._dash = dash
+            glyph.line_dash = dash
+            glyph.line_color = BLUE if verified else "#b9770e"
+            glyph.line_alpha = 1.0 if verified else 0.75
+            label = "optimal path" if verified else "path (not verified)"
+            for item in self._legend_items:
+                if item.renderers and item.renderers[0] is self.path_renderer:
+                    item.label = {"value": label}
 
     def show_candidates(self, view: View, visible: bool) -> None:
         """Every candidate's line (grey), shown when `visible`."""
