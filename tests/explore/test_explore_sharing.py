@@ -202,3 +202,34 @@ def test_bad_goal_then_good_ones_raise_no_bokeh_error(server: str, context: Any)
     assert not errors, errors
     ref = plan(Pose(0, 0, 0), Pose(6, 2, math.radians(45)), DubinsCar(1.0, 1.0), "length")
     assert float(cost) == pytest.approx(ref.cost, rel=1e-9)
+
+
+def test_one_history_entry_per_planner_switch(server: str, context: Any):
+    """Switching planner adds one history entry (edits and zooms replace it); Back shows the
+    previous planner's page again."""
+    page = context.new_page()
+    try:
+        page.goto(f"{server}/?{MODES['dubins']}")
+        page.wait_for_selector(".gp-cost", timeout=60_000)
+        page.wait_for_timeout(1000)
+        before = page.evaluate("history.length")
+        select = page.locator("select").first
+        wind = select.evaluate("s => [...s.options].findIndex(o => o.text.includes('wind'))")
+        select.select_option(index=wind)
+        page.wait_for_function("() => location.search.includes('planner=wind')",
+                               timeout=30_000)
+        page.wait_for_timeout(1000)
+        assert page.evaluate("history.length") == before + 1
+        page.go_back()
+        page.wait_for_function("() => location.search.includes('planner=dubins')",
+                               timeout=30_000)
+        page.wait_for_selector(".gp-cost", timeout=60_000)
+        shown = ""
+        deadline = time.monotonic() + 30
+        while time.monotonic() < deadline and not shown.startswith("Dubins car: shortest"):
+            page.wait_for_timeout(300)
+            shown = page.locator("select").first.evaluate(
+                "s => s.options[s.selectedIndex].text")
+        assert shown.startswith("Dubins car: shortest"), shown
+    finally:
+        page.close()

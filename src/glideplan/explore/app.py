@@ -137,6 +137,7 @@ class Explorer(SessionWorker):
         asked = (query or {}).get("planner") if isinstance(query, dict) else None
         linked = _parse_view((query or {}).get("view") if isinstance(query, dict) else None)
         self.on_mode: Callable[[str], None] | None = None  # switch to a map mode (the page)
+        self.on_switch: Callable[[Any], None] | None = None  # another planner: a history entry
         self._planner_note = (
             f"planner={asked!r}: must be one of {', '.join(self.catalog.keys)}"
             if asked
@@ -343,6 +344,8 @@ class Explorer(SessionWorker):
             return
         if event.new != self.state.planner:
             self._locked(lambda: self._switch_planner(event.new))
+            if self.on_switch is not None:
+                self._locked(lambda: self.on_switch(self.state) if self.on_switch else None)
 
     def _switch_planner(self, key: str) -> None:
         """Another planner: its inputs and defaults, the start and goal kept (as entered)."""
@@ -688,6 +691,39 @@ MAP_MODES: dict[str, str] = {
 }
 
 
+_HISTORY_JS = """
+if (!window._gp_popstate) {  // Back/Forward between planners: load that page
+  window._gp_popstate = true;
+  window.addEventListener('popstate', () => window.location.reload());
+}
+const q = cb_obj.tags[0];
+if (q) window.history.pushState(null, '', window.location.pathname + q);
+"""
+
+
+class _History:
+    """One browser history entry per planner switch: `push(query)` adds it (the page's own
+    address updates then replace it as the user edits, drags and zooms); Back reloads the
+    previous planner's page."""
+
+    def __init__(self) -> None:
+        from bokeh.models import CustomJS
+        from bokeh.models.widgets import Div
+
+        self.model = Div(text="", visible=False, tags=[])
+        self.model.js_on_change("tags", CustomJS(code=_HISTORY_JS))
+        self.pane = pn.pane.Bokeh(self.model, visible=False, margin=0)
+        self.count = 0
+
+    def push(self, query: str) -> None:
+        self.count += 1
+        self.model.tags = [query, self.count]
+
+    def arm(self) -> None:
+        """Listen for Back/Forward (once the page has loaded), adding no entry."""
+        self.push("")
+
+
 def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Viewable:
     """The page of one session, its state read from the URL query (`planner=route` is the
     route map; `map_kw` go to it: the field file of `explore --field`)."""
@@ -698,6 +734,12 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
     catalog = catalog or build_catalog()
     root = pn.Column(sizing_mode="stretch_width", margin=0, stylesheets=[ROOT_CSS])
     pages: dict[str, Any] = {}
+
+    history = _History()
+
+    def switch(key: str) -> None:
+        show(key, {"planner": key})
+        history.push(f"?planner={key}")
 
     def show(mode: str, q: dict[str, str]) -> None:
         if "current" in pages:  # the page left behind: its running work is cancelled
@@ -716,9 +758,11 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
             page = ReachPage(q)
         else:
             page = Explorer(catalog, q)
-        page.on_mode = lambda key: show(key, {"planner": key})
+        page.on_mode = lambda key: switch(key)
+        if isinstance(page, Explorer):
+            page.on_switch = lambda st: history.push(f"?planner={st.planner}")
         pages["current"] = page
-        root.objects = [page.layout]
+        root.objects = [page.layout, history.pane]
         page.push_url()
 
     asked = query.get("planner", "")
@@ -728,6 +772,7 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
 
         pages["current"].push_url()
         resend_data(pn.state.curdoc)  # an answer that came while the page was built
+        history.arm()
         local_styles(pn.state.curdoc)
 
     pn.state.onload(loaded)
