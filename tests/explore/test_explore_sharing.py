@@ -109,7 +109,8 @@ def test_tabs_open_route_and_reach_at_once(tabs: int, server: str, context: Any)
     """Route and reach links opened in `tabs` tabs at the same moment: each shows its
     answer (the CLI's numbers), and the server still serves pages afterwards."""
     errors: list[str] = []
-    urls = [f"{server}/?{ROUTE if i % 2 == 0 else REACH}" for i in range(tabs)]
+    coarse = ROUTE.replace("resolution=3000", "resolution=6000")  # the tabs, not the front
+    urls = [f"{server}/?{coarse if i % 2 == 0 else REACH}" for i in range(tabs)]
     pages = _open_all(context, urls, errors)
     try:
         answers = [_settled(p) for p in pages]
@@ -174,7 +175,9 @@ def test_slow_route_replaced_by_fast_shows_fast_answer(server: str, context: Any
         page.close()
     assert status == "solved"
     assert cost == f"{ref.duration_s:.10g}"
-    assert took < 3.0 * own + 5.0, (took, own)  # its own time, plus page and load slack
+    # its own time plus page and load slack (10.5 s seen under the full suite's load); the
+    # 0.05 m/s route left running would take minutes
+    assert took < 3.0 * own + 20.0, (took, own)
 
 
 def test_bad_goal_then_good_ones_raise_no_bokeh_error(server: str, context: Any):
