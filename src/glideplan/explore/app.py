@@ -137,6 +137,7 @@ class Explorer(SessionWorker):
         asked = (query or {}).get("planner") if isinstance(query, dict) else None
         linked = _parse_view((query or {}).get("view") if isinstance(query, dict) else None)
         self.on_mode: Callable[[str], None] | None = None  # switch to a map mode (the page)
+        self.on_switch: Callable[[Any], None] | None = None  # another planner: a history entry
         self._planner_note = (
             f"planner={asked!r}: must be one of {', '.join(self.catalog.keys)}"
             if asked
@@ -343,6 +344,8 @@ class Explorer(SessionWorker):
             return
         if event.new != self.state.planner:
             self._locked(lambda: self._switch_planner(event.new))
+            if self.on_switch is not None:
+                self._locked(lambda: self.on_switch(self.state) if self.on_switch else None)
 
     def _switch_planner(self, key: str) -> None:
         """Another planner: its inputs and defaults, the start and goal kept (as entered)."""
@@ -415,10 +418,15 @@ class Explorer(SessionWorker):
         pts = empty_points()
         labels: dict[str, list[Any]] = {"x": [], "y": [], "name": [], "c": []}
         seg: dict[str, list[Any]] = {"x0": [], "y0": [], "x1": [], "y1": [], "c": []}
+        last = getattr(self, "_last_poses", {})
         for name, colour in (("start", START), ("goal", GOAL)):
-            p = poses[name]
-            if p is None:
+            # an unreadable pose keeps its last point: the sources keep their length (the
+            # draggable points' renderer threw BokehJS's "RangeError: Offset is outside the
+            # bounds of the DataView" on every later change once rows went missing)
+            p = poses[name] if poses[name] is not None else last.get(name)
+            if p is None or not all(math.isfinite(v) for v in p):
                 continue
+            last[name] = p
             hx, hy = p[0] + h * math.cos(p[2]), p[1] + h * math.sin(p[2])
             for row in (
                 (p[0], p[1], name, "pose", colour, colour, 15),
@@ -432,6 +440,7 @@ class Explorer(SessionWorker):
                 ("x0", "y0", "x1", "y1", "c"), (p[0], p[1], hx, hy, colour), strict=True
             ):
                 seg[k].append(v)
+        self._last_poses = last
         self._drawn = {
             (n, r): (x, y)
             for x, y, n, r in zip(pts["x"], pts["y"], pts["name"], pts["role"], strict=True)
@@ -682,6 +691,39 @@ MAP_MODES: dict[str, str] = {
 }
 
 
+_HISTORY_JS = """
+if (!window._gp_popstate) {  // Back/Forward between planners: load that page
+  window._gp_popstate = true;
+  window.addEventListener('popstate', () => window.location.reload());
+}
+const q = cb_obj.tags[0];
+if (q) window.history.pushState(null, '', window.location.pathname + q);
+"""
+
+
+class _History:
+    """One browser history entry per planner switch: `push(query)` adds it (the page's own
+    address updates then replace it as the user edits, drags and zooms); Back reloads the
+    previous planner's page."""
+
+    def __init__(self) -> None:
+        from bokeh.models import CustomJS
+        from bokeh.models.widgets import Div
+
+        self.model = Div(text="", visible=False, tags=[])
+        self.model.js_on_change("tags", CustomJS(code=_HISTORY_JS))
+        self.pane = pn.pane.Bokeh(self.model, visible=False, margin=0)
+        self.count = 0
+
+    def push(self, query: str) -> None:
+        self.count += 1
+        self.model.tags = [query, self.count]
+
+    def arm(self) -> None:
+        """Listen for Back/Forward (once the page has loaded), adding no entry."""
+        self.push("")
+
+
 def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Viewable:
     """The page of one session, its state read from the URL query (`planner=route` is the
     route map; `map_kw` go to it: the field file of `explore --field`)."""
@@ -693,7 +735,15 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
     root = pn.Column(sizing_mode="stretch_width", margin=0, stylesheets=[ROOT_CSS])
     pages: dict[str, Any] = {}
 
+    history = _History()
+
+    def switch(key: str) -> None:
+        show(key, {"planner": key})
+        history.push(f"?planner={key}")
+
     def show(mode: str, q: dict[str, str]) -> None:
+        if "current" in pages:  # the page left behind: its running work is cancelled
+            pages["current"]._closed = True
         if mode == "route":
             from glideplan.explore.route_page import RoutePage
 
@@ -708,14 +758,24 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
             page = ReachPage(q)
         else:
             page = Explorer(catalog, q)
-        page.on_mode = lambda key: show(key, {"planner": key})
+        page.on_mode = lambda key: switch(key)
+        if isinstance(page, Explorer):
+            page.on_switch = lambda st: history.push(f"?planner={st.planner}")
         pages["current"] = page
-        root.objects = [page.layout]
+        root.objects = [page.layout, history.pane]
         page.push_url()
 
     asked = query.get("planner", "")
     show(asked if asked in MAP_MODES.values() else "plane", query)
-    pn.state.onload(lambda: pages["current"].push_url())
+    def loaded() -> None:
+        from glideplan.explore.worker import local_styles, resend_data
+
+        pages["current"].push_url()
+        resend_data(pn.state.curdoc)  # an answer that came while the page was built
+        history.arm()
+        local_styles(pn.state.curdoc)
+
+    pn.state.onload(loaded)
     doc = pn.state.curdoc
     if doc is not None:
         import jinja2

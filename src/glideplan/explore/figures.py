@@ -16,7 +16,7 @@ from bokeh.plotting import figure
 
 from glideplan.explore.solve import View
 
-__all__ = ["ASPECT_JS", "PlanFigures", "equal_scales", "follow_url"]
+__all__ = ["ASPECT_JS", "PlanFigures", "columns", "equal_scales", "follow_url"]
 
 BLUE = "#1f5fa8"
 START = "#2e8540"
@@ -87,7 +87,7 @@ def follow_url(fig: Any) -> None:
 
 def plain_figure(x_range: Any, y_range: Any, x_label: str, y_label: str, **extra: Any) -> Any:
     """The explorer's figure: stretching, pan/zoom tools above, canvas drawn, on the ranges."""
-    return figure(
+    fig = figure(
         sizing_mode="stretch_both",
         min_width=240,
         min_height=240,
@@ -100,6 +100,11 @@ def plain_figure(x_range: Any, y_range: Any, x_label: str, y_label: str, **extra
         output_backend="canvas",
         **extra,
     )
+    from bokeh.models import WheelZoomTool
+
+    wheel = next(t for t in fig.toolbar.tools if isinstance(t, WheelZoomTool))
+    fig.toolbar.active_scroll = wheel  # the wheel zooms at once, no tool to pick first
+    return fig
 
 
 def empty_points() -> dict[str, list[Any]]:
@@ -108,6 +113,17 @@ def empty_points() -> dict[str, list[Any]]:
 
 def empty_candidates() -> dict[str, list[Any]]:
     return {k: [] for k in ("xs", "ys", "word", "family", "cost", "cost_text", "status", "rank")}
+
+
+def columns(data: dict[str, Any]) -> dict[str, Any]:
+    """A data source's columns safe to send: all of one length (else every column emptied),
+    an empty NumPy array as an empty list (Bokeh's binary buffer of length 0 makes BokehJS
+    throw "RangeError: Offset is outside the bounds of the DataView" on this and every later
+    message -- seen after one unreadable Dubins goal)."""
+    lengths = {len(v) for v in data.values()}
+    if len(lengths) > 1:
+        return {k: [] for k in data}
+    return {k: [] if isinstance(v, np.ndarray) and v.size == 0 else v for k, v in data.items()}
 
 
 class PlanFigures:
@@ -122,7 +138,7 @@ class PlanFigures:
         self.part_src = ColumnDataSource({"image": [], "x": [], "y": [], "dw": [], "dh": []})
         self.part_labels = ColumnDataSource({"x": [], "y": [], "text": []})
         self.cand_src = ColumnDataSource(empty_candidates())
-        self.path_src = ColumnDataSource({"x": [], "y": []})
+        self.path_src = ColumnDataSource({"x": [], "y": []}, name="gp-answer")
         self.air_src = ColumnDataSource({"x": [], "y": []})
         self.heading_src = ColumnDataSource({"x0": [], "y0": [], "x1": [], "y1": [], "c": []})
         # start, goal and their heading handles: one source, so one drag is one change
@@ -312,9 +328,10 @@ class PlanFigures:
 
     def show(self, view: View, part: dict[str, Any] | None, candidates: bool) -> None:
         """Write a computed view into the sources (paths, candidates, profile, wind, map)."""
-        self.path_src.data = {"x": view.path["x"], "y": view.path["y"]}
+        self.path_src.data = columns({"x": view.path["x"], "y": view.path["y"]})
+        self._mark_verified(view.solution is None or view.ok)
         air = view.air_path
-        self.air_src.data = {"x": air["x"], "y": air["y"]} if air else {"x": [], "y": []}
+        self.air_src.data = columns({"x": air["x"], "y": air["y"]} if air else {"x": [], "y": []})
         self.air_renderer.visible = air is not None
         items = [it for it in self._legend_items if it.renderers[0] is not self.air_renderer or air]
         if list(self.legend.items) != items:
@@ -330,14 +347,29 @@ class PlanFigures:
         if self.part_legend.visible != (part is not None):
             self.part_legend.visible = part is not None
 
+    def _mark_verified(self, verified: bool) -> None:
+        """The optimal path solid blue, or dashed, muted orange and labelled when the
+        re-integration did not confirm it (status not_verified)."""
+        glyph = self.path_renderer.glyph
+        dash = "solid" if verified else "dashed"
+        if getattr(self, "_dash", "solid") != dash:  # change the glyph only when it changes
+            self._dash = dash
+            glyph.line_dash = dash
+            glyph.line_color = BLUE if verified else "#b9770e"
+            glyph.line_alpha = 1.0 if verified else 0.75
+            label = "optimal path" if verified else "path (not verified)"
+            for item in self._legend_items:
+                if item.renderers and item.renderers[0] is self.path_renderer:
+                    item.label = {"value": label}
+
     def show_candidates(self, view: View, visible: bool) -> None:
         """Every candidate's line (grey), shown when `visible`."""
         cands = view.candidates or empty_candidates()
         if self.cand_src.selected.indices:
             self.cand_src.selected.indices = []
-        self.cand_src.data = {k: v for k, v in cands.items() if k != "cost"} | {
+        self.cand_src.data = columns({k: v for k, v in cands.items() if k != "cost"} | {
             "cost": np.asarray(cands["cost"], dtype=float)
-        }
+        })
         if self.cand_renderer.visible != visible:
             self.cand_renderer.visible = visible
 
@@ -350,12 +382,12 @@ class PlanFigures:
                 self.prof_src.data = {"t": [], "speed": [], "second": [], "third": []}
             return
         third = prof.get("third")
-        self.prof_src.data = {
+        self.prof_src.data = columns({
             "t": prof["t"],
             "speed": prof["speed"],
             "second": prof["second"],
             "third": third if third is not None else np.full_like(prof["t"], np.nan),
-        }
+        })
         if self.second_fig.yaxis[0].axis_label != view.profile_labels[1]:
             self.second_fig.yaxis.axis_label = view.profile_labels[1]
         if self.third_fig.visible != (third is not None):

@@ -31,6 +31,7 @@ __all__ = [
     "page_layout",
     "strip_item",
     "text_inputs",
+    "warnings_item",
 ]
 
 
@@ -229,7 +230,8 @@ def named_points(
 
 
 def finish_map(
-    fig: Any, draggable: Any, x_range: Any, y_range: Any, k: float, hide: bool = False
+    fig: Any, draggable: Any, x_range: Any, y_range: Any, k: float, hide: bool = False,
+    wind: Any = None,
 ) -> None:
     """Drag `draggable`'s points, the legend top left (click hides a layer if `hide`), equal
     metres per pixel at cos(lat) = k, the view in the browser's address."""
@@ -244,6 +246,9 @@ def finish_map(
         legend.click_policy = "hide"
     equal_scales(fig, x_range, y_range, k)
     follow_url(fig)
+    from glideplan.explore.map_furniture import add_scale_and_north
+
+    add_scale_and_north(fig, x_range, y_range, wind)
 
 
 def page_layout(
@@ -296,3 +301,11 @@ def busy_html(items: str, stale: bool) -> str:
         else ""
     )
     return f'<div class="gp-strip{" gp-stale" if stale else ""}">' + items + busy + "</div>"
+
+
+def warnings_item(result: Any) -> str:
+    """The result's warnings as one strip item (class `gp-warn`), or nothing."""
+    notes = tuple(getattr(result, "warnings", ()) or ())
+    if not notes:
+        return ""
+    return strip_item("warnings", "<br>".join(html.escape(n) for n in notes), "gp-warn")

@@ -210,7 +210,7 @@ class MissionPage(MapPage):
             line_width=1.5,
             legend_label="waypoint order",
         )
-        self.track_src = ColumnDataSource({"x": [], "y": []})
+        self.track_src = ColumnDataSource({"x": [], "y": []}, name="gp-answer")
         fig.line(
             "x",
             "y",

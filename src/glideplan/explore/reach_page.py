@@ -33,6 +33,7 @@ from glideplan.explore.map_page import (
     page_layout,
     strip_item,
     text_inputs,
+    warnings_item,
 )
 from glideplan.explore.state import one_line
 from glideplan.explore.texts import FastHtml, html_pane
@@ -209,7 +210,7 @@ class ReachPage(MapPage):
             dw=float(lo.max() - lo.min()),
             dh=float(la.max() - la.min()),
         )
-        self.foot_src = ColumnDataSource({"xs": [], "ys": []})
+        self.foot_src = ColumnDataSource({"xs": [], "ys": []}, name="gp-answer")
         fig.multi_polygons(
             "xs",
             "ys",
@@ -220,7 +221,7 @@ class ReachPage(MapPage):
             line_width=1.5,
             legend_label="footprint (safety height kept)",
         )
-        self.land_src = ColumnDataSource({"x": [], "y": [], "c": [], "text": []})
+        self.land_src = ColumnDataSource({"x": [], "y": [], "c": [], "text": []}, name="gp-answer")
         fig.scatter(
             "x",
             "y",
@@ -261,7 +262,9 @@ class ReachPage(MapPage):
             line_color="white",
             line_width=2,
         )
-        finish_map(fig, pts, self.x_range, self.y_range, self.k, hide=True)
+        self.wind_src = ColumnDataSource({"to_deg": [], "text": []})
+        self._draw_wind()
+        finish_map(fig, pts, self.x_range, self.y_range, self.k, hide=True, wind=self.wind_src)
         self.fig = fig
         self.start_src.on_change("data", self._on_points)
         self._draw_start()
@@ -295,6 +298,22 @@ class ReachPage(MapPage):
 
     def _redraw(self, old: ReachState) -> None:
         self._draw_start()
+        self._draw_wind()
+
+    def _draw_wind(self) -> None:
+        """The wind arrow's direction (towards, compass) and label (speed, FROM as typed)."""
+        try:
+            speed, frm = _numbers(self.state.wind, 2, "--wind", "")
+        except InvalidParameterError:
+            self.wind_src.data = {"to_deg": [], "text": []}
+            return
+        if speed <= 0:
+            self.wind_src.data = {"to_deg": [], "text": []}
+            return
+        self.wind_src.data = {
+            "to_deg": [(frm + 180.0) % 360.0],
+            "text": [f"wind {speed:g} m/s from {frm:g}\N{DEGREE SIGN}"],
+        }
 
     def _compute(self, state: ReachState) -> ReachView:
         return reach_view(self.example, self.polar, state)
@@ -350,6 +369,7 @@ class ReachPage(MapPage):
         return busy_html(
             item("reachable landables", f"{html.escape(cost)} {total}", "gp-cost")
             + item("best margin", best, "gp-word")
-            + item("status", html.escape(status), "gp-small gp-status"),
+            + item("status", html.escape(status), "gp-small gp-status")
+            + warnings_item(r),
             stale,
         )

@@ -28,7 +28,7 @@ import panel as pn
 from bokeh.models import ColumnDataSource, Range1d
 
 from glideplan.errors import InvalidParameterError
-from glideplan.explore.figures import GOAL, START, WIND
+from glideplan.explore.figures import GOAL, START, columns
 from glideplan.explore.map_page import (
     MapPage,
     busy_html,
@@ -39,6 +39,7 @@ from glideplan.explore.map_page import (
     page_layout,
     strip_item,
     text_inputs,
+    warnings_item,
 )
 from glideplan.explore.state import one_line
 from glideplan.explore.texts import FastHtml, error_html, html_pane
@@ -312,16 +313,25 @@ class RoutePage(MapPage):
         fig.grid.grid_line_color = "#d9e3ee"
         self.land_src = ColumnDataSource({"image": [], "x": [], "y": [], "dw": [], "dh": []})
         fig.image_rgba("image", x="x", y="y", dw="dw", dh="dh", source=self.land_src)
-        self.arrow_src = ColumnDataSource({"x0": [], "y0": [], "x1": [], "y1": [], "angle": []})
+        self.arrow_src = ColumnDataSource(
+            {"x0": [], "y0": [], "x1": [], "y1": [], "angle": [], "speed": []}
+        )
+        # current speed coloured (cividis: ordered, colour-blind safe) with its key at the right
+        from bokeh.models import LinearColorMapper
+        from bokeh.models.annotations import ColorBar
+        from bokeh.palettes import Cividis256
+
+        self.speed_mapper = LinearColorMapper(palette=Cividis256[::-1][40:], low=0.0, high=1.0)
+        colour = {"field": "speed", "transform": self.speed_mapper}
         fig.segment(
             "x0",
             "y0",
             "x1",
             "y1",
             source=self.arrow_src,
-            line_color=WIND,
-            line_alpha=0.6,
-            line_width=1.5,
+            line_color=colour,
+            line_alpha=0.8,
+            line_width=1.6,
             legend_label="current",
         )
         fig.scatter(
@@ -331,10 +341,15 @@ class RoutePage(MapPage):
             marker="triangle",
             size=6,
             angle="angle",
-            fill_color=WIND,
-            line_color=WIND,
-            fill_alpha=0.6,
-            line_alpha=0.6,
+            fill_color=colour,
+            line_color=colour,
+            fill_alpha=0.8,
+            line_alpha=0.8,
+        )
+        fig.add_layout(
+            ColorBar(color_mapper=self.speed_mapper, title="current (m/s)", width=10,
+                     title_text_font_size="11px", major_label_text_font_size="10px"),
+            "right",
         )
         self.iso_src = ColumnDataSource({"xs": [], "ys": [], "label": []})
         fig.multi_line(
@@ -357,7 +372,7 @@ class RoutePage(MapPage):
             text_color="#6c3483",
             text_baseline="middle",
         )
-        self.route_src = ColumnDataSource({"x": [], "y": []})
+        self.route_src = ColumnDataSource({"x": [], "y": []}, name="gp-answer")
         fig.line(
             "x",
             "y",
@@ -366,6 +381,24 @@ class RoutePage(MapPage):
             line_width=3.5,
             legend_label="route",
         )
+        # a route the re-integration did not confirm: dashed, muted and labelled as such
+        self.unverified_src = ColumnDataSource({"x": [], "y": []})
+        fig.line(
+            "x",
+            "y",
+            source=self.unverified_src,
+            line_color="#b9770e",
+            line_width=3,
+            line_dash="dashed",
+            line_alpha=0.75,
+            legend_label="route (not verified)",
+        )
+        self.vehicle_src = ColumnDataSource({"x": [], "y": [], "text": []})
+        fig.scatter("x", "y", source=self.vehicle_src, marker="diamond", size=16,
+                    fill_color="#f39c12", line_color="#1b2733", line_width=1.5,
+                    legend_label="vehicle at the slider's time")
+        fig.text("x", "y", "text", source=self.vehicle_src, x_offset=10, y_offset=10,
+                 text_font_size="11px", text_color="#1b2733")
         self.points_src = ColumnDataSource({"x": [], "y": [], "name": [], "c": []})
         pts = named_points(fig, self.points_src, 15, "c", "c", (10, -8), "12px")
         finish_map(fig, pts, self.x_range, self.y_range, self.k, hide=True)
@@ -439,13 +472,32 @@ class RoutePage(MapPage):
         x1 = lon + scale * u
         y1 = lat + scale * v * self.k  # north metres -> degrees of latitude
         keep = speed > 0.02 * top
-        self.arrow_src.data = {
+        self.arrow_src.data = columns({
             "x0": lon[keep],
             "y0": lat[keep],
             "x1": x1[keep],
             "y1": y1[keep],
             "angle": np.arctan2(v, u)[keep] - 0.5 * math.pi,
-        }
+            "speed": speed[keep],
+        })
+        self.speed_mapper.high = float(f"{top:.2g}") if top > 0 else 1.0
+        self._draw_vehicle()
+
+    def _draw_vehicle(self) -> None:
+        """The vehicle on the route at the slider's hours after departure (linear in time
+        between the track's samples; none before departure or after arrival)."""
+        r = self.view.result if self.view is not None else None
+        hours = float(self.slider.value or 0.0)
+        data: dict[str, list[Any]] = {"x": [], "y": [], "text": []}
+        if r is not None and r.lat.size > 1 and r.t.size == r.lat.size:
+            t = 3600.0 * hours
+            if r.t[0] <= t <= r.t[-1]:
+                data = {
+                    "x": [float(np.interp(t, r.t, r.lon))],
+                    "y": [float(np.interp(t, r.t, r.lat))],
+                    "text": [f"+{hours:g} h"],
+                }
+        self.vehicle_src.data = data
 
     def _draw_points(self) -> None:
         data: dict[str, list[Any]] = {"x": [], "y": [], "name": [], "c": []}
@@ -522,10 +574,16 @@ class RoutePage(MapPage):
         self.view = view
         self._show_errors(view)
         r = view.result
-        if r is not None and r.lat.size:
-            self.route_src.data = {"x": np.asarray(r.lon), "y": np.asarray(r.lat)}
-        else:
-            self.route_src.data = {"x": [], "y": []}
+        empty: dict[str, Any] = {"x": [], "y": []}
+        line = (
+            {"x": np.asarray(r.lon), "y": np.asarray(r.lat)}
+            if r is not None and r.lat.size
+            else empty
+        )
+        verified = r is not None and r.ok
+        self.route_src.data = line if verified else empty
+        self.unverified_src.data = empty if verified else line
+        self._draw_vehicle()
         front = getattr(r, "front", None)
         if r is not None and front is not None:
             until = (
@@ -583,7 +641,8 @@ class RoutePage(MapPage):
                 "gp-small gp-status" + ("" if ok else " gp-status-bad"),
             )
             + item("endpoint error", err, "gp-small gp-endpoint")
-            + item("straight line", straight, "gp-small"),
+            + item("straight line", straight, "gp-small")
+            + warnings_item(r),
             stale,
         )
 

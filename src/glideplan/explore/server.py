@@ -100,5 +100,8 @@ def serve(
         start=True,
         title="glideplan explore",
         websocket_origin=origin,
+        # a closed tab's session (and its running work, cancelled) is freed within ~5 s
+        check_unused_sessions_milliseconds=2000,
+        unused_session_lifetime_milliseconds=3000,
         verbose=False,
     )

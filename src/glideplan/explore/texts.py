@@ -26,6 +26,7 @@ PAGE_CSS = """
 .gp-cost, .gp-word { font-weight: 600; }
 .gp-small { font-size: 13px !important; color: #3b4a59 !important; }
 .gp-status-bad { color: #b03a2e !important; }
+.gp-warn { font-size: 12.5px !important; color: #8a5a00 !important; max-width: 46em; }
 .gp-error { color: #b03a2e; font-size: 12.5px; line-height: 1.3; margin: -2px 0 4px 2px; }
 .gp-stale .gp-v { opacity: .45; }
 .gp-stale { background: repeating-linear-gradient(-45deg, #f4f7fb, #f4f7fb 8px, #e9eff7 8px,

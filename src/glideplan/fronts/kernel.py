@@ -20,17 +20,14 @@ narrow band costs O(band) per step instead of O(grid).
 
 from __future__ import annotations
 
-import os
-
-import numba
 import numpy as np
 from numba import njit, prange
 
-# GNU OpenMP (numba's default layer where libgomp is present) aborts a process that forks
-# after using it -- `run_batch` forks workers, e.g. after a route in the parent. Numba's own
-# work queue is fork-safe; a user's NUMBA_THREADING_LAYER still wins.
-if "NUMBA_THREADING_LAYER" not in os.environ:
-    numba.config.THREADING_LAYER = "workqueue"  # type: ignore[attr-defined]
+# The threading layer (TBB if present: thread- and fork-safe; else numba's work queue, whose
+# launches `glideplan.compute.kernel_section` serialises) is chosen before any kernel runs.
+from glideplan.compute import configure_threading
+
+configure_threading()
 
 __all__ = ["next_active", "rk_stage", "stage_two"]
 

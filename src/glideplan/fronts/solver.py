@@ -370,6 +370,7 @@ def propagate(
     when its band is empty, or (steady problems) when it advances less than 1e-6 of a cell
     per step over 40/cfl steps. on_step(t, steps, reached_total) is called every step.
     """
+    from glideplan.compute import checkpoint, kernel_section
     from glideplan.fronts import kernel
     from glideplan.fronts.kernel import next_active
 
@@ -442,8 +443,10 @@ def propagate(
         if use != current:
             numba.set_num_threads(use)
             current = use
-        dt = kernel.rk_stage(phi, p1, act, t, w, dt_cap, band, ny, nx, g.periodic, *sp, a, b,
-                             s, arrival, tb, lo, hi, has_drift, cfl, may)
+        checkpoint()  # a cancelled computation (a superseded explorer request) stops here
+        with kernel_section():  # a lock only where the threading layer is not thread-safe
+            dt = kernel.rk_stage(phi, p1, act, t, w, dt_cap, band, ny, nx, g.periodic, *sp, a,
+                                 b, s, arrival, tb, lo, hi, has_drift, cfl, may)
         if dt < 1e-300:
             reason = "stalled"
             break
@@ -453,8 +456,10 @@ def propagate(
             lo, hi, w1 = drift.pair(t1)
         else:
             w1 = 0.0
-        reached, dmax = kernel.stage_two(phi, p1, act, t, t1, w1, dt, band, ny, nx, g.periodic,
-                                         *sp, a, b, s, arrival, tb, lo, hi, has_drift, may)
+        with kernel_section():
+            reached, dmax = kernel.stage_two(phi, p1, act, t, t1, w1, dt, band, ny, nx,
+                                             g.periodic, *sp, a, b, s, arrival, tb, lo, hi,
+                                             has_drift, may)
         t = t1
         steps += 1
         reached_total += reached
