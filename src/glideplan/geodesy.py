@@ -133,7 +133,14 @@ class LocalProjection:
         )
 
     def to_local(self, lat: ArrayLike, lon: ArrayLike) -> tuple[NDArray[np.float64], ...]:
-        """(x, y) in metres of WGS84 (lat, lon) in degrees; vectorised."""
+        """(x, y) in metres of WGS84 (lat, lon) in degrees; vectorised. Longitudes may be
+        unwrapped (a track continuous across 180 deg runs to -540..540)."""
+        try:
+            lo_in = np.asarray(lon, dtype=float)
+        except (TypeError, ValueError):
+            lo_in = None  # check_latlon names it
+        if lo_in is not None and np.all(np.isfinite(lo_in)) and np.all(np.abs(lo_in) <= 540.0):
+            lon = (lo_in + 180.0) % 360.0 - 180.0
         la, lo = check_latlon(lat, lon)
         lo = (lo + 180.0) % 360.0 - 180.0
         x, y = self._proj(lo, la)
