@@ -56,12 +56,13 @@ typecheck: $(STAMP)
 
 # Two pytest workers keep both cores busy: numba's kernels run single-threaded inside them.
 test: $(STAMP) test-setup lint typecheck
-	MPLBACKEND=Agg NUMBA_NUM_THREADS=1 $(BIN)/python -m pytest -n 2 -q
+	MPLBACKEND=Agg NUMBA_NUM_THREADS=1 $(BIN)/python -m pytest -n 2 -q -m "not heavy"
 
 bench: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/python benchmarks/run_all.py
 
-validate: $(STAMP)
+validate: $(STAMP) test-setup
+	MPLBACKEND=Agg NUMBA_NUM_THREADS=1 $(BIN)/python -m pytest -n 2 -q -m heavy
 	MPLBACKEND=Agg $(BIN)/python benchmarks/run_all.py --validate
 
 clean:
