@@ -267,6 +267,10 @@ def glide_reach(
     finally:
         bar.close()
     timings["front_s"] = time.perf_counter() - t
+    if factor > 1 and problem.resolution_m is not None:
+        t = time.perf_counter()
+        warnings += _pass_check(fine, crop, search, problem, glide, clear_h, arrive_h)
+        timings["pass_check_s"] = time.perf_counter() - t
     t = time.perf_counter()
     spacing = max(fine.spacing_m)
     points = []
@@ -307,6 +311,24 @@ def glide_reach(
         stop_reason="the search settled every node it can reach", front_steps=search.pops,
         timings=timings, warnings=tuple(warnings), terrain_clearance=clear_h,
         arrival_height=arrive_h)
+
+
+def _pass_check(pooled: Terrain, crop: Terrain, search: Any, problem: ReachProblem,
+                glide: Glide, clear_h: float, arrive_h: float) -> list[str]:
+    """The warning naming the pass the pooled grid closes (`reach.passes`): the native
+    search on the unpooled crop (when it has at most MAX_NATIVE_NODES nodes), compared."""
+    from glideplan.reach.grid import MAX_NATIVE_NODES
+    from glideplan.reach.passes import closed_pass, pass_warning
+
+    if crop.z.size > MAX_NATIVE_NODES:
+        return []
+    native = native_search(crop, problem.start, glide, clear_h)
+    found = closed_pass(crop, pooled, search.loss, native, problem.start, clear_h,
+                        problem.landables, arrive_h,
+                        2.0 * max(pooled.spacing_m) / max(glide.max_ratio, 1.0))
+    if found is None:
+        return []
+    return [pass_warning(max(pooled.spacing_m), max(crop.spacing_m), found)]
 
 
 def _beyond_crop(start: tuple[float, float, float], glide: Glide, lnd: Landable,

@@ -524,7 +524,29 @@ def front_obstacles(problem: Any, window: Any, land: NDArray[np.bool_], clearanc
                         f"of water beyond the {clearance:.0f} m land clearance): the front "
                         "passes it at a reduced clearance, the route keeps the full "
                         "clearance at the land mask's resolution")
+    warn += _closed_gap_warning(problem, window, mask, pts, clearance)
     return mask, c_front, warn
+
+
+def _closed_gap_warning(problem: Any, window: Any, mask: NDArray[np.bool_], pts: FloatArray,
+                        clearance: float) -> list[str]:
+    """The warning naming the narrowest gap open at the land mask's resolution that the
+    front's obstacles `mask` close (`routing.gaps.closed_gap`): the route may go the long
+    way round."""
+    from glideplan.routing.gaps import closed_gap
+
+    gap = closed_gap(problem.field_, window, mask, pts, clearance)
+    if gap is None:
+        return []
+    d, lat, lon = gap
+    w = _gap_width(pts, lat, lon, 2.0 * d)
+    lon = float((lon + 180.0) % 360.0 - 180.0)
+    h = window.lattice.spacing_m
+    return [f"{GAP_WARNING} ({h:.0f} m) closes a gap {w / 1000:.3g} km wide between land "
+            f"near {lat:.4f}, {lon:.4f} that is open at the land mask's resolution "
+            f"({w - 2 * clearance:.0f} m of water beyond the {clearance:.0f} m land "
+            "clearance): the route may go the long way round; a finer --resolution may "
+            "open it"]
 
 
 def _gap_width(pts: FloatArray, lat: float, lon: float, guess: float) -> float:
