@@ -111,3 +111,34 @@ def test_reach_hgt_voids_refused_then_filled(run_cli, cli_error, polar_file, tmp
     assert code == 0, err
     assert "filled 50 void sample(s)" in err
     assert json.loads(out)["status"] == "solved"
+
+
+def test_turnback_two_heights(run_cli, polar, polar_file):
+    """`glide turnback --terrain-clearance --arrival-height`: still air, flat ground (no
+    terrain), d = (ALT - ELEV - arrival height) E / 2 (closed form); --safety-height alone
+    sets both (the same answer as the two given equal); defaults 150 / 300."""
+    base = ["glide", "turnback", "--polar", str(polar_file), "--from", "46.2", "7.2", "1500",
+            "--course", "90", "--home", "46.2", "7.2", "200", "--json"]
+    E = polar.best_glide_ratio
+
+    def run(*args):
+        code, out, err = run_cli(*base, *args)
+        assert code == 0, err
+        return json.loads(out)
+
+    d = run("--terrain-clearance", "100", "--arrival-height", "250")
+    assert (d["terrain_clearance_m"], d["arrival_height_m"]) == (100, 250)
+    assert d["turnback"]["distance_m"] == pytest.approx((1500 - 200 - 250) * E / 2, abs=1.0)
+    d = run()
+    assert (d["terrain_clearance_m"], d["arrival_height_m"]) == (150, 300)
+    one = run("--safety-height", "250")
+    assert (one["terrain_clearance_m"], one["arrival_height_m"]) == (250, 250)
+    both = run("--terrain-clearance", "250", "--arrival-height", "250")
+    assert one["turnback"]["distance_m"] == both["turnback"]["distance_m"]
+
+
+@pytest.mark.parametrize("flag", ["--terrain-clearance", "--arrival-height", "--safety-height"])
+def test_turnback_heights_range_checked(cli_error, polar_file, flag):
+    line = cli_error("glide", "turnback", "--polar", str(polar_file), "--from", "46.2", "7.2",
+                     "1500", "--course", "90", "--home", "46.2", "7.2", "200", flag, "-5")
+    assert flag in line

@@ -402,6 +402,8 @@ def glide_turnback_cmd(
     wind: WindOpt = None,
     mc: McOpt = None,
     safety_height: SafetyOpt = None,
+    terrain_clearance: ClearanceOpt = None,
+    arrival_height: ArrivalOpt = None,
     safety_glide_ratio: RatioOpt = None,
     mass: MassOpt = None,
     ballast: BallastOpt = 0.0,
@@ -443,6 +445,10 @@ def glide_turnback_cmd(
         args = _flag_args(polar_file or plr, start_v, list(terrain or [tile]), wind_in, mc_v,
                           safety_v, safety_glide_ratio, mass, ballast, bugs, resolution,
                           fill_voids)
+        for flag, value in (("--terrain-clearance", terrain_clearance),
+                            ("--arrival-height", arrival_height)):
+            if value is not None:
+                args += [flag, repr(float(value))]
         args += ["--course", repr(course_v), "--home", *(repr(float(v)) for v in home_v)]
         _write_example(ex, write_example_dir, "turnback", args, json_out)
         return
@@ -456,12 +462,15 @@ def glide_turnback_cmd(
         home_name = ex.home.name if home is None else "--home"
         _announce_example(ex, start_v, p, wind_in, mc_v, safety_v, json_out,
                           f"; home {home_name}, course {course_v:g} deg")
+    # --safety-height (or the example's) sets both heights unless the new flags are given
+    one_height = safety_height if safety_height is not None or ex is None else safety_v
     with flag_names(**_FLAGS):
         result = turnback((start_v[0], start_v[1], start_v[2]), course_v,
                           ex.home if home is None else (home_v[0], home_v[1], home_v[2]), p,
                           terrain=t, mc=mc_v, wind=w,
-                          safety_height=safety_v, safety_glide_ratio=safety_glide_ratio,
-                          resolution_m=resolution)  # the example's 700 m grid: not used
+                          safety_height=one_height, safety_glide_ratio=safety_glide_ratio,
+                          resolution_m=resolution,  # the example's 700 m grid: not used
+                          terrain_clearance=terrain_clearance, arrival_height=arrival_height)
     if json_out:
         print_json(result.to_dict())
     else:

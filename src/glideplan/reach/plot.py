@@ -258,8 +258,9 @@ def plot_turnback(result: TurnbackResult, ax: Any = None) -> Any:
             ax_prof.plot(s / 1000, f.altitude, color=colour, lw=1.5, label=f"{label} altitude")
             ax_prof.fill_between(s / 1000, f.ground, np.nanmin(f.ground) - 50, color="0.6",
                                  alpha=0.6)
-            ax_prof.plot(s / 1000, f.ground + result.safety_height, color="0.3", lw=0.8,
-                         ls="--")
+            clear_h = (result.safety_height if result.terrain_clearance is None
+                       else result.terrain_clearance)
+            ax_prof.plot(s / 1000, f.ground + clear_h, color="0.3", lw=0.8, ls="--")
             s0 = float(s[-1])
         # the altitude a straight glide home needs from each point of the course (terrain
         # ignored): the outbound line meets it at the turn-back point when no terrain binds
@@ -276,10 +277,10 @@ def plot_turnback(result: TurnbackResult, ax: Any = None) -> Any:
                      label="needed to glide home straight (terrain ignored)")
         ax_prof.axvline(result.distance_m / 1000, color="r", ls=":", label="turn back")
         ax_prof.axhline(home.elevation_m + result.safety_height, color="g", ls=":",
-                        label="home + safety height")
+                        label="home + arrival height")
         ax_prof.set_xlabel("distance flown (km)")
         ax_prof.set_ylabel("altitude (m MSL)")
         ax_prof.legend(fontsize=7)
-        ax_prof.set_title("altitude out and back (terrain under the track, dashed: + safety)",
+        ax_prof.set_title("altitude out and back (terrain under the track, dashed: + clearance)",
                           fontsize=8)
     return ax_map

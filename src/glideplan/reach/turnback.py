@@ -3,20 +3,23 @@
 Outbound: from the start (lat, lon, ALT) along the compass `course` at the speed to fly for
 that direction (`Glide.along`): after s metres it is at P(s) (rhumb line) at altitude
 A(s) = ALT - s / r_out. The turn-back point is the largest s (the first, going out) from
-which home is still reachable with the safety height: from (P(s), A(s)) a path to home that
-keeps A - terrain >= safety all along and arrives >= home elevation + safety.
+which home is still reachable: from (P(s), A(s)) a path to home that keeps
+A - terrain >= clearance all along and arrives >= home elevation + arrival height. Two
+heights as in `glide_reach` (XCSoar/LK8000): the en-route terrain clearance (default 150 m)
+for every clearance check out and back and the search's terrain floor, the arrival height
+(default 300 m) only at home; the former single `safety_height` sets both (`two_heights`).
 
 One backward search from home on the terrain's own grid (`reach.native.native_back_search`):
-the least altitude need(x) at every node from which home is reached keeping the safety
-height all along and arriving at home elevation + safety. Over a ridge the need is floored
-by the terrain (need >= terrain + safety along every edge), which a Dijkstra expresses
+the least altitude need(x) at every node from which home is reached keeping the clearance
+all along and arriving at home elevation + arrival height. Over a ridge the need is floored
+by the terrain (need >= terrain + clearance along every edge), which a Dijkstra expresses
 exactly as need_v = max(need_u + loss, floor along the edge) (non-decreasing, so the search
 stays exact); a front's block times could not, which is why the former search ran one
 forward front per probe and, at fine grids, stopped after 24 probes a cell apart.
 
 Search: the straight glide home without terrain bounds s from above (terrain only adds
-constraints), as does the first point where the outbound glide itself loses the safety
-height over the terrain (s_hi). The course is walked in thirds of a DEM cell to the first
+constraints), as does the first point where the outbound glide itself loses the clearance
+over the terrain (s_hi). The course is walked in thirds of a DEM cell to the first
 point where A(s) < need(P(s)) (the first crossing); the return from the last point before
 it is the node path string-pulled and flown (`reach.flight`); if that flight does not
 verify, bisection on s with flown probes. Then the verified return's tail is flown from
@@ -73,9 +76,11 @@ class TurnbackResult:
     """The turn-back point: status SOLVED (found, return flown and clear) or UNREACHABLE
     (home is out of reach already at the start); distance_m out along the course; the point
     and the altitude there; the return's arrival altitude at home (flown) and its margin
-    above home elevation + safety; limited_by: "glide home" or "outbound terrain" (the
-    outbound glide itself meets terrain + safety first); outbound and return flights;
-    probes: (s, reachable) of the search."""
+    above home elevation + arrival height; limited_by: "glide home" or "outbound terrain"
+    (the outbound glide itself meets terrain + clearance first); outbound and return
+    flights; probes: (s, reachable) of the search. safety_height: the arrival height (as
+    `ReachResult`); terrain_clearance, arrival_height: the two heights (m; None: both are
+    safety_height, results built before the two heights existed)."""
 
     status: Status
     message: str
@@ -98,6 +103,8 @@ class TurnbackResult:
     resolution_m: float
     warnings: tuple[str, ...] = ()
     timings: dict[str, float] = field(default_factory=dict)
+    terrain_clearance: float | None = None
+    arrival_height: float | None = None
 
     @property
     def ok(self) -> bool:
@@ -124,6 +131,10 @@ class TurnbackResult:
                      "elevation_m": self.home.elevation_m},
             "course_deg": self.course_deg,
             "safety_height_m": self.safety_height,
+            "terrain_clearance_m": (self.safety_height if self.terrain_clearance is None
+                                    else self.terrain_clearance),
+            "arrival_height_m": (self.safety_height if self.arrival_height is None
+                                 else self.arrival_height),
             "glide": self.glide.to_dict(),
             "turnback": {"distance_m": self.distance_m, "lat": self.lat, "lon": self.lon,
                          "altitude_m": self.altitude_m},
@@ -168,14 +179,20 @@ def turnback(
     terrain: Terrain | None = None,
     mc: float = 0.0,
     wind: tuple[float, float] = (0.0, 0.0),
-    safety_height: float = 300.0,
+    safety_height: float | None = None,
     safety_glide_ratio: float | None = None,
     resolution_m: float | None = None,
+    terrain_clearance: float | None = None,
+    arrival_height: float | None = None,
 ) -> TurnbackResult:
     """The turn-back point along compass `course_deg` from `start` = (lat, lon, ALT m) for
     `home` = (lat, lon, elevation m) (module docstring). Without terrain the ground is flat
-    at the home's elevation. wind: (east, north) m/s towards."""
+    at the home's elevation. wind: (east, north) m/s towards. terrain_clearance (m, default
+    150) kept above the terrain out and back; arrival_height (m, default 300) above home on
+    arrival; safety_height: the former single height, sets both (an explicit one wins)."""
     import time
+
+    from glideplan.reach.solve import two_heights
 
     t_all = time.perf_counter()
     course = check_finite("course", course_deg)
@@ -184,6 +201,7 @@ def turnback(
             raise InvalidParameterError("home", home, "must be (lat, lon, elevation_m)")
         check_latlon(home[0], home[1], "home")
         home = Landable("HOME", float(home[0]), float(home[1]), float(home[2]))
+    clear_h, arrive_h = two_heights(safety_height, terrain_clearance, arrival_height)
     glide = Glide(polar, mc, wind, safety_glide_ratio)
     lat0, lon0, alt = float(start[0]), float(start[1]), float(start[2])
     warnings: list[str] = []
@@ -192,7 +210,7 @@ def turnback(
         reach = max(alt - home.elevation_m, 0.0) * glide.max_ratio
         terrain = _flat(home, (lat0, lon0, alt), reach + 5000.0)
     warnings += list(terrain.warnings)
-    problem = ReachProblem(terrain, (lat0, lon0, alt), glide, (home,), safety_height,
+    problem = ReachProblem(terrain, (lat0, lon0, alt), glide, (home,), arrive_h,
                            resolution_m)
     if not math.isfinite(float(terrain.elevation(home.lat, home.lon))):
         raise InvalidParameterError("home", (home.lat, home.lon), "lies outside the terrain")
@@ -208,8 +226,9 @@ def turnback(
         la, lo = destination(lat0, lon0, chi, np.array(s))
         return float(la), float(lo), alt - s / r_out
 
-    # outbound limit: where the outbound glide loses the safety height (or leaves the data)
-    s_max = (alt - home.elevation_m - safety_height) * r_out
+    # outbound limit: where the outbound glide loses the clearance (or leaves the data),
+    # within s_max: beyond it the glider is below home elevation + arrival height already
+    s_max = (alt - home.elevation_m - arrive_h) * r_out
     if s_max <= 0:
         s_max = 0.0
     step = min(fine.spacing_m) / 3.0
@@ -218,7 +237,7 @@ def turnback(
     ground = fine.elevation(la_s, lo_s)
     inside = np.isfinite(ground) & np.asarray(grid_contains(grid, la_s, lo_s))
     clear = np.where(inside, alt - ss / r_out - np.where(inside, ground, 0.0), -np.inf)
-    bad = ~(clear >= safety_height - 1e-6)
+    bad = ~(clear >= clear_h - 1e-6)
     first_bad = int(np.argmax(bad))
     s_hit = float(ss[max(first_bad - 1, 0)]) if np.any(bad) else s_max
     hit_edge = bool(np.any(bad)) and not bool(inside[first_bad])
@@ -229,7 +248,7 @@ def turnback(
         r = float(glide.ratio(float(c))[0]) if float(d) > 0 else 1.0
         if not (math.isfinite(r) and r > 0):
             return -math.inf
-        return a - float(d) / r - home.elevation_m - safety_height
+        return a - float(d) / r - home.elevation_m - arrive_h
 
     lo_b, hi_b = 0.0, s_max
     if straight_margin(0.0) < 0:
@@ -255,16 +274,16 @@ def turnback(
         from glideplan.reach.grid import native_terrain
         from glideplan.reach.native import native_back_search
 
-        sterrain, _, notes, _ = native_terrain(problem, glide.max_ratio, safety_height)
+        sterrain, _, notes, _ = native_terrain(problem, glide.max_ratio, clear_h)
         warnings += notes
         spacing = max(sterrain.spacing_m)
         back_s = native_back_search(sterrain, (home.lat, home.lon,
-                                               home.elevation_m + safety_height),
-                                    glide, safety_height, alt + 1.0)
+                                               home.elevation_m + arrive_h),
+                                    glide, clear_h, alt + 1.0)
 
     def probe(s: float) -> tuple[bool, FlownPath | None]:
         la, lo, a = P(s)
-        cands = [fly(glide, fine, safety_height, np.array([la, home.lat]),
+        cands = [fly(glide, fine, clear_h, np.array([la, home.lat]),
                      np.array([lo, home.lon]), a)]
         if back_s is not None:
             from glideplan.reach.native import back_path, need_at
@@ -272,11 +291,11 @@ def turnback(
             nd, i, j = need_at(back_s, sterrain, glide, la, lo)
             if math.isfinite(nd):
                 bla, blo = back_path(back_s, sterrain, i, j)
-                cands += front_candidates(glide, fine, safety_height,
+                cands += front_candidates(glide, fine, clear_h,
                                           np.concatenate([[la], bla, [home.lat]]),
                                           np.concatenate([[lo], blo, [home.lon]]), a)
         good = [c for c in cands if c.clear and
-                c.arrival_altitude - home.elevation_m - safety_height >= -1e-6]
+                c.arrival_altitude - home.elevation_m - arrive_h >= -1e-6]
         best = max(good, key=lambda c: c.arrival_altitude) if good else None
         probes.append((s, best is not None))
         return best is not None, best
@@ -286,16 +305,16 @@ def turnback(
         return _result(Status.UNREACHABLE, "home is out of reach already: turn back is not "
                        "enough", problem, home, course, glide, 0.0, P(0.0), None, "glide home",
                        None, None, probes, fine, spacing, warnings, {"total_s": time.perf_counter()
-                                                                  - t_all})
+                                                                  - t_all}, clear_h)
     timings: dict[str, float] = {}
 
     def flight(s: float, tail_la: FloatArray, tail_lo: FloatArray) -> FlownPath:
         la, lo, a = P(s)
-        return fly(glide, fine, safety_height, np.concatenate([[la], tail_la]),
+        return fly(glide, fine, clear_h, np.concatenate([[la], tail_la]),
                    np.concatenate([[lo], tail_lo]), a)
 
     def fine_ok(f: FlownPath) -> bool:
-        return f.clear and f.arrival_altitude - home.elevation_m - safety_height >= -1e-6
+        return f.clear and f.arrival_altitude - home.elevation_m - arrive_h >= -1e-6
 
     def along_path(path: FlownPath, a_: float, b_: float) -> tuple[float, FlownPath]:
         """Largest s in [a_, b_] from which the path's tail (its waypoints after the first)
@@ -343,17 +362,18 @@ def turnback(
                             f"point is at least {s_lo / 1000:.2f} km out (a lower bound)")
     timings["probes_s"] = time.perf_counter() - t
     s_star = s_lo
-    outbound = fly(glide, fine, safety_height, np.array([lat0, P(s_star)[0]]),
+    outbound = fly(glide, fine, clear_h, np.array([lat0, P(s_star)[0]]),
                    np.array([lon0, P(s_star)[1]]), alt)
     timings["total_s"] = time.perf_counter() - t_all
-    margin = back.arrival_altitude - home.elevation_m - safety_height
-    if limited == "glide home" and margin > 1.0 and back.min_clearance_m < safety_height + 1.0:
+    margin = back.arrival_altitude - home.elevation_m - arrive_h
+    if limited == "glide home" and margin > 1.0 and back.min_clearance_m < clear_h + 1.0:
         limited = "terrain on the way home"
     msg = (f"turn back after {s_star / 1000:.2f} km along {course:g} deg at "
            f"{P(s_star)[2]:.0f} m: home reached at {back.arrival_altitude:.0f} m "
-           f"({margin:+.1f} m over the safety height); limited by {limited}")
+           f"({margin:+.1f} m over the arrival height); limited by {limited}")
     return _result(Status.SOLVED, msg, problem, home, course, glide, s_star, P(s_star),
-                   outbound, limited, back, margin, probes, fine, spacing, warnings, timings)
+                   outbound, limited, back, margin, probes, fine, spacing, warnings, timings,
+                   clear_h)
 
 
 def _graph_crossing(back_s: Any, sterrain: Terrain, glide: Glide, P: Any, s_hi: float,
@@ -402,11 +422,13 @@ def _result(status: Status, message: str, problem: ReachProblem, home: Landable,
             glide: Glide, s: float, p: tuple[float, float, float], outbound: FlownPath | None,
             limited: str, back: FlownPath | None, margin: float | None,
             probes: list[tuple[float, bool]], terrain: Terrain, resolution_m: float,
-            warnings: list[str], timings: dict[str, float]) -> TurnbackResult:
+            warnings: list[str], timings: dict[str, float], clear_h: float
+            ) -> TurnbackResult:
     return TurnbackResult(
         status=status, message=message, start=problem.start, home=home, course_deg=course,
         safety_height=problem.safety_height, glide=glide, distance_m=s, lat=p[0], lon=p[1],
         altitude_m=p[2], arrival_altitude_m=None if back is None else back.arrival_altitude,
         arrival_margin_m=margin, limited_by=limited, outbound=outbound, back=back,
         probes=tuple(probes), terrain=terrain, resolution_m=resolution_m,
-        warnings=tuple(warnings), timings=timings)
+        warnings=tuple(warnings), timings=timings, terrain_clearance=clear_h,
+        arrival_height=problem.safety_height)
