@@ -52,6 +52,7 @@ def test_route_from_four_threads_equals_one_at_a_time():
     assert _durations_in_threads(PAIRS) == alone
 
 
+@pytest.mark.heavy  # make validate: a subprocess compiling the kernels cold
 def test_workqueue_layer_is_serialised_not_aborted():
     """Without TBB numba's work queue aborts the process on concurrent launches (SIGABRT,
     "Concurrent access has been detected"); `kernel_section` must serialise them."""

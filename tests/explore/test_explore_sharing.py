@@ -129,6 +129,7 @@ def test_tabs_open_route_and_reach_at_once(tabs: int, server: str, context: Any)
     assert not [e for e in errors if "Bokeh" in e or "Error" in e], errors
 
 
+@pytest.mark.heavy  # make validate: the suite's 5-minute budget
 def test_fresh_loads_draw_what_the_strip_says(server: str, context: Any):
     """Fresh loads of every mode: whenever the strip says `solved`, the answer's data sources
     in the browser are non-empty; no page logs an error (10 loads per mode, the slow direct
@@ -209,6 +210,7 @@ def test_bad_goal_then_good_ones_raise_no_bokeh_error(server: str, context: Any)
     assert float(cost) == pytest.approx(ref.cost, rel=1e-9)
 
 
+@pytest.mark.heavy  # make validate: the suite's 5-minute budget
 def test_one_history_entry_per_planner_switch(server: str, context: Any):
     """Switching planner adds one history entry (edits and zooms replace it); Back shows the
     previous planner's page again."""
