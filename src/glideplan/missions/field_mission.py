@@ -325,15 +325,21 @@ def _route_legs(route: Route, flow: FlowField, speed: float, depart: Any,
         if bar is not None:
             bar.update(task, advance=1)
         info = dict(res.field_info)
+        legs.append(_field_leg(i, res))
         if not res.ok:
-            legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res, length_m=math.nan,
-                                 duration_s=math.nan))
             break
-        duration = float(res.duration_s or 0.0)
-        legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res,
-                             length_m=float(res.distance_m), duration_s=duration))
+        duration = legs[-1].duration_s
         t = float(res.depart_s) + duration
     return legs, info
+
+
+def _field_leg(i: int, res: RouteResult) -> FieldLeg:
+    """Leg i from waypoint i to i + 1 of a route result (length and duration NaN if failed)."""
+    if not res.ok:
+        return FieldLeg(index=i, start=i, end=i + 1, result=res, length_m=math.nan,
+                        duration_s=math.nan)
+    return FieldLeg(index=i, start=i, end=i + 1, result=res, length_m=float(res.distance_m),
+                    duration_s=float(res.duration_s or 0.0))
 
 
 def _chain(results: list[RouteResult], flow: FlowField, depart: Any) -> tuple[
@@ -350,13 +356,10 @@ def _chain(results: list[RouteResult], flow: FlowField, depart: Any) -> tuple[
     for i, res in enumerate(results):
         when = None if flow.epoch is None else flow.epoch + np.timedelta64(round(t * 1e3), "ms")
         res = replace(res, depart_s=t, depart=when)
+        legs.append(_field_leg(i, res))
         if not res.ok:
-            legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res, length_m=math.nan,
-                                 duration_s=math.nan))
             break
-        duration = float(res.duration_s or 0.0)
-        legs.append(FieldLeg(index=i, start=i, end=i + 1, result=res,
-                             length_m=float(res.distance_m), duration_s=duration))
+        duration = legs[-1].duration_s
         t += duration
     return legs, dict(results[0].field_info)
 

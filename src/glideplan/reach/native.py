@@ -227,17 +227,20 @@ def _seeds(terrain: Terrain, start: tuple[float, float, float], glide: Glide,
     return (ii[keep] * nx + jj[keep]).astype(np.int64), lossv[keep]
 
 
+def _parent_chain(parent: NDArray[np.int64], k: int) -> NDArray[np.int64]:
+    """Flat node indices from node k along `parent` (-1 ends the chain), k first."""
+    out = []
+    while k >= 0:
+        out.append(k)
+        k = int(parent[k])
+    return np.array(out, dtype=np.int64)
+
+
 def node_path(search: NativeSearch, terrain: Terrain, i: int, j: int
               ) -> tuple[FloatArray, FloatArray]:
     """The nodes from the seed to node (i, j) along the parents (lat, lon, start first)."""
     nx = terrain.shape[1]
-    k = i * nx + j
-    out = []
-    while k >= 0:
-        out.append(k)
-        k = int(search.parent[k])
-    out.reverse()
-    idx = np.array(out, dtype=np.int64)
+    idx = _parent_chain(search.parent, i * nx + j)[::-1]
     return terrain.lat[idx // nx], terrain.lon[idx % nx]
 
 
@@ -353,10 +356,5 @@ def back_path(back: BackSearch, terrain: Terrain, i: int, j: int
               ) -> tuple[FloatArray, FloatArray]:
     """The nodes from (i, j) along the parents to the target's nodes (lat, lon)."""
     nx = terrain.shape[1]
-    k = i * nx + j
-    out = []
-    while k >= 0:
-        out.append(k)
-        k = int(back.parent[k])
-    idx = np.array(out, dtype=np.int64)
+    idx = _parent_chain(back.parent, i * nx + j)
     return terrain.lat[idx // nx], terrain.lon[idx % nx]
