@@ -645,10 +645,16 @@ def test_latency_benchmark_runs(dubins_page: Any):
     )
 
 
-def test_every_request_stays_local(server: str, requests_seen: list[str]):
-    """No request leaves 127.0.0.1: scripts and style sheets are served by the app itself."""
-    # runs last in this module: the other tests have loaded every page by now
-    assert requests_seen
+def test_every_request_stays_local(server: str, browser_context: Any, requests_seen: list[str]):
+    """No request leaves 127.0.0.1: scripts and style sheets are served by the app itself.
+
+    The test loads two pages of its own (pytest-xdist may give it a worker on which no other
+    test of this module ran), then checks every request the context has seen so far."""
+    for family in ("dubins", "load-factor"):
+        page = _open(browser_context, f"{server}/?{FAMILIES[family]}")
+        _wait_result(page)
+        page.close()
+    assert any(urlparse(u).path.endswith(".js") for u in requests_seen), requests_seen[:5]
     for url in requests_seen:
         parsed = urlparse(url[len("blob:") :] if url.startswith("blob:") else url)
         if parsed.scheme == "data":
