@@ -17,9 +17,18 @@ from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
 
-__all__ = ["Track"]
+__all__ = ["Track", "iso_times"]
 
 FloatArray = NDArray[np.float64]
+
+
+def iso_times(depart: np.datetime64 | None, t_s: Any) -> list[str | None]:
+    """ISO 8601 UTC (ms, 'Z') of depart + t for each t (s); None each without a departure."""
+    t = np.atleast_1d(np.asarray(t_s, dtype=float))
+    if depart is None:
+        return [None] * t.size
+    ms = np.round(t * 1e3).astype(np.int64).astype("timedelta64[ms]")
+    return [str(v) + "Z" for v in np.asarray(depart).astype("datetime64[ms]") + ms]
 
 
 def _empty() -> FloatArray:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import pathlib
 from typing import TYPE_CHECKING, Annotated, Any
 
@@ -119,8 +120,9 @@ def mission_plan(
                         "when the previous leg arrives.", show_default=False)] = None,
     depart: Annotated[str | None, typer.Option(
         "--depart", metavar="TIME",
-        help="With --field: departure from the first waypoint, ISO 8601 (UTC if no "
-                         "offset; default the field's first time; must lie in its time span).",
+        help="Departure from the first waypoint, ISO 8601 (UTC if no offset): the "
+                         "waypoints' ETAs in the JSON and files as UTC times. With --field: "
+                         "default the field's first time; must lie in its time span.",
         show_default=False)] = None,
     depth_range: Annotated[tuple[float, float] | None, typer.Option(
         "--depth-range", metavar="Z0 Z1",
@@ -163,6 +165,7 @@ def mission_plan(
     """
     from glideplan.cli.route import check_depth_range, parse_depart
     from glideplan.formats import ExportOptions, export_mission, parse_formats, read_route
+    from glideplan.formats.export import skipped_formats, skipped_warning
     from glideplan.geodesy import wind_from_to_vector
     from glideplan.missions import plan_mission, straight_leg_list
 
@@ -172,10 +175,8 @@ def mission_plan(
     if export is not None:
         check_output_dir(export, "--export")
         check_writable(export, "--export")
-    if field is None and (depart is not None or depth_range is not None):
-        raise InvalidParameterError("--depart" if depart is not None else "--depth-range",
-                                    depart if depart is not None else depth_range,
-                                    "applies with --field only")
+    if field is None and depth_range is not None:
+        raise InvalidParameterError("--depth-range", depth_range, "applies with --field only")
     check_depth_range(depth_range)
     when = parse_depart(depart)
     if field is not None and wind is not None:
@@ -206,6 +207,8 @@ def mission_plan(
     with flag_names(formats="--formats", headings="--headings", objective="--objective",
                     field="--field", wind="--wind", speed="--speed", radius="--radius"):
         fmts = parse_formats(formats, r.geographic) if export is not None else ()
+        skipped = skipped_formats(formats, r.geographic) if export is not None else ()
+        print_warnings([skipped_warning(skipped)] if skipped else [])
         check_export_options(fmts, options, r.n)
         if field is not None:
             mission = _plan_in_field(r, field, speed, radius, when, depth_range)
@@ -217,6 +220,8 @@ def mission_plan(
                                        wind_vector=vector, headings=headings,
                                        progress=progress)
     print_warnings([w for w in mission.warnings if w not in r.warnings])  # those read: above
+    if when is not None and field is None:  # the ETAs as UTC times
+        mission = dataclasses.replace(mission, depart=when)
     if not mission.ok:
         raise PlanningError(_failure(mission))
     files: dict[str, Any] = {}
@@ -234,6 +239,8 @@ def mission_plan(
         files["plot"] = str(plot)
     # the plan's JSON is the library's (`to_dict`); the CLI adds only the files it wrote
     data = mission.to_dict(straight_legs=legs) | {"files": files}
+    if skipped:
+        data["warnings"].append(skipped_warning(skipped))
     if json_out:
         print_json(data)
     else:

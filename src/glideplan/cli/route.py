@@ -137,11 +137,23 @@ def route_command(
     geojson: Annotated[
         pathlib.Path | None,
         typer.Option("--geojson", metavar="FILE",
-                     help="Write the route as GeoJSON (split at 180 deg, RFC 7946)."),
+                     help="Write the route as GeoJSON (split at 180 deg, RFC 7946; the line's "
+                     "coordTimes and a Point per vertex carry UTC times)."),
     ] = None,
     kml: Annotated[
         pathlib.Path | None,
-        typer.Option("--kml", metavar="FILE", help="Write the route as KML."),
+        typer.Option("--kml", metavar="FILE", help="Write the route as KML (each vertex a "
+                     "Placemark with its UTC TimeStamp)."),
+    ] = None,
+    gpx: Annotated[
+        pathlib.Path | None,
+        typer.Option("--gpx", metavar="FILE",
+                     help="Write the route as a GPX track (each point with its UTC time)."),
+    ] = None,
+    csv: Annotated[
+        pathlib.Path | None,
+        typer.Option("--csv", metavar="FILE",
+                     help="Write the route's vertices as CSV: time_utc,t_s,lat,lon,heading_deg."),
     ] = None,
     ensemble: Annotated[
         str | None,
@@ -215,9 +227,13 @@ def route_command(
     check_physical("--speed", speed, "speed")
     check_depth_range(depth_range)
     plot = check_figure_file(plot)
-    for flag, out_file in (("--geojson", geojson), ("--kml", kml)):
-        if out_file is not None and out_file.parent and not out_file.parent.is_dir():
-            raise InvalidParameterError(flag, str(out_file), "its folder does not exist")
+    exports = {fmt: p for fmt, p in (("geojson", geojson), ("kml", kml), ("gpx", gpx),
+                                     ("csv", csv)) if p is not None}
+    for fmt, out_file in exports.items():
+        if out_file.parent and not out_file.parent.is_dir():
+            raise InvalidParameterError(f"--{fmt}", str(out_file), "its folder does not exist")
+    if (ensemble is not None or depart_range is not None) and (gpx or csv):
+        usage_error("--gpx and --csv write one route: not with --ensemble or --depart-range")
     if ensemble is not None or depart_range is not None:
         from glideplan.cli.route_ensemble import run
 
@@ -280,6 +296,13 @@ def route_command(
                 chain = solving("trochoid pieces",
                                 lambda: trochoid_chain(result, flow, speed, radius))
                 out["glider"]["trochoid"] = chain.to_dict()
+    if exports and result.track.size:
+        from glideplan.formats.route_export import route_export_warnings
+
+        for warning in route_export_warnings(result):
+            out["warnings"].append(warning)
+            if not json_out:
+                typer.echo(f"glideplan: warning: {warning}", err=True)
     if json_out:
         print_json(out)
     else:
@@ -289,19 +312,11 @@ def route_command(
 
         plot_route(result, flow, plot, speed=speed, start=from_, goal=to, glider=glider)
         announce(f"wrote {plot}", json_out)
-    if (geojson is not None or kml is not None) and result.track.size:
-        from glideplan.formats.tracks import write_track_geojson, write_track_kml
+    if exports:
+        from glideplan.formats.route_export import export_route
 
-        props = {"kind": "route", "status": result.status.value,
-                 "duration_s": result.duration_s, "distance_m": result.distance_m,
-                 "method": result.method}
-        if geojson is not None:
-            write_track_geojson(geojson, result.lat, result.lon, props)
-            announce(f"wrote {geojson}", json_out)
-        if kml is not None:
-            write_track_kml(kml, result.lat, result.lon, name="glideplan route",
-                            description=f"{result.status.value}, {result.duration_s or 0:.0f} s")
-            announce(f"wrote {kml}", json_out)
+        for written in export_route(result, exports).values():
+            announce(f"wrote {written}", json_out)
     if not result.ok:
         if not json_out:
             typer.echo(f"glideplan: {result.status.value}: {result.message}", err=True)

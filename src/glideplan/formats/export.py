@@ -17,7 +17,8 @@ from glideplan.missions.field_mission import FieldMission
 from glideplan.missions.plan import MissionPlan
 from glideplan.missions.straight_legs import StraightLegList, straight_leg_list
 
-__all__ = ["EXPORT_FORMATS", "ExportOptions", "export_mission", "parse_formats"]
+__all__ = ["EXPORT_FORMATS", "ExportOptions", "export_mission", "parse_formats",
+           "skipped_formats"]
 
 EXPORT_FORMATS = ("geojson", "kml", "gpx", "csv", "qgc-wpl", "qgc-plan", "slocum", "seaglider")
 GEOGRAPHIC_ONLY = frozenset(EXPORT_FORMATS) - {"csv"}
@@ -69,6 +70,20 @@ def parse_formats(text: str | None, geographic: bool = True) -> tuple[str, ...]:
         if f not in out:
             out.append(f)
     return tuple(out)
+
+
+def skipped_formats(text: str | None, geographic: bool) -> tuple[str, ...]:
+    """The formats the default list (`--formats` not given, or 'all') leaves out because
+    they need lat/lon and the route is in local metres; () otherwise."""
+    if geographic or not (text is None or text.strip().lower() in ("", "all")):
+        return ()
+    return tuple(f for f in EXPORT_FORMATS if f in GEOGRAPHIC_ONLY)
+
+
+def skipped_warning(skipped: tuple[str, ...]) -> str:
+    """The warning naming the formats `skipped_formats` left out."""
+    return (f"not written: {', '.join(skipped)} (they need lat/lon waypoints; this route is "
+            "in local x,y metres): only csv")
 
 
 def export_mission(

@@ -98,6 +98,11 @@ class FieldMission(LegTotals):
         return all(leg.ok for leg in self.legs)
 
     @property
+    def depart_time(self) -> np.datetime64 | None:
+        """The first leg's departure (UTC; None without a calendar)."""
+        return self.legs[0].result.depart if self.legs else None
+
+    @property
     def smallest_radius(self) -> float | None:
         """The smallest feasible radius R0' of the legs' flyable paths (m), None without."""
         radii = [leg.glider.feasible_radius_m for leg in self.legs

@@ -36,7 +36,7 @@ from glideplan.missions.headings import (
 from glideplan.missions.route import Route
 from glideplan.path import Path
 from glideplan.solution import Solution, Status
-from glideplan.track import Track
+from glideplan.track import Track, iso_times
 from glideplan.validation import check_finite, check_physical
 
 if TYPE_CHECKING:
@@ -145,6 +145,20 @@ class LegTotals:
         return float(sum(leg.duration_s for leg in self.legs))
 
     @property
+    def waypoint_eta_s(self) -> list[float]:
+        """When each waypoint is reached (s after departure): 0, then the legs' durations
+        summed (t_{i+1} = t_i + T_i); as many as the legs reach."""
+        out = [0.0]
+        for leg in self.legs:
+            out.append(out[-1] + float(leg.duration_s))
+        return out
+
+    @property
+    def depart_time(self) -> np.datetime64 | None:
+        """The departure's UTC time (None: a mission with no calendar)."""
+        return getattr(self, "depart", None)
+
+    @property
     def headings_deg(self) -> list[float]:
         """Compass bearing (deg) at each waypoint, chosen or given."""
         return [float(b) for b in np.atleast_1d(heading_to_compass(self.headings))]
@@ -187,6 +201,11 @@ class LegTotals:
             }
         data["stats"] = stats
         data["track"] = self.track_json()
+        etas = self.waypoint_eta_s
+        times = iso_times(self.depart_time, etas)
+        for w, eta, when in zip(data.get("waypoints", []), etas, times, strict=False):
+            w["eta_s"] = eta
+            w["eta"] = when
         return data
 
 
@@ -207,6 +226,7 @@ class MissionPlan(LegTotals):
     wind_vector: tuple[float, float] | None = None  # (east, north) m/s, moving TOWARDS
     stats: dict[str, Any] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
+    depart: np.datetime64 | None = None  # UTC of the departure: the waypoints' ETAs as times
 
     def track_spacing(self, tolerance: float) -> float:
         """Sample spacing (m) whose arcs leave their chords by <= 1 % of `tolerance`.

@@ -14,7 +14,7 @@ from __future__ import annotations
 import itertools
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -34,7 +34,9 @@ __all__ = ["StraightLegList", "segment_distances", "straight_leg_list"]
 class StraightLegList:
     """Waypoints to fly straight between: names, local x, y (m), lat/lon (deg or None),
     whether each is a mission waypoint, the compass bearing of the track there (deg), the
-    largest distance (m) of the sampled track from the polyline and the sample spacing (m)."""
+    largest distance (m) of the sampled track from the polyline and the sample spacing (m);
+    eta_s: when the track reaches each (s after departure; a mission waypoint's is the legs'
+    durations summed)."""
 
     names: tuple[str, ...]
     x: NDArray[np.float64]
@@ -46,6 +48,7 @@ class StraightLegList:
     max_deviation_m: float
     tolerance_m: float
     sample_spacing_m: float
+    eta_s: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
 
 
 def segment_distances(
@@ -95,6 +98,7 @@ def straight_leg_list(
     xs: list[float] = []
     ys: list[float] = []
     hs: list[float] = []
+    ts: list[float] = []
     mission: list[bool] = []
     worst = 0.0
     route = plan.route
@@ -125,6 +129,7 @@ def straight_leg_list(
                 ys.append(float(ly[k]))
                 mission.append(False)
             hs.append(float(lh[k]))
+            ts.append(float(tr.t[sel][k]))
     x = np.array(xs)
     y = np.array(ys)
     lat = lon = None
@@ -136,5 +141,5 @@ def straight_leg_list(
     return StraightLegList(
         tuple(names), x, y, lat, lon, np.array(mission),
         np.atleast_1d(np.asarray(heading_to_compass(np.array(hs)), dtype=float)),
-        worst, tol, spacing,
+        worst, tol, spacing, np.array(ts),
     )
