@@ -12,7 +12,7 @@ vertex's time is the route's `arrive`.
   3.1.9) with `coordTimes` aligned to its coordinates (a list per part when split: the
   convention of Mapbox's togeojson; crossing points get the time interpolated linearly in
   longitude); then one Point per vertex with `time`, `t_s` and `heading_deg`.
-- KML 2.2: the line Placemark, then a Folder of Point Placemarks each with its `TimeStamp`.
+- KML 2.2: the line Placemark, then a Point Placemark per vertex with its `TimeStamp`.
 - GPX 1.1: one track segment, each `trkpt` with its `time`.
 - CSV: time_utc,t_s,lat,lon,heading_deg (one row per vertex).
 
@@ -151,7 +151,7 @@ def write_route_geojson(result: RouteResult, path: pathlib.Path) -> pathlib.Path
 
 
 def write_route_kml(result: RouteResult, path: pathlib.Path) -> pathlib.Path:
-    """KML 2.2: the line Placemark, then a Folder of timestamped vertex Points."""
+    """KML 2.2: the line Placemark, then a timestamped Point Placemark per vertex."""
     v = route_vertices(result)
     p = _properties(result)
     desc = (f"{p['status']}, {result.duration_s or 0:.0f} s, depart {p['depart']}, "
@@ -160,15 +160,14 @@ def write_route_kml(result: RouteResult, path: pathlib.Path) -> pathlib.Path:
              '<Style id="track"><LineStyle><color>ff0000ff</color><width>2</width>'
              "</LineStyle></Style>",
              f"<Placemark><name>glideplan route</name><description>{escape(desc)}"
-             f"</description><styleUrl>#track</styleUrl>{kml_line(v.lat, v.lon)}</Placemark>",
-             "<Folder><name>vertices</name>"]
+             f"</description><styleUrl>#track</styleUrl>{kml_line(v.lat, v.lon)}</Placemark>"]
     for k, when in enumerate(v.times):
         stamp = "" if when is None else f"<TimeStamp><when>{when}</when></TimeStamp>"
         parts.append(
             f"<Placemark><name>{k}</name>{stamp}<description>t = {v.t_s[k]:.1f} s, "
             f"heading {v.heading_deg[k]:.1f} deg</description><Point><coordinates>"
             f"{v.lon[k]:.9f},{v.lat[k]:.9f},0</coordinates></Point></Placemark>")
-    parts += ["</Folder>", "</Document>", "</kml>", ""]
+    parts += ["</Document>", "</kml>", ""]
     path.write_text("\n".join(parts), encoding="utf-8")
     return path
 
