@@ -179,6 +179,11 @@ class FlowField:
             raise InvalidParameterError(f"{name} latitude", float(np.max(la)),
                                         f"outside the field: north bound {ext.lat_max:g}")
 
+    def nan_cause(self, t: float, lat: float, lon: float) -> str:
+        """Why the current at (t, lat, lon) is NaN, as the rule of an error: "is on land ..."
+        here; a gridded field tells its other causes apart (`GriddedField.nan_cause`)."""
+        return LAND_RULE
+
     def format_time(self, t: float) -> str:
         """ISO 8601 of t seconds since epoch (or 't=...s' without a calendar)."""
         if self.epoch is None:
@@ -194,6 +199,13 @@ class FlowField:
                                 self.format_time(self.time_span[1])]
         out["warnings"] = list(self.warnings)
         return out
+
+
+#: The rule of the error for a point whose current is NaN because it is on land.
+LAND_RULE = "is on land (no current data: NaN)"
+#: `GriddedField.nodata` codes: why a node has no data besides land.
+NODATA_OUTSIDE = 1  # outside the source grid of a regridded (curvilinear, e.g. ROMS) file
+NODATA_FLOOR = 2  # the depth range reaches below the sea floor there (the layer mean is NaN)
 
 
 @dataclass(frozen=True)
@@ -262,6 +274,8 @@ class GriddedField(FlowField):
     epoch: np.datetime64 | None = None
     info: Mapping[str, Any] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
+    #: (ny, nx) int8 or None: why a NaN node has no data besides land (NODATA_* codes; 0 land)
+    nodata: NDArray[np.int8] | None = None
 
     def __post_init__(self) -> None:
         shape = (self.times.size, self.lat.size, self.lon.size)
@@ -357,6 +371,37 @@ class GriddedField(FlowField):
         points = np.stack([np.asarray(a, dtype=float).ravel() for a in axes], axis=-1)
         uv = self._interpolator(points).reshape(*la.shape, 2)
         return uv[..., 0], uv[..., 1]
+
+    def nan_cause(self, t: float, lat: float, lon: float) -> str:
+        """Why the current at (t, lat, lon) is NaN: a time step with no data at all (every
+        value NaN that time), a point outside the source grid of a regridded file, a depth
+        range reaching below the sea floor, or land. The nodes are the (up to 2 x 2 x 2)
+        corners of the interpolation cell; the first cause found in that order names it."""
+        la, lo = self.check_position(lat, lon)
+        ks = [0] if self.times.size == 1 else sorted({
+            int(np.clip(np.searchsorted(self.times, t, side="right") - 1, 0, self.times.size - 1)),
+            int(np.clip(np.searchsorted(self.times, t, side="left"), 0, self.times.size - 1))})
+        for k in ks:
+            if not (np.isfinite(self.u[k]).any() and np.isfinite(self.v[k]).any()):
+                return (f"has no current: the field's time step {self.format_time(self.times[k])}"
+                        " is all NaN (no data at that time)")
+        if self.nodata is None:
+            return LAND_RULE
+        i = int(np.clip(np.searchsorted(self.lat, float(la), side="right") - 1, 0,
+                        self.lat.size - 2))
+        j = int(np.searchsorted(self.lon, float(lo), side="right") - 1)
+        cols = [j % self.lon.size, (j + 1) % self.lon.size] if self.periodic_lon else [
+            int(np.clip(j, 0, self.lon.size - 2)), int(np.clip(j, 0, self.lon.size - 2)) + 1]
+        codes = self.nodata[np.ix_([i, i + 1], cols)]
+        if np.any(codes == NODATA_OUTSIDE):
+            return ("is outside the file's curvilinear grid (no data there: the regridded "
+                    "lat/lon box reaches past the rotated grid's edges), not on land")
+        if np.any(codes == NODATA_FLOOR):
+            z0, z1 = self.info.get("depth_average_m", ("Z0", "Z1"))
+            return (f"has no current over the depth range {z0:g}..{z1:g} m: the sea floor "
+                    f"there is shallower than {z1:g} m (not land); give a shallower depth "
+                    "range")
+        return LAND_RULE
 
     def lattice_level(self, k: int, lat: ArrayLike, lon: ArrayLike) -> tuple[FloatArray,
                                                                               FloatArray]:

@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 
 from glideplan.errors import InvalidParameterError
-from glideplan.fields.field import GriddedField
+from glideplan.fields.field import NODATA_FLOOR, NODATA_OUTSIDE, GriddedField
 
 __all__ = ["depth_average", "from_xarray", "open_field", "pyproj_before_eccodes"]
 
@@ -336,6 +336,9 @@ def _vertical(ds: Any, d: Any, depth_range: tuple[float, float] | None, info: di
     z0, z1 = float(depth_range[0]), float(depth_range[1])
     vals = depth_average(np.asarray(d.values, dtype=float), depths, z0, z1)
     info["depth_average_m"] = [z0, z1]
+    # nodes with water at the top level but no layer mean: the range reaches the sea floor
+    top_ok = np.isfinite(np.asarray(d.isel({zdim: int(np.argmin(depths))}).values, dtype=float))
+    info["_floor"] = d.isel({zdim: 0}, drop=True).copy(data=top_ok & ~np.isfinite(vals))
     top = float(np.min(depths))
     if np.isfinite(z0) and z0 < top:
         text = (f"depth range {z0:g}..{z1:g} m starts above the file's first level {top:g} m: "
@@ -356,6 +359,7 @@ def from_xarray(
     info: dict[str, Any] = {"kind": "gridded", "source": source, "variables": [east, north]}
     warnings: list[str] = []
     comps = []
+    floors: list[np.ndarray] = []  # per component: (ny, nx) the depth range reaches the floor
     tdim, tvals = None, None
     for name in (east, north):
         d = _merge_expver(ds[name])
@@ -377,8 +381,13 @@ def from_xarray(
         d = d.isel({dim: 0 for dim in extra}, drop=True) if extra else d
         d = _vertical(ds, d, depth_range, info, warnings)
         lead = [tdim] if tdim is not None else []
-        arr = np.asarray(d.transpose(*lead, *lat_c.dims if kind == "curvilinear" else (
-            lat_c.dims[0], lon_c.dims[0])).values, dtype=float)
+        dims = (*lead, *lat_c.dims) if kind == "curvilinear" else (
+            *lead, lat_c.dims[0], lon_c.dims[0])
+        arr = np.asarray(d.transpose(*dims).values, dtype=float)
+        floor = info.pop("_floor", None)
+        if floor is not None:
+            fl = np.asarray(floor.transpose(*dims).values, dtype=bool)
+            floors.append(np.asarray(fl.reshape((-1, *arr.shape[-2:])).any(axis=0)))
         if tdim is None:
             arr = arr[None]
         comps.append((kind, arr, lat_c, lon_c, tdim, tvals))
@@ -393,9 +402,12 @@ def from_xarray(
         if np.any(np.diff(tvals) <= np.timedelta64(0, "ns")):
             raise InvalidParameterError("field time", "repeated", "two records at the same time")
         comps = [(k, a[order], la, lo, td, tv) for k, a, la, lo, td, tv in comps]
+    same = comps[0][2].shape == comps[1][2].shape
     comps = _same_grid(comps)
+    nodata = None
     if comps[0][0] == "curvilinear":
-        lat, lon, u, v = _regrid(ds, east, comps, warnings)
+        lat, lon, u, v, outside = _regrid(ds, east, comps, warnings)
+        nodata = np.where(outside, NODATA_OUTSIDE, 0).astype(np.int8)
     else:
         lat = np.asarray(comps[0][2].values, dtype=float)
         lon_raw = np.asarray(comps[0][3].values, dtype=float)
@@ -403,6 +415,10 @@ def from_xarray(
         yo = np.argsort(lat)
         lat = lat[yo]
         u, v = (c[1][:, yo][:, :, xo] for c in comps)
+        if floors and same and all(f.shape == u.shape[1:] for f in floors):
+            floor = np.logical_or.reduce([f[yo][:, xo] for f in floors])
+            nodata = np.where(floor, NODATA_FLOOR, 0).astype(np.int8)
+    _refuse_all_nan(u, v, source, nodata)
     if tvals is None:
         epoch = None
         times = np.zeros(1)
@@ -414,7 +430,20 @@ def from_xarray(
             warnings.append(f"the file has one time step ({str(epoch)[:19]}Z): the field is "
                             "held constant in time")
     return GriddedField(times=np.asarray(times, dtype=float), lat=lat, lon=lon, u=u, v=v,
-                        epoch=epoch, info=info, warnings=tuple(warnings))
+                        epoch=epoch, info=info, warnings=tuple(warnings), nodata=nodata)
+
+
+def _refuse_all_nan(u: np.ndarray, v: np.ndarray, source: str, nodata: Any) -> None:
+    """A file with no finite current at all is refused by its name (it is not "land"): the
+    depth range's fault when it reaches below the sea floor at every wet node."""
+    if np.isfinite(u).any() and np.isfinite(v).any():
+        return
+    if nodata is not None and np.any(nodata == NODATA_FLOOR):
+        raise InvalidParameterError("depth_range", source, "reaches below the sea floor at "
+                                    "every node with water: no current over that layer "
+                                    "anywhere; give a shallower depth range")
+    raise InvalidParameterError("field", source, "every current value in the file is NaN "
+                                "(no data: fill values only)")
 
 
 def _same_grid(comps: list[Any]) -> list[Any]:
@@ -462,7 +491,7 @@ def _as_regular(comp: tuple[Any, ...]) -> tuple[Any, ...]:
 
 
 def _regrid(ds: Any, east: str, comps: list[Any], warnings: list[str]) -> tuple[
-        np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Regrid curvilinear components (their own 2-D coordinates) to a regular lat/lon grid."""
     from glideplan.fields.regrid import CurvilinearSource, regrid_curvilinear
 
@@ -492,7 +521,8 @@ def _regrid(ds: Any, east: str, comps: list[Any], warnings: list[str]) -> tuple[
                                       np.asarray(lo_a.values, dtype=float), "angle")
     out = regrid_curvilinear(sources[0], sources[1], angle=angle, grid_relative=rotate)
     warnings.extend(out.warnings)
-    return out.lat, out.lon, out.u, out.v
+    outside = np.zeros(out.u.shape[1:], bool) if out.outside is None else out.outside
+    return out.lat, out.lon, out.u, out.v, outside
 
 
 def _engine(path: pathlib.Path) -> str:

@@ -57,6 +57,7 @@ class RegularGrid:
     u: FloatArray
     v: FloatArray
     warnings: tuple[str, ...]
+    outside: NDArray[np.bool_] | None = None  # (nlat, nlon): outside the source grid
 
 
 def _refuse(src: CurvilinearSource, reason: str) -> InvalidParameterError:
@@ -269,4 +270,6 @@ def regrid_curvilinear(
             f"grid's own cells); NaN outside the source grid and next to land")
     if notes:
         text += "; " + "; ".join(notes)
-    return RegularGrid(lat=tlat, lon=_lon_frame(tlon), u=u, v=v, warnings=(text,))
+    outside = np.isnan(tri_e(np.ones((1, *east.lat.shape)))[0])  # no cell of the source
+    return RegularGrid(lat=tlat, lon=_lon_frame(tlon), u=u, v=v, warnings=(text,),
+                       outside=outside)

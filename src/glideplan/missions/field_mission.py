@@ -244,6 +244,7 @@ def plan_mission_in_field(
         from glideplan.fields import open_field
 
         flow, depth_range = open_field(flow, depth_range=depth_range), None
+    _check_waypoints(route, flow, depart)
     from glideplan.missions.field_legs import BATCH_MIN_LEGS, steady_legs
 
     if flow.time_span is None and route.n - 1 >= BATCH_MIN_LEGS:
@@ -297,6 +298,29 @@ def plan_mission_in_field(
     return FieldMission(route=route, headings=np.nan_to_num(h), legs=tuple(legs), speed=speed,
                         field_info=info, stats=stats, radius=radius, warnings=tuple(warnings))
 
+
+
+def _check_waypoints(route: Route, flow: FlowField, depart: Any) -> None:
+    """Every waypoint inside the field and in water at the departure, else an error naming
+    it by its name and place in the file (`Route.labels`: "line 3") and the cause
+    (`FlowField.nan_cause`: land, outside a regridded grid, below the sea floor...)."""
+    from glideplan.fields.field import to_seconds
+
+    assert route.lat is not None and route.lon is not None
+    if depart is not None:
+        t0 = float(to_seconds(depart, flow.epoch))
+    else:
+        t0 = flow.time_span[0] if flow.time_span is not None else 0.0
+        levels = flow.time_levels
+        if flow.time_span is None and levels is not None:
+            t0 = float(levels[0])
+    for i in range(route.n):
+        name = f"{route.source} {route.labels[i]} ({route.names[i]})"
+        lat, lon = float(route.lat[i]), float(route.lon[i])
+        flow.check_position(lat, lon, name=name)
+        u, v = flow.velocity(t0, lat, lon)
+        if not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
+            raise InvalidParameterError(name, (lat, lon), flow.nan_cause(t0, lat, lon))
 
 
 def _route_legs(route: Route, flow: FlowField, speed: float, depart: Any,

@@ -177,7 +177,7 @@ def _check_point(fld: FlowField, t: float, point: Any, name: str) -> tuple[float
                                     "lat/lon grid does not reach the poles")
     u, v = fld.velocity(t, lat, lon)
     if not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
-        raise InvalidParameterError(name, (lat, lon), "is on land (no current data: NaN)")
+        raise InvalidParameterError(name, (lat, lon), fld.nan_cause(t, lat, lon))
     return lat, lon
 
 

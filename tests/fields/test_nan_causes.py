@@ -1,0 +1,84 @@
+"""Messages that name the real cause of a NaN current (issue 26), each on its own input.
+
+Before, each of these said "is on land (no current data: NaN)". References are the inputs'
+own construction: which nodes were made NaN, where the rotated grid's edges are (its closed
+form placement), which level is below the floor.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from glideplan.errors import InvalidParameterError
+from glideplan.fields import open_field
+from glideplan.fields.synthetic import copernicus_dataset, roms_dataset
+
+T0 = np.datetime64("2026-03-01T00:00", "ns")
+TIMES = T0 + np.arange(25) * np.timedelta64(3600, "s")
+LAT = np.linspace(44.0, 45.0, 11)
+LON = np.linspace(-9.0, -8.0, 11)
+
+
+def _file(tmp_path, u, depth=(0.5,), name="cur.nc"):
+    path = tmp_path / name
+    copernicus_dataset(LAT, LON, TIMES, list(depth), u, np.where(np.isnan(u), np.nan, 0.0)
+                       ).to_netcdf(path)
+    return path
+
+
+def test_all_nan_file_is_refused_by_name(tmp_path, run_cli):
+    path = _file(tmp_path, np.full((TIMES.size, 1, LAT.size, LON.size), np.nan))
+    with pytest.raises(InvalidParameterError, match="every current value in the file is NaN"):
+        open_field(path)
+    code, _, err = run_cli("route", "--field", str(path), "--from", "44.5", "-8.9", "--to",
+                           "44.5", "-8.5", "--speed", "0.5")
+    assert code == 2
+    assert "--field" in err and "every current value in the file is NaN" in err
+    assert "is on land" not in err
+
+
+def test_depth_range_below_the_shelf_floor(tmp_path, run_cli):
+    """Levels 0.5, 100, 300 m; west of -8.5 the floor is above 300 m (NaN there): a layer
+    0..200 m is defined only east of it (the 100..300 interpolation needs 300 m)."""
+    u = np.full((TIMES.size, 3, LAT.size, LON.size), 0.1)
+    u[:, 2, :, LON < -8.45] = np.nan
+    path = _file(tmp_path, u, depth=(0.5, 100.0, 300.0))
+    f = open_field(path, depth_range=(0.0, 200.0))
+    assert "sea floor there is shallower than 200 m" in f.nan_cause(0.0, 44.5, -8.9)
+    code, _, err = run_cli("route", "--field", str(path), "--from", "44.5", "-8.9", "--to",
+                           "44.5", "-8.2", "--speed", "0.5", "--depth-range", "0", "200")
+    assert code == 2
+    assert "--from" in err and "shallower than 200 m" in err and "is on land" not in err
+    # the whole file shallower than the range: refused at reading, naming the range
+    u[:, 2] = np.nan
+    with pytest.raises(InvalidParameterError, match="below the sea floor at every node"):
+        open_field(_file(tmp_path, u, depth=(0.5, 100.0, 300.0), name="s.nc"),
+                   depth_range=(0.0, 200.0))
+
+
+def test_point_outside_a_rotated_roms_grid(tmp_path, run_cli):
+    """roms_dataset: 41 x 31 nodes, 2 km, xi axis 30 deg CCW from east, about (30, -40). The
+    point 45 km east and 40 km south of the centre lies inside the lat/lon box (half-widths
+    49.6 and 46.0 km) but at y = -45 sin 30 - 40 cos 30 = -57 km on the grid's axes, beyond
+    its half-height of 30 km: outside the grid, not land."""
+    path = tmp_path / "roms.nc"
+    roms_dataset(u=0.1).to_netcdf(path)
+    lat = 30.0 + math.degrees(-40e3 / 6371e3)
+    lon = -40.0 + math.degrees(45e3 / (6371e3 * math.cos(math.radians(30.0))))
+    f = open_field(path)
+    assert "outside the file's curvilinear grid" in f.nan_cause(0.0, lat, lon)
+    assert np.isfinite(f.velocity(0.0, 30.0, -40.0)[0])
+    code, _, err = run_cli("route", "--field", str(path), "--from", f"{lat}", f"{lon}", "--to",
+                           "30", "-40", "--speed", "0.5")
+    assert code == 2
+    assert "outside the file's curvilinear grid" in err and "is on land" not in err
+
+
+def test_land_is_still_land(tmp_path):
+    u = np.full((TIMES.size, 1, LAT.size, LON.size), 0.1)
+    u[:, :, -3:, -3:] = np.nan
+    f = open_field(_file(tmp_path, u))
+    assert f.nan_cause(0.0, 44.95, -8.05) == "is on land (no current data: NaN)"
