@@ -146,9 +146,11 @@ def test_depart_outside_the_field_names_the_bound(cli_error, route_file, layered
     assert "ISO 8601" in cli_error(*base, "--depart", "tomorrow")
     assert "--depth-range" in cli_error(*base, "--depth-range", "100", "50")
     assert "--depth-range" in cli_error(*base, "--depth-range", "-5", "50")
+    # --depart without --field gives the waypoints' ETAs as UTC times (issue 26); the depth
+    # range still needs a field
     line = cli_error("mission", "plan", str(route_file), "--speed", "1", "--radius", "10",
-                     "--depart", "2026-01-01T06:00Z")
-    assert "--depart" in line and "--field" in line
+                     "--depth-range", "0", "50")
+    assert "--depth-range" in line and "--field" in line
 
 
 def test_route_command_shares_the_depart_check(cli_error, layered_file):

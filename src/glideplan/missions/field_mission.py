@@ -362,9 +362,20 @@ def _route_legs(route: Route, flow: FlowField, speed: float, depart: Any,
     return legs, info
 
 
+#: A leg too long for the routing window: what a mission can do about it.
+LEG_WINDOW_ADVICE = ("split the leg with a waypoint between its ends (a shorter leg needs a "
+                     "smaller routing window)")
+
+
 def _field_leg(i: int, res: RouteResult) -> FieldLeg:
     """Leg i from waypoint i to i + 1 of a route result (length and duration NaN if failed)."""
     if not res.ok:
+        if res.unreachable_reason == "window_limit":  # advice a mission can follow
+            from dataclasses import replace
+
+            from glideplan.routing.route import WINDOW_ADVICE
+
+            res = replace(res, message=res.message.replace(WINDOW_ADVICE, LEG_WINDOW_ADVICE))
         return FieldLeg(index=i, start=i, end=i + 1, result=res, length_m=math.nan,
                         duration_s=math.nan)
     return FieldLeg(index=i, start=i, end=i + 1, result=res, length_m=float(res.distance_m),

@@ -145,6 +145,13 @@ def route(
         why = fo.unreachable_reason or "front_stopped"
         msg = _unreachable_message(why, problem, fo.closest_m,
                                    rg.clearance_m if rg.coast_xyz.shape[0] else 0.0)
+        if why in ("front_stopped", "time_span", "max_duration"):
+            from glideplan.routing.cutoff import field_cut_off
+
+            shut = field_cut_off(problem.field_, problem.t0, problem.start, problem.goal,
+                                 rg.clearance_m)
+            if shut is not None:  # not the time: no way joins start and goal
+                why, msg = "front_stopped", _cut_off_message(shut, rg.clearance_m, fo.closest_m)
         from glideplan.routing.window import MAX_LAT_DEG
 
         top = _great_circle_max_lat(problem.start, problem.goal)
@@ -280,6 +287,21 @@ def _great_circle_max_lat(start: tuple[float, float], goal: tuple[float, float])
     return float(np.degrees(np.max(np.abs(np.arcsin(np.clip(pts[:, 2], -1.0, 1.0))))))
 
 
+#: The advice of a "window_limit" answer (`plan_mission_in_field` gives its own: a mission
+#: plan has no resolution option).
+WINDOW_ADVICE = "a coarser resolution reaches further"
+
+
+def _cut_off_message(shut: str, clearance: float, closest: float) -> str:
+    """The message of a goal no water joins to the start (`phases.cut_off`)."""
+    came = f"the reachable set came within {closest / 1000:.3g} km of the goal"
+    if shut == "clearance":
+        return (f"the land clearance ({clearance:.0f} m) closes every passage to the goal: "
+                "water joins start and goal only through gaps narrower than twice the "
+                f"clearance; a smaller --land-clearance opens it: {came}")
+    return f"land separates the goal from the start's water (no passage at all): {came}"
+
+
 def _unreachable_message(why: str, problem: Any, closest: float, clearance: float) -> str:
     fld = problem.field_
     came = f"the reachable set came within {closest / 1000:.3g} km of the goal"
@@ -296,6 +318,6 @@ def _unreachable_message(why: str, problem: Any, closest: float, clearance: floa
                f"reached: {came}"
     if why == "window_limit":
         return (f"the routing window reached its size limit ({problem.settings.max_nodes:g} "
-                f"nodes) before the goal: {came}; a coarser resolution reaches further")
+                f"nodes) before the goal: {came}; {WINDOW_ADVICE}")
     return (f"the goal is not reached within the duration limit "
             f"({(problem.t_max - problem.t0) / 3600:.4g} h): {came}")
