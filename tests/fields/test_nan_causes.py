@@ -82,3 +82,27 @@ def test_land_is_still_land(tmp_path):
     u[:, :, -3:, -3:] = np.nan
     f = open_field(_file(tmp_path, u))
     assert f.nan_cause(0.0, 44.95, -8.05) == "is on land (no current data: NaN)"
+
+
+def test_all_nan_forecast_day_is_named(tmp_path, run_cli):
+    """Hourly steps, 0.1 m/s east, every value NaN from 24 h to 47 h (a forecast day with no
+    data). 64 km at 0.5 + 0.1 m/s takes 30 h: the front meets the gap at 24 h. Was
+    `field_extent`/`front_stopped`; now `missing_data` naming the step's time."""
+    import json
+
+    times = T0 + np.arange(73) * np.timedelta64(3600, "s")
+    u = np.full((times.size, 1, LAT.size, LON.size), 0.1)
+    u[24:48] = np.nan
+    path = tmp_path / "gap.nc"
+    copernicus_dataset(LAT, LON, times, [0.5], u, np.where(np.isnan(u), np.nan, 0.0)
+                       ).to_netcdf(path)
+    code, out, _ = run_cli("route", "--field", str(path), "--from", "44.5", "-8.9", "--to",
+                           "44.5", "-8.1", "--speed", "0.5", "--json")
+    data = json.loads(out)
+    assert code == 1
+    assert data["unreachable_reason"] == "missing_data"
+    assert "no data at 2026-03-02T00:00:00Z" in data["message"]
+    # departing inside the gap: the start's error names the empty step, not land
+    code, _, err = run_cli("route", "--field", str(path), "--from", "44.5", "-8.9", "--to",
+                           "44.5", "-8.1", "--speed", "0.5", "--depart", "2026-03-02T06:00Z")
+    assert code == 2 and "is all NaN (no data at that time)" in err

@@ -188,7 +188,8 @@ def route_command(
     on a lat/lon grid that grows with the front, refined, verified through the field).
 
     Exit 0 solved, 1 unreachable (`unreachable_reason` in --json: front_stopped,
-    field_extent, time_span, max_duration, window_limit, outside_drift_cone, polar_limit) or
+    field_extent, time_span, max_duration, window_limit, outside_drift_cone, polar_limit,
+    missing_data) or
     not_verified (the flown controls miss the goal by more than endpoint_tolerance_m,
     one grid spacing), 2 bad input, 3 internal error.
     """

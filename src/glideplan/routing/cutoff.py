@@ -1,4 +1,9 @@
-"""Whether land, or land and its clearance, cut the goal off from the start's water.
+"""Why a front that never reached the goal stopped, when the cause is not the time or the
+field's edge: an all-NaN time step (`nan_time_step`), or land and its clearance cutting the
+goal off from the start's water (`field_cut_off`).
+
+An all-NaN time step (a forecast day with no data) stops every front that reaches it: the
+field's linear interpolation in time gives NaN from the step before it to the step after.
 
 A route whose front runs out of time ("time_span", "max_duration") may never have had a way
 to the goal: the land clearance can close the only strait. This check answers at the field's
@@ -19,7 +24,7 @@ import numpy as np
 
 from glideplan.routing.sphere import EARTH_RADIUS_M
 
-__all__ = ["field_cut_off"]
+__all__ = ["field_cut_off", "nan_time_step"]
 
 
 def _ids(labels: np.ndarray, lat: np.ndarray, lon: np.ndarray, point: tuple[float, float]
@@ -57,3 +62,21 @@ def field_cut_off(field_: Any, t: float, start: tuple[float, float],
         return None
     wet, _ = label(water, structure=eight)
     return "clearance" if _ids(wet, lat, lon, start) & _ids(wet, lat, lon, goal) else "land"
+
+
+def nan_time_step(field_: Any, t0: float, arrival: np.ndarray) -> float | None:
+    """The first all-NaN time level (s since epoch) of a gridded field at or after `t0` that
+    the front reached (its latest finite arrival is at or past the level before it); None."""
+    u = getattr(field_, "u", None)
+    times = getattr(field_, "times", None)
+    if u is None or times is None or times.size < 2:
+        return None
+    reached = np.asarray(arrival, dtype=float)
+    reached = reached[np.isfinite(reached)]
+    t_end = float(reached.max()) if reached.size else t0
+    for k in range(times.size):
+        if times[k] < t0 or (k > 0 and times[k - 1] > t_end + 1.0):
+            continue
+        if not (np.isfinite(u[k]).any() and np.isfinite(field_.v[k]).any()):
+            return float(times[k])
+    return None

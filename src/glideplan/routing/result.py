@@ -10,6 +10,7 @@ came first; "max_duration" -- the given (or default) longest duration came first
 "window_limit" -- the window would exceed `RouteSettings.max_nodes` (a coarser grid goes on);
 "outside_drift_cone" -- the goal lies outside the set the current and the vehicle's speed can
 reach at all (`routing.extract.drift_cone`: found before any front, at any resolution);
+"missing_data" -- the front reached a time step of the field with no data at all (all NaN);
 `best_distance_m` the closest approach, `front` the furthest reach).
 
 Times in s, distances in m (great-circle, on the router's sphere), positions WGS84 degrees.
@@ -36,7 +37,7 @@ __all__ = ["UNREACHABLE_REASONS", "FrontMap", "RouteResult"]
 FloatArray = NDArray[np.float64]
 
 UNREACHABLE_REASONS = ("front_stopped", "field_extent", "time_span", "max_duration",
-                       "window_limit", "outside_drift_cone", "polar_limit")
+                       "window_limit", "outside_drift_cone", "polar_limit", "missing_data")
 
 
 @dataclass(frozen=True, eq=False)

@@ -145,13 +145,19 @@ def route(
         why = fo.unreachable_reason or "front_stopped"
         msg = _unreachable_message(why, problem, fo.closest_m,
                                    rg.clearance_m if rg.coast_xyz.shape[0] else 0.0)
-        if why in ("front_stopped", "time_span", "max_duration"):
-            from glideplan.routing.cutoff import field_cut_off
+        if why in ("front_stopped", "field_extent", "time_span", "max_duration"):
+            from glideplan.routing.cutoff import field_cut_off, nan_time_step
 
             shut = field_cut_off(problem.field_, problem.t0, problem.start, problem.goal,
                                  rg.clearance_m)
             if shut is not None:  # not the time: no way joins start and goal
                 why, msg = "front_stopped", _cut_off_message(shut, rg.clearance_m, fo.closest_m)
+            gap = nan_time_step(problem.field_, problem.t0, fo.arrival)
+            if gap is not None:  # a time step with no data at all stopped the front
+                why = "missing_data"
+                msg = (f"the field has no data at {problem.field_.format_time(gap)} (every "
+                       "current value NaN at that time step): the front cannot cross it; the "
+                       f"reachable set came within {fo.closest_m / 1000:.3g} km of the goal")
         from glideplan.routing.window import MAX_LAT_DEG
 
         top = _great_circle_max_lat(problem.start, problem.goal)
