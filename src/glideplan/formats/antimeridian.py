@@ -24,7 +24,8 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["join_at_antimeridian", "split_at_antimeridian", "wrap_longitude"]
+__all__ = ["join_at_antimeridian", "split_at_antimeridian", "split_polygon_at_antimeridian",
+           "wrap_longitude"]
 
 Part = tuple[NDArray[np.float64], NDArray[np.float64]]
 
@@ -134,3 +135,54 @@ def join_at_antimeridian(
         lon += po[start:]
         seam += [False] * (len(pl) - start)
     return lat, lon, seam
+
+
+def _clip_ring(ring: NDArray[np.float64], seam: float, keep_west: bool) -> NDArray[np.float64]:
+    """Sutherland-Hodgman: the closed ring (n, 2) lon, lat clipped to lon <= seam (west) or
+    lon >= seam (east); an edge crossing the seam gets the point at lon = seam, latitude
+    linear along the edge (as `split_at_antimeridian`). Empty (0, 2) when nothing is left."""
+    def inside(p: NDArray[np.float64]) -> bool:
+        return bool(p[0] <= seam) if keep_west else bool(p[0] >= seam)
+
+    out: list[NDArray[np.float64]] = []
+    pts = ring[:-1] if np.array_equal(ring[0], ring[-1]) else ring
+    for k in range(len(pts)):
+        a, b = pts[k - 1], pts[k]
+        if inside(b):
+            if not inside(a):
+                out.append(np.array([seam, a[1] + (b[1] - a[1]) * (seam - a[0]) / (b[0] - a[0])]))
+            out.append(b)
+        elif inside(a):
+            out.append(np.array([seam, a[1] + (b[1] - a[1]) * (seam - a[0]) / (b[0] - a[0])]))
+    if len(out) < 3:
+        return np.zeros((0, 2))
+    arr = np.asarray(out, dtype=float)
+    return np.vstack([arr, arr[:1]])
+
+
+def split_polygon_at_antimeridian(rings: Sequence[NDArray[np.float64]]
+                                  ) -> list[list[NDArray[np.float64]]]:
+    """A polygon (closed rings (n, 2) lon, lat; exterior first; longitudes continuous, may
+    pass +-180) as one or more polygons inside [-180, 180] (RFC 7946 section 3.1.9): the
+    part beyond +180 (or -180) clipped off at the seam and shifted by -+360 degrees. Each
+    ring is clipped to each side (Sutherland-Hodgman against the meridian); a hole stays with
+    the side it lies on; a polygon inside [-180, 180] comes back unchanged."""
+    rs = [np.asarray(r, dtype=float) for r in rings]
+    if not rs:
+        return []
+    lo = min(float(r[:, 0].min()) for r in rs)
+    hi = max(float(r[:, 0].max()) for r in rs)
+    shift = -360.0 * math.floor((0.5 * (lo + hi) + 180.0) / 360.0)  # centre into [-180, 180)
+    rs = [r + np.array([shift, 0.0]) for r in rs]
+    lo, hi = lo + shift, hi + shift
+    if lo >= -180.0 and hi <= 180.0:
+        return [rs]
+    seam = 180.0 if hi > 180.0 else -180.0
+    out = []
+    for keep_west in (True, False):
+        parts = [_clip_ring(r, seam, keep_west) for r in rs]
+        if parts[0].size == 0:
+            continue
+        off = 0.0 if (seam > 0) == keep_west else (-360.0 if seam > 0 else 360.0)
+        out.append([p + np.array([off, 0.0]) for p in parts if p.size])
+    return out

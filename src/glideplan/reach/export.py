@@ -2,8 +2,9 @@
 
 GeoJSON: one FeatureCollection: the footprint as one Polygon or MultiPolygon feature
 (rings closed, exteriors counter-clockwise, holes clockwise: RFC 7946 sec. 3.1.6; positions
-[lon, lat]), the start and every landable as Point features (properties: name, elevation,
-reachable, arrival altitude and margin), and each landable's flown path as a LineString.
+[lon, lat]; a footprint across 180 deg split there, sec. 3.1.9), the start and every
+landable as Point features (properties: name, elevation, reachable, arrival altitude and
+margin), and each landable's flown path as a LineString.
 KML: the same in a Document (Polygon in a MultiGeometry, Placemarks, LineStrings).
 """
 
@@ -25,13 +26,9 @@ def _r(x: float | None, nd: int = 1) -> float | None:
     return None if x is None or not math.isfinite(x) else round(float(x), nd)
 
 
-def _ring(ring: Any) -> list[list[float]]:
-    return [[round(float(x), 7), round(float(y), 7)] for x, y in ring]
-
-
 def reach_geojson(result: ReachResult) -> dict[str, Any]:
     """The FeatureCollection (module docstring)."""
-    polys = [[_ring(r) for r in poly] for poly in result.footprint]
+    polys = result.footprint_coordinates()  # split at the antimeridian (RFC 7946 3.1.9)
     if len(polys) == 1:
         geometry: dict[str, Any] = {"type": "Polygon", "coordinates": polys[0]}
     else:

@@ -148,12 +148,21 @@ class ReachResult:
             "grid": {"resolution_m": self.resolution_m, "pooling": self.pooling,
                      "shape": list(self.arrival.shape), "stop_reason": self.stop_reason,
                      "front_steps": self.front_steps},
-            "footprint": {"polygons": len(self.footprint), "clipped": list(self.clipped),
+            "footprint": {"polygons": self.footprint_coordinates(),
+                          "count": len(self.footprint), "clipped": list(self.clipped),
                           "area_km2": self.footprint_area_km2()},
             "points": [p.to_dict() for p in self.points],
             "timings_s": dict(self.timings),
             "warnings": list(self.warnings),
         }
+
+    def footprint_coordinates(self) -> list[list[list[list[float]]]]:
+        """The footprint as GeoJSON MultiPolygon coordinates: polygons of closed rings of
+        [lon, lat] (deg, 1e-7), exterior first, split at the antimeridian (RFC 7946 3.1.9)."""
+        from glideplan.formats.antimeridian import split_polygon_at_antimeridian
+
+        return [[[[round(float(x), 7), round(float(y), 7)] for x, y in ring] for ring in part]
+                for poly in self.footprint for part in split_polygon_at_antimeridian(poly)]
 
     def footprint_area_km2(self) -> float:
         """Area of the footprint (km^2), from the clearance on the grid (cells with m >= 0)."""
