@@ -26,9 +26,10 @@ water_v` (HYCOM), `u10/v10` (ERA5/GFS), `u_eastward/v_northward` and `u/v` (ROMS
 """
 from __future__ import annotations
 
+import contextlib
 import pathlib
 import re
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from typing import Any
 
 import numpy as np
@@ -539,6 +540,40 @@ def _engine(path: pathlib.Path) -> str:
     raise InvalidParameterError("field", str(path), "not a NetCDF or GRIB file")
 
 
+#: Dataset attribute carrying the notes of what a reader skipped (popped by `open_field`).
+SKIPPED_ATTR = "glideplan_skipped"
+
+
+@contextlib.contextmanager
+def _quiet_cfgrib() -> Iterator[list[str]]:
+    """Capture cfgrib's log records (its "skipping variable: ..." with a traceback, which
+    Python's last-resort handler would print on stderr) and the readers' Python warnings;
+    yield the list the skipped variables' names are added to ("t2m (paramId 167)")."""
+    import logging
+    import warnings
+
+    skipped: list[str] = []
+
+    class _Capture(logging.Handler):
+        def emit(self, record: logging.LogRecord) -> None:
+            m = re.search(r"skipping variable: paramId==(\d+) shortName='([^']*)'",
+                          record.getMessage())
+            if m:
+                skipped.append(f"{m.group(2)} (paramId {m.group(1)})")
+
+    log = logging.getLogger("cfgrib")
+    handler, propagate = _Capture(), log.propagate
+    log.addHandler(handler)
+    log.propagate = False
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            yield skipped
+    finally:
+        log.removeHandler(handler)
+        log.propagate = propagate
+
+
 def _open_one(path: pathlib.Path) -> Any:
     import xarray as xr
 
@@ -553,8 +588,14 @@ def _open_one(path: pathlib.Path) -> Any:
         kwargs["backend_kwargs"] = {"indexpath": ""}
     try:
         # Load and close at once: files left open until interpreter exit can crash HDF5.
-        with xr.open_dataset(path, engine=engine, **kwargs) as ds:
-            return ds.load()
+        with _quiet_cfgrib() as skipped, xr.open_dataset(path, engine=engine, **kwargs) as ds:
+            out = ds.load()
+        if skipped:  # said once, as a warning of the field (`open_field`), not a traceback
+            out.attrs[SKIPPED_ATTR] = [
+                f"{path}: cfgrib skipped the GRIB variable(s) {', '.join(skipped)} (messages "
+                "that do not form one hypercube with the rest of the file, e.g. other steps "
+                "or levels); the currents were read from the other messages"]
+        return out
     except InvalidParameterError:
         raise
     except Exception as exc:  # any reader failure is a bad file for the user
@@ -573,6 +614,7 @@ def open_field(
     if not items:
         raise InvalidParameterError("field", items, "give at least one file")
     dsets = [_open_one(pathlib.Path(p)) for p in items]
+    skipped = [note for d in dsets for note in d.attrs.pop(SKIPPED_ATTR, [])]
     if len(dsets) == 1:
         ds = dsets[0]
     else:
@@ -584,7 +626,12 @@ def open_field(
                 msg = " ".join(str(exc).split())[:160]
                 raise InvalidParameterError("field", [str(p) for p in items],
                                             f"files do not combine ({msg})") from None
-    return from_xarray(ds, depth_range=depth_range, source=", ".join(str(p) for p in items))
+    out = from_xarray(ds, depth_range=depth_range, source=", ".join(str(p) for p in items))
+    if skipped:
+        from dataclasses import replace
+
+        out = replace(out, warnings=out.warnings + tuple(skipped))
+    return out
 
 
 def _merge_staggered(dsets: list[Any]) -> Any:
