@@ -106,3 +106,17 @@ def test_all_nan_forecast_day_is_named(tmp_path, run_cli):
     code, _, err = run_cli("route", "--field", str(path), "--from", "44.5", "-8.9", "--to",
                            "44.5", "-8.1", "--speed", "0.5", "--depart", "2026-03-02T06:00Z")
     assert code == 2 and "is all NaN (no data at that time)" in err
+
+
+def test_mission_waypoint_on_land_named_by_name_and_line(tmp_path, run_cli):
+    """A route file whose third line's waypoint B lies in the land corner (NaN nodes): the
+    error names B and its line (was `to=(44.95, -8.05)`), before any leg is routed."""
+    u = np.full((TIMES.size, 1, LAT.size, LON.size), 0.1)
+    u[:, :, -3:, -3:] = np.nan
+    field = _file(tmp_path, u)
+    src = tmp_path / "wp.csv"
+    src.write_text("name,lat,lon\nA,44.5,-8.9\nB,44.95,-8.05\nC,44.2,-8.5\n")
+    code, _, err = run_cli("mission", "plan", str(src), "--speed", "0.5", "--radius", "100",
+                           "--field", str(field))
+    assert code == 2
+    assert "line 3 (B)" in err and "is on land" in err
