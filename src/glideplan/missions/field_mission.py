@@ -320,7 +320,8 @@ def _check_waypoints(route: Route, flow: FlowField, depart: Any) -> None:
         flow.check_position(lat, lon, name=name)
         u, v = flow.velocity(t0, lat, lon)
         if not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
-            raise InvalidParameterError(name, (lat, lon), flow.nan_cause(t0, lat, lon))
+            raise InvalidParameterError(name, (round(lat, 7), round(lon, 7)),
+                                        flow.nan_cause(t0, lat, lon))
 
 
 def _route_legs(route: Route, flow: FlowField, speed: float, depart: Any,
