@@ -134,6 +134,12 @@ def test_depart_depth_range_and_flyable_track(run_cli, tmp_path, layered_file, r
     assert max(abs(p.latitude - la) for p, la in zip(pts, d["track"]["lat"], strict=True)) < 1e-6
     assert (out / "goto_l10.ma").is_file()
     assert d["stats"]["straight_legs"]["max_deviation_m"] <= 50.0
+    # per-waypoint ETAs (issue 26): each waypoint's is its leg's route arrival (the JSON and
+    # the GPX waypoints' times, read by gpxpy)
+    etas = [w["eta"] for w in d["waypoints"]]
+    assert etas[0] == legs[0]["depart"] and etas[1:] == [leg["arrive"] for leg in legs]
+    got = [w.time.strftime("%Y-%m-%dT%H:%M:%S.%f")[:-3] + "Z" for w in gpx.waypoints]
+    assert got == etas
 
 
 def test_depart_outside_the_field_names_the_bound(cli_error, route_file, layered_file):
