@@ -32,7 +32,8 @@ def exported(tmp_path_factory):
     src.write_text("name,lat,lon\nA,41.50,-70.70\nB,41.52,-70.66\nC,41.55,-70.67\n")
     plan = plan_mission(read_route(src), speed=SPEED, radius=200.0, headings=36)
     plan = dataclasses.replace(plan, depart=DEPART)
-    files, legs = export_mission(plan, d / "out", parse_formats("geojson,kml,gpx,csv"),
+    files, legs = export_mission(plan, d / "out",
+                                 parse_formats("geojson,kml,gpx,csv,slocum,seaglider"),
                                  ExportOptions(name="m"))
     lengths = [sum(seg.length for seg in leg.path.segments) for leg in plan.legs]
     eta = np.concatenate([[0.0], np.cumsum(lengths) / SPEED])
@@ -84,6 +85,24 @@ def test_gpx_and_kml_etas(exported):
     stamps = [m.times.timestamp.dt for m in marks]
     assert all(abs(s - _utc(e)) < dt.timedelta(milliseconds=1) for s, e in
                zip(stamps, eta, strict=True))
+
+
+def test_vehicle_files_carry_the_etas_as_comments(exported):
+    """Slocum goto and Seaglider targets have no time field: each waypoint's ETA goes in its
+    comment; the files still parse (the independent checks of `vehicle_checks`)."""
+    from .vehicle_checks import check_seaglider, check_slocum
+
+    _, files, legs, eta = exported
+    when = [_utc(e).strftime("%Y-%m-%dT%H:%M:%S") for e in eta]
+    targets = pathlib.Path(files["seaglider"])
+    assert len(check_seaglider(targets)) == len(legs.names)
+    comments = [ln for ln in targets.read_text().splitlines() if " ETA +" in ln]
+    assert len(comments) == len(legs.names)
+    assert comments[-1].startswith("/ C ETA +") and when[-1] in comments[-1]
+    text = "".join(pathlib.Path(p).read_text() for p in files["slocum"])
+    assert sum(len(check_slocum(pathlib.Path(p))) for p in files["slocum"]) >= len(eta)
+    for name, w in zip(("A", "B", "C"), when, strict=True):
+        assert f"# {name} ETA +" in text and w in text
 
 
 @pytest.mark.skipif(shutil.which("gpsbabel") is None, reason="gpsbabel not installed")

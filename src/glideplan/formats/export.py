@@ -123,8 +123,9 @@ def export_mission(
             files[f] = [str(p) for p in write_slocum_goto(
                 legs, out_dir, goto_number=options.goto_number,
                 max_waypoints=options.max_goto_waypoints, acceptance_radius=acc,
-                mission_name=stem)]
+                mission_name=stem, depart=plan.depart_time)]
         elif f == "seaglider":
             files[f] = str(write_seaglider_targets(legs, out_dir / "targets",
-                                                   acceptance_radius=acc, mission_name=stem))
+                                                   acceptance_radius=acc, mission_name=stem,
+                                                   depart=plan.depart_time))
     return files, legs

@@ -20,9 +20,12 @@ import pathlib
 import re
 from typing import Any
 
+import numpy as np
+
 from glideplan.errors import InvalidParameterError
 from glideplan.formats.ddmm import degrees_to_ddmm
 from glideplan.missions.straight_legs import StraightLegList
+from glideplan.track import iso_times
 
 __all__ = ["write_qgc_plan", "write_qgc_wpl", "write_seaglider_targets", "write_slocum_goto"]
 
@@ -44,8 +47,10 @@ def write_slocum_goto(
     max_waypoints: int = 8,
     acceptance_radius: float = 100.0,
     mission_name: str = "mission",
+    depart: np.datetime64 | None = None,
 ) -> list[pathlib.Path]:
-    """`goto_lNN.ma` files (NN = goto_number, +1, ...) holding the waypoint list in order."""
+    """`goto_lNN.ma` files (NN = goto_number, +1, ...) holding the waypoint list in order;
+    each waypoint's comment gives its name and ETA (after departure; UTC with `depart`)."""
     if not isinstance(max_waypoints, int) or max_waypoints < 2:
         raise InvalidParameterError("max-goto-waypoints", max_waypoints, "must be an integer >= 2")
     lat, lon = _latlon(legs)
@@ -85,12 +90,22 @@ def write_slocum_goto(
         ]
         for q in range(i, j):
             lines.append(f"{degrees_to_ddmm(lon[q]):>12s} {degrees_to_ddmm(lat[q]):>11s}"
-                         f"    # {_ascii(legs.names[q])}")
+                         f"    # {_ascii(legs.names[q])}{_eta(legs, q, depart)}")
         lines += ["<end:waypoints>", ""]
         path = out_dir / f"goto_l{nn:02d}.ma"
         path.write_text("\n".join(lines), encoding="ascii")
         paths.append(path)
     return paths
+
+
+def _eta(legs: StraightLegList, i: int, depart: np.datetime64 | None) -> str:
+    """" ETA +HH:MM:SS" (and " 2026-...Z" with `depart`) of list point i; "" without ETAs."""
+    if not legs.eta_s.size:
+        return ""
+    m, sec = divmod(round(float(legs.eta_s[i])), 60)
+    h, m = divmod(m, 60)
+    when = iso_times(depart, legs.eta_s[i])[0]
+    return f" ETA +{h:02d}:{m:02d}:{sec:02d}" + ("" if when is None else f" {when}")
 
 
 def _ascii(name: str) -> str:
@@ -117,8 +132,10 @@ def write_seaglider_targets(
     *,
     acceptance_radius: float = 100.0,
     mission_name: str = "mission",
+    depart: np.datetime64 | None = None,
 ) -> pathlib.Path:
-    """A Seaglider `targets` file: each target goes to the next, the last to itself."""
+    """A Seaglider `targets` file: each target goes to the next, the last to itself; a
+    comment line before each gives its ETA (after departure; UTC with `depart`)."""
     lat, lon = _latlon(legs)
     names = _unique_names(legs.names)
     lines = [
@@ -127,6 +144,8 @@ def write_seaglider_targets(
     ]
     for i, name in enumerate(names):
         nxt = names[min(i + 1, len(names) - 1)]
+        if legs.eta_s.size:
+            lines.append(f"/ {name}{_eta(legs, i, depart)}")
         lines.append(
             f"{name} lat={degrees_to_ddmm(lat[i])} lon={degrees_to_ddmm(lon[i])} "
             f"radius={acceptance_radius:g} goto={nxt}"
