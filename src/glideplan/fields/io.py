@@ -26,16 +26,16 @@ water_v` (HYCOM), `u10/v10` (ERA5/GFS), `u_eastward/v_northward` and `u/v` (ROMS
 """
 from __future__ import annotations
 
-import contextlib
 import pathlib
 import re
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import NODATA_FLOOR, NODATA_OUTSIDE, GriddedField
+from glideplan.fields.read_notes import SKIPPED_ATTR, quiet_cfgrib, refuse_all_nan
 
 __all__ = ["depth_average", "from_xarray", "open_field", "pyproj_before_eccodes"]
 
@@ -419,7 +419,7 @@ def from_xarray(
         if floors and same and all(f.shape == u.shape[1:] for f in floors):
             floor = np.logical_or.reduce([f[yo][:, xo] for f in floors])
             nodata = np.where(floor, NODATA_FLOOR, 0).astype(np.int8)
-    _refuse_all_nan(u, v, source, nodata)
+    refuse_all_nan(u, v, source, nodata)
     if tvals is None:
         epoch = None
         times = np.zeros(1)
@@ -432,19 +432,6 @@ def from_xarray(
                             "held constant in time")
     return GriddedField(times=np.asarray(times, dtype=float), lat=lat, lon=lon, u=u, v=v,
                         epoch=epoch, info=info, warnings=tuple(warnings), nodata=nodata)
-
-
-def _refuse_all_nan(u: np.ndarray, v: np.ndarray, source: str, nodata: Any) -> None:
-    """A file with no finite current at all is refused by its name (it is not "land"): the
-    depth range's fault when it reaches below the sea floor at every wet node."""
-    if np.isfinite(u).any() and np.isfinite(v).any():
-        return
-    if nodata is not None and np.any(nodata == NODATA_FLOOR):
-        raise InvalidParameterError("depth_range", source, "reaches below the sea floor at "
-                                    "every node with water: no current over that layer "
-                                    "anywhere; give a shallower depth range")
-    raise InvalidParameterError("field", source, "every current value in the file is NaN "
-                                "(no data: fill values only)")
 
 
 def _same_grid(comps: list[Any]) -> list[Any]:
@@ -540,40 +527,6 @@ def _engine(path: pathlib.Path) -> str:
     raise InvalidParameterError("field", str(path), "not a NetCDF or GRIB file")
 
 
-#: Dataset attribute carrying the notes of what a reader skipped (popped by `open_field`).
-SKIPPED_ATTR = "glideplan_skipped"
-
-
-@contextlib.contextmanager
-def _quiet_cfgrib() -> Iterator[list[str]]:
-    """Capture cfgrib's log records (its "skipping variable: ..." with a traceback, which
-    Python's last-resort handler would print on stderr) and the readers' Python warnings;
-    yield the list the skipped variables' names are added to ("t2m (paramId 167)")."""
-    import logging
-    import warnings
-
-    skipped: list[str] = []
-
-    class _Capture(logging.Handler):
-        def emit(self, record: logging.LogRecord) -> None:
-            m = re.search(r"skipping variable: paramId==(\d+) shortName='([^']*)'",
-                          record.getMessage())
-            if m:
-                skipped.append(f"{m.group(2)} (paramId {m.group(1)})")
-
-    log = logging.getLogger("cfgrib")
-    handler, propagate = _Capture(), log.propagate
-    log.addHandler(handler)
-    log.propagate = False
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            yield skipped
-    finally:
-        log.removeHandler(handler)
-        log.propagate = propagate
-
-
 def _open_one(path: pathlib.Path) -> Any:
     import xarray as xr
 
@@ -588,7 +541,7 @@ def _open_one(path: pathlib.Path) -> Any:
         kwargs["backend_kwargs"] = {"indexpath": ""}
     try:
         # Load and close at once: files left open until interpreter exit can crash HDF5.
-        with _quiet_cfgrib() as skipped, xr.open_dataset(path, engine=engine, **kwargs) as ds:
+        with quiet_cfgrib() as skipped, xr.open_dataset(path, engine=engine, **kwargs) as ds:
             out = ds.load()
         if skipped:  # said once, as a warning of the field (`open_field`), not a traceback
             out.attrs[SKIPPED_ATTR] = [
