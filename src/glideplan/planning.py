@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 from glideplan.errors import InvalidParameterError
 from glideplan.objectives import get_objective
 from glideplan.pose import Pose, wrap_to_pi
+from glideplan.results import Reason
 from glideplan.solution import Candidate, Solution, Status
 from glideplan.vehicles.base import Vehicle
 from glideplan.verify import EndpointError, endpoint_error
@@ -223,22 +224,11 @@ def _same_pose_solution(
     path = Path((Straight(start, 0.0, speed=speed),), vehicle)
     cand = Candidate("", "", 0.0, path, Status.FEASIBLE, {"zero_length": True})
     return Solution(
-        Status.SOLVED,
-        spec.name,
-        objective,
-        start,
-        goal,
-        vehicle,
-        path,
-        0.0,
-        "",
-        "",
-        (cand,),
-        endpoint_error(path, goal),
-        "the goal is the start: the optimal path has zero length (cost 0)",
-        {"planner_seconds": 0.0},
-        {},
-        (),
+        status=Status.SOLVED, planner=spec.name, objective=objective, start=start, goal=goal,
+        vehicle=vehicle, path=path, cost=0.0, candidates=(cand,),
+        endpoint_error=endpoint_error(path, goal),
+        message="the goal is the start: the optimal path has zero length (cost 0)",
+        stats={"planner_seconds": 0.0},
     )
 
 
@@ -358,22 +348,11 @@ def plan(
             }[status]
         )
         return Solution(
-            status,
-            spec.name,
-            objective,
-            start_p,
-            goal_p,
-            vehicle,
-            None,
-            math.inf,
-            "",
-            "",
-            tuple(candidates),
-            None,
-            message,
-            stats,
-            dict(out.extras),
-            tuple(out.warnings),
+            status=status, planner=spec.name, objective=objective, start=start_p, goal=goal_p,
+            vehicle=vehicle, path=None, cost=math.inf, candidates=tuple(candidates),
+            message=message, stats=stats, extras=dict(out.extras),
+            warnings=tuple(out.warnings),
+            reason=Reason.SOLVER if status is Status.SOLVER_FAILED else None,
         )
     assert best.path is not None
     warnings = tuple(out.warnings)
@@ -384,20 +363,8 @@ def plan(
             f"returned the cheapest verified one ({best.word}, cost {best.cost:.6g})",
         )
     return Solution(
-        Status.SOLVED,
-        spec.name,
-        objective,
-        start_p,
-        goal_p,
-        vehicle,
-        best.path,
-        best.cost,
-        _path_word(best),
-        best.family,
-        tuple(candidates),
-        err,
-        out.message,
-        stats,
-        dict(out.extras),
-        warnings,
+        status=Status.SOLVED, planner=spec.name, objective=objective, start=start_p,
+        goal=goal_p, vehicle=vehicle, path=best.path, cost=best.cost, word=_path_word(best),
+        family=best.family, candidates=tuple(candidates), endpoint_error=err,
+        message=out.message, stats=stats, extras=dict(out.extras), warnings=warnings,
     )

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -26,12 +26,15 @@ from numpy.typing import NDArray
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import FlowField
 from glideplan.geodesy import LocalProjection
-from glideplan.results import OutcomeBase
+from glideplan.results import Outcome
 from glideplan.routing.route import RouteResult
 from glideplan.routing.verify import local_current
 from glideplan.simulation.disturbances import VelocityFunction
 from glideplan.solution import Status
 from glideplan.track import Track
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = ["FlyablePath", "GliderFollow", "TrochoidChain", "flyable_path", "follow_route",
            "trochoid_chain"]
@@ -39,8 +42,8 @@ __all__ = ["FlyablePath", "GliderFollow", "TrochoidChain", "flyable_path", "foll
 FloatArray = NDArray[np.float64]
 
 
-@dataclass(frozen=True, eq=False)
-class GliderFollow(OutcomeBase):
+@dataclass(frozen=True, eq=False, kw_only=True)
+class GliderFollow(Outcome):
     """Outcome of building and following the flyable path (m, s): an `Outcome`.
 
     status: SOLVED (crossed the goal's finish line), LOST (stopped on land, off the field or
@@ -48,7 +51,6 @@ class GliderFollow(OutcomeBase):
     the simulated vehicle, geographic, heading its ground course.
     """
 
-    status: Status
     radius_m: float
     disturbance_ratio: float
     feasible_radius_m: float | None
@@ -58,14 +60,12 @@ class GliderFollow(OutcomeBase):
     max_cross_track_m: float | None = None
     rms_cross_track_m: float | None = None
     final_distance_m: float | None = None
-    message: str = ""
     track: Track = field(default_factory=Track.empty)
     flyable: FlyablePath | None = None
-    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         return {
-            "status": self.status.value,
+            **super().to_dict(),
             "radius_m": self.radius_m,
             "disturbance_ratio": self.disturbance_ratio,
             "feasible_radius_m": self.feasible_radius_m,
@@ -75,17 +75,17 @@ class GliderFollow(OutcomeBase):
             "max_cross_track_m": self.max_cross_track_m,
             "rms_cross_track_m": self.rms_cross_track_m,
             "final_distance_m": self.final_distance_m,
-            "message": self.message,
-            "warnings": list(self.warnings),
             "track": self.track.to_dict() if self.track.size else {},
         }
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+    def plot(self, ax: Any = None, **kwargs: Any) -> Figure:
         """The followed track (lon, lat; deg)."""
         from glideplan.plotting import plot_track
+        from glideplan.results import as_figure
 
-        return plot_track(self.track, ax, label=f"glider following, R0 = {self.radius_m:.4g} m",
-                          title=f"following: {self.status.value}", **kwargs)
+        label = f"glider following, R0 = {self.radius_m:.4g} m"
+        return as_figure(plot_track(self.track, ax, label=label,
+                                    title=f"following: {self.status.value}", **kwargs))
 
 
 def _waypoints(x: FloatArray, y: FloatArray, spacing: float) -> FloatArray:
@@ -324,8 +324,8 @@ def _why_stopped(field_: FlowField, proj: LocalProjection, t: float, xy: FloatAr
     return "the vehicle reached land"
 
 
-@dataclass(frozen=True, eq=False)
-class TrochoidChain(OutcomeBase):
+@dataclass(frozen=True, eq=False, kw_only=True)
+class TrochoidChain(Outcome):
     """The route's flyable path from trochoid pieces (m, s): each piece the minimum-time path of
     the Dubins car in the piece's mean current (`planners.wind.convected_dubins`, dissertation
     §3.2), planned with R0' = R0 (1 + eps')^2 for the residual eps' = max |c - c_mean| / V.
@@ -336,7 +336,6 @@ class TrochoidChain(OutcomeBase):
     field itself (`routing.verify.integrate_headings`), distance from the route's end.
     """
 
-    status: Status
     residual_ratio: float
     feasible_radius_m: float | None
     pieces: int = 0
@@ -344,22 +343,22 @@ class TrochoidChain(OutcomeBase):
     ground_length_m: float = 0.0
     max_piece_error_m: float | None = None
     field_endpoint_error_m: float | None = None
-    message: str = ""
     track: Track = field(default_factory=Track.empty)
-    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {k: getattr(self, k) for k in (
             "residual_ratio", "feasible_radius_m", "pieces", "duration_s",
-            "ground_length_m", "max_piece_error_m", "field_endpoint_error_m", "message")}
-        return {"status": self.status.value, **out, "warnings": list(self.warnings)}
+            "ground_length_m", "max_piece_error_m", "field_endpoint_error_m")}
+        return {**super().to_dict(), **out}
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+    def plot(self, ax: Any = None, **kwargs: Any) -> Figure:
         """The chain's waypoint poses (lon, lat; deg)."""
         from glideplan.plotting import plot_track
+        from glideplan.results import as_figure
 
-        return plot_track(self.track, ax, label=f"trochoid chain, {self.pieces} pieces",
-                          title=f"trochoid chain: {self.status.value}", **kwargs)
+        label = f"trochoid chain, {self.pieces} pieces"
+        return as_figure(plot_track(self.track, ax, label=label,
+                                    title=f"trochoid chain: {self.status.value}", **kwargs))
 
 
 def trochoid_chain(
