@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -46,10 +46,14 @@ from glideplan.reach.flight import FlownPath, fly, front_candidates, rhumb
 from glideplan.reach.grid import ReachGrid, cell_nodes, reach_grid
 from glideplan.reach.model import Glide
 from glideplan.reach.problem import Landable, ReachProblem
+from glideplan.results import Outcome
 from glideplan.sailplane.polar import SailplanePolar
 from glideplan.solution import Status
 from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
 from glideplan.validation import check_finite
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = ["TurnbackResult", "turnback"]
 
@@ -71,8 +75,8 @@ def destination(lat: float, lon: float, chi: float, s: FloatArray) -> tuple[Floa
     return np.degrees(p), lon + np.degrees(dl)
 
 
-@dataclass(frozen=True, eq=False)
-class TurnbackResult:
+@dataclass(frozen=True, eq=False, kw_only=True)
+class TurnbackResult(Outcome):
     """The turn-back point: status SOLVED (found, return flown and clear) or UNREACHABLE
     (home is out of reach already at the start); distance_m out along the course; the point
     and the altitude there; the return's arrival altitude at home (flown) and its margin
@@ -82,8 +86,6 @@ class TurnbackResult:
     `ReachResult`); terrain_clearance, arrival_height: the two heights (m; None: both are
     safety_height, results built before the two heights existed)."""
 
-    status: Status
-    message: str
     start: tuple[float, float, float]
     home: Landable
     course_deg: float
@@ -101,14 +103,9 @@ class TurnbackResult:
     probes: tuple[tuple[float, bool], ...]
     terrain: Terrain | None
     resolution_m: float
-    warnings: tuple[str, ...] = ()
     timings: dict[str, float] = field(default_factory=dict)
     terrain_clearance: float | None = None
     arrival_height: float | None = None
-
-    @property
-    def ok(self) -> bool:
-        return self.status is Status.SOLVED
 
     def to_dict(self) -> dict[str, Any]:
         def num(x: float | None) -> float | None:
@@ -124,8 +121,7 @@ class TurnbackResult:
 
         lat, lon, alt = self.start
         return {
-            "status": self.status.value,
-            "message": self.message,
+            **super().to_dict(),
             "start": {"lat": lat, "lon": lon, "altitude_m": alt},
             "home": {"name": self.home.name, "lat": self.home.lat, "lon": self.home.lon,
                      "elevation_m": self.home.elevation_m},
@@ -147,14 +143,14 @@ class TurnbackResult:
             "return": profile(self.back, self.distance_m),
             "probes": [{"distance_m": s, "reachable": ok} for s, ok in self.probes],
             "timings_s": dict(self.timings),
-            "warnings": list(self.warnings),
         }
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+    def plot(self, ax: Any = None, **kwargs: Any) -> Figure:
         """Map (terrain, outbound, turn-back point, return) and the altitude profile."""
         from glideplan.reach.plot import plot_turnback
+        from glideplan.results import as_figure
 
-        return plot_turnback(self, ax=ax, **kwargs)
+        return as_figure(plot_turnback(self, ax=ax, **kwargs))
 
 
 def _flat(home: Landable, start: tuple[float, float, float], reach_m: float) -> Terrain:

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from glideplan.errors import InvalidParameterError
+from glideplan.results import Outcome
 from glideplan.sailplane.straight import straight_final_glide
 from glideplan.solution import Status
 from glideplan.track import Track
@@ -31,6 +32,8 @@ from glideplan.validation import check_finite, check_nonnegative
 from glideplan.vehicles.sailplane_polar import SailplanePolar
 
 if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
     from glideplan.solution import Solution
 
 __all__ = ["FinalGlide", "FinalGlideDrawing", "final_glide", "run_final"]
@@ -54,8 +57,8 @@ class FinalGlideDrawing:
     wind_from_deg: float | None = None
 
 
-@dataclass(frozen=True, eq=False)
-class FinalGlide:
+@dataclass(frozen=True, eq=False, kw_only=True)
+class FinalGlide(Outcome):
     """The outcome of `final_glide()`: an `Outcome` (`glideplan.results`).
 
     status SOLVED / BELOW_GLIDE / UNREACHABLE (module docstring); altitudes in m (None when
@@ -66,8 +69,6 @@ class FinalGlide:
     (speeds to fly, the straight glide, the path's word, endpoint error, ...).
     """
 
-    status: Status
-    message: str
     polar: SailplanePolar
     distance_m: float
     wind: tuple[float, float]
@@ -79,11 +80,6 @@ class FinalGlide:
     drawing: FinalGlideDrawing
     details: Mapping[str, Any] = field(default_factory=dict)
     solution: Solution | None = None
-    warnings: tuple[str, ...] = ()
-
-    @property
-    def ok(self) -> bool:
-        return self.status is Status.SOLVED
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON object of `glideplan glide final --json`."""
@@ -92,17 +88,16 @@ class FinalGlide:
             "altitude_required_m": self.altitude_required_m,
             "arrival_margin_m": self.arrival_margin_m,
             "glide_ratio_required": self.glide_ratio_required,
-            "status": self.status.value,
-            "message": self.message,
-            "warnings": list(self.warnings),
+            **super().to_dict(),
         }
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
-        """Ground track and altitude profile (`sailplane.plot.final_glide_figure`); returns the
-        figure (two panels: `ax` is not used)."""
+    def plot(self, ax: Any = None, **kwargs: Any) -> Figure:
+        """Ground track and altitude profile (`sailplane.plot.final_glide_figure`): two panels,
+        in a new figure, in the pair of axes `ax`, or side by side inside the one axes `ax`."""
+        from glideplan.results import as_figure
         from glideplan.sailplane.plot import final_glide_figure
 
-        return final_glide_figure(self.drawing)
+        return as_figure(final_glide_figure(self.drawing, ax=ax))
 
 
 def _finite(v: float | None) -> float | None:
