@@ -181,11 +181,9 @@ def route_command(
     one grid spacing), 2 bad input, 3 internal error.
     """
     from glideplan.cli.common import (
-        announce,
         check_figure_file,
         check_input_file,
         flag_names,
-        print_json,
         usage_error,
     )
     from glideplan.errors import InvalidParameterError
@@ -250,8 +248,10 @@ def route_command(
     check_depart(flow, when)
 
     import sys
+    from dataclasses import replace
 
     from glideplan.cli.common import solving
+    from glideplan.cli.emit import emit
     from glideplan.routing import RouteSettings, route
 
     names = {"from": "--from", "to": "--to", "speed": "--speed", "resolution": "--resolution",
@@ -264,31 +264,14 @@ def route_command(
             progress=sys.stderr.isatty())
         # Progress: the front draws its own bar on a terminal (after ~2 s).
         result = route(flow, from_, to, speed, depart=when, settings=settings)
-    for warning in result.warnings:
-        if not json_out:
-            typer.echo(f"glideplan: warning: {warning}", err=True)
-    out = result.to_dict()
-    out["field"] = {**source, **out["field"]}
-    glider = None
+    result = replace(result, field_info={**source, **result.field_info})
     if radius is not None and result.ok:
-        from glideplan.routing.glider import follow_route, trochoid_chain
+        from glideplan.routing.glider import with_flyable_path
 
         with flag_names(**names):
-            glider = solving("following", lambda: follow_route(result, flow, speed, radius))
-            out["glider"] = glider.to_dict()
-            if glider.status != "infeasible":
-                chain = solving("trochoid pieces",
-                                lambda: trochoid_chain(result, flow, speed, radius))
-                out["glider"]["trochoid"] = chain.to_dict()
-    if json_out:
-        print_json(out)
-    else:
-        _print_summary(out)
-    if plot is not None:
-        from glideplan.routing.plot import plot_route
-
-        plot_route(result, flow, plot, speed=speed, start=from_, goal=to, glider=glider)
-        announce(f"wrote {plot}", json_out)
+            result = solving("following the flyable path",
+                             lambda: with_flyable_path(result, flow, speed, radius))
+    exports: dict[str, pathlib.Path] = {}
     if (geojson is not None or kml is not None) and result.track.size:
         from glideplan.formats.tracks import write_track_geojson, write_track_kml
 
@@ -297,15 +280,15 @@ def route_command(
                  "method": result.method}
         if geojson is not None:
             write_track_geojson(geojson, result.lat, result.lon, props)
-            announce(f"wrote {geojson}", json_out)
+            exports["geojson"] = geojson
         if kml is not None:
             write_track_kml(kml, result.lat, result.lon, name="glideplan route",
                             description=f"{result.status.value}, {result.duration_s or 0:.0f} s")
-            announce(f"wrote {kml}", json_out)
-    if not result.ok:
-        if not json_out:
-            typer.echo(f"glideplan: {result.status.value}: {result.message}", err=True)
-        raise typer.Exit(1)
+            exports["kml"] = kml
+    emit(result, json=json_out, plot=plot, exports=exports or None,
+         summary=lambda r: _print_summary(r.to_dict()),
+         plot_kw={"flow": flow, "speed": speed, "start": from_, "goal": to},
+         save_kw={"tight": False})
 
 
 def _print_summary(out: dict[str, Any]) -> None:

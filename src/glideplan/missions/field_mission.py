@@ -99,6 +99,7 @@ class FieldMission(Outcome, LegTotals):
     stats: dict[str, Any] = field(default_factory=dict)
     objective: str = "time"
     radius: float | None = None
+    straight_legs: StraightLegList | None = None
 
     @property
     def smallest_radius(self) -> float | None:

@@ -132,6 +132,8 @@ class LegTotals:
     headings: NDArray[np.float64]
     route: Route
     stats: dict[str, Any]
+    # the exported straight-leg list (`missions.straight_legs`), set by whoever exported it
+    straight_legs: StraightLegList | None
     # (east, north) m/s the wind/current moves towards; None in still air or in a field
     wind_vector: tuple[float, float] | None = None
 
@@ -159,7 +161,8 @@ class LegTotals:
         from glideplan.missions.plot import plot_mission
         from glideplan.results import as_figure
 
-        return as_figure(plot_mission(self, ax=ax, **kwargs))  # type: ignore[arg-type]
+        legs = kwargs.pop("legs", self.straight_legs)
+        return as_figure(plot_mission(self, legs, ax=ax, **kwargs))  # type: ignore[arg-type]
 
     def track_json(self) -> dict[str, list[float]] | None:
         """The track of `--json`: lat/lon (deg, 1e-9; -180..180) of a geographic route, else
@@ -180,6 +183,7 @@ class LegTotals:
         """`data` with the track and, in `stats`, the straight-leg list (`straight_legs`, a
         `StraightLegList`; default: the list within `DEFAULT_MAX_DEVIATION_M`)."""
         stats = dict(data.get("stats", {}))
+        straight_legs = straight_legs or self.straight_legs
         if all(leg.ok for leg in self.legs):
             if straight_legs is None:
                 from glideplan.missions.straight_legs import straight_leg_list
@@ -213,6 +217,7 @@ class MissionPlan(Outcome, LegTotals):
     heading_plan: HeadingPlan
     wind_vector: tuple[float, float] | None = None  # (east, north) m/s, moving TOWARDS
     stats: dict[str, Any] = field(default_factory=dict)
+    straight_legs: StraightLegList | None = None
 
     def track_spacing(self, tolerance: float) -> float:
         """Sample spacing (m) whose arcs leave their chords by <= 1 % of `tolerance`.

@@ -37,7 +37,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = ["FlyablePath", "GliderFollow", "TrochoidChain", "flyable_path", "follow_route",
-           "trochoid_chain"]
+           "trochoid_chain", "with_flyable_path"]
 
 FloatArray = NDArray[np.float64]
 
@@ -359,6 +359,21 @@ class TrochoidChain(Outcome):
         label = f"trochoid chain, {self.pieces} pieces"
         return as_figure(plot_track(self.track, ax, label=label,
                                     title=f"trochoid chain: {self.status.value}", **kwargs))
+
+
+def with_flyable_path(result: RouteResult, field_: FlowField, speed: float,
+                      radius: float) -> RouteResult:
+    """`result` with its flyable path of turn radius `radius` (m) followed through the field
+    (`follow_route`: `result.glider`) and, unless no radius is feasible, its trochoid chain
+    (`trochoid_chain`: `result.trochoid`); a route that is not solved is returned as is."""
+    from dataclasses import replace
+
+    if not result.ok:
+        return result
+    glider = follow_route(result, field_, speed, radius)
+    chain = (None if glider.status is Status.INFEASIBLE
+             else trochoid_chain(result, field_, speed, radius))
+    return replace(result, glider=glider, trochoid=chain)
 
 
 def trochoid_chain(

@@ -80,6 +80,10 @@ class RouteResult(Outcome):
     field_info: Mapping[str, Any] = field(default_factory=dict)
     stats: Mapping[str, Any] = field(default_factory=dict)
     front: FrontMap | None = None
+    #: the flyable path followed through the field (`routing.glider.with_flyable_path`:
+    #: a `GliderFollow`) and its trochoid chain (a `TrochoidChain`); JSON "glider"
+    glider: Any = None
+    trochoid: Any = None
 
     @property
     def unreachable_reason(self) -> str | None:
@@ -144,6 +148,9 @@ class RouteResult(Outcome):
             "land_clearance_m": self.land_clearance_m,
             "field": dict(self.field_info),
             "stats": dict(self.stats),
+            **({} if self.glider is None else {"glider": {
+                **self.glider.to_dict(),
+                **({} if self.trochoid is None else {"trochoid": self.trochoid.to_dict()})}}),
         }
 
     def plot(self, ax: Any = None, flow: FlowField | None = None, **kwargs: Any) -> Figure:
@@ -152,4 +159,5 @@ class RouteResult(Outcome):
         from glideplan.results import as_figure
         from glideplan.routing.plot import route_figure
 
+        kwargs.setdefault("glider", self.glider)
         return as_figure(route_figure(self, flow, ax=ax, **kwargs))
