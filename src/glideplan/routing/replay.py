@@ -39,7 +39,7 @@ import math
 import time as timer
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -50,6 +50,9 @@ from glideplan.results import Outcome, Reason
 from glideplan.routing.forecasts import Forecast, mean_current, newest, planning_field
 from glideplan.routing.steering import _follow, _naive, _tracker
 from glideplan.solution import Status
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = ["REASONS", "Flight", "Mission", "Plan", "ReplayResult", "ReplaySettings", "replay"]
 
@@ -153,6 +156,16 @@ class ReplayResult(Outcome):
     flight: Flight
     baselines: dict[str, Flight]
     stats: dict[str, Any] = field(default_factory=dict)
+    #: where the truth and forecasts came from (JSON "truth", "forecasts"; set by the CLI)
+    sources: dict[str, Any] = field(default_factory=dict)
+
+    def plot(self, ax: Any = None, truth: FlowField | None = None, **kwargs: Any) -> Figure:
+        """The flown track, its plans and the baselines (`replay_plot.replay_figure`), over
+        the truth's current when `truth` (a FlowField) is given."""
+        from glideplan.results import as_figure
+        from glideplan.routing.replay_plot import replay_figure
+
+        return as_figure(replay_figure(self, truth, ax=ax))
 
     def regret_s(self) -> float | None:
         """Replay duration minus hindsight duration (s), when both arrived."""
@@ -175,7 +188,7 @@ class ReplayResult(Outcome):
             "replans": [p.to_dict() for p in f.plans],
             "baselines": {k: b.summary() for k, b in self.baselines.items()},
             "regret_s": self.regret_s(),
-            "stats": dict(self.stats),
+            "stats": dict(self.stats), **self.sources,
         }
 
 
