@@ -428,4 +428,4 @@ def emit_solution(
         Console().print(_solution_table(outcome, outcome.to_dict()))
 
     emit(solution, json=json_out, plot=plot_file, summary=table,
-         plot_kw={"candidates": plot_candidates})
+         plot_kw={"candidates": plot_candidates}, what=solution.planner)

@@ -3,7 +3,7 @@
     JSON on stdout (`Outcome.to_dict()`, success and failure alike) or the human summary;
     warnings on stderr, one line each ("glideplan: warning: ..."); the figure (`--plot`,
     `Outcome.plot()`) and the exports written; when not solved, one line on stderr
-    ("glideplan: error: STATUS: message"); then the exit code of the status
+    ("glideplan: error: PRODUCT: STATUS: message"); then the exit code of the status
     (`Status.exit_code`: 0 solved, 1 any other outcome).
 
 Bad input never reaches `emit`: it raises `InvalidParameterError` (exit 2, one line); an
@@ -44,13 +44,15 @@ def emit(
     summary: Callable[[Outcome], None] | None = None,
     plot_kw: Mapping[str, Any] | None = None,
     save_kw: Mapping[str, Any] | None = None,
+    what: str = "",
 ) -> NoReturn:
     """Print `outcome` (JSON or `summary`), its warnings, write its figure and exports, and exit
     with its status's code (module docstring).
 
     exports: files already written for the outcome ({format: path(s)}): announced, and when
     given (even empty) listed as "files" in the JSON, with "plot" when drawn. plot_kw:
-    keywords of `outcome.plot`; save_kw: of `plotting.save_figure`.
+    keywords of `outcome.plot`; save_kw: of `plotting.save_figure`; what: the product's name
+    in the failure line ("glideplan: error: WHAT: STATUS: message").
     """
     written: dict[str, Any] = {} if plot is None else {"plot": str(plot)}
     written.update({k: (str(v) if isinstance(v, pathlib.Path) else v)
@@ -71,8 +73,9 @@ def emit(
     emit_warnings(outcome.warnings)
     emit_files(written, json)
     if not outcome.ok:
-        print(f"glideplan: error: {outcome.status.value}: {' '.join(outcome.message.split())}",
-              file=sys.stderr)
+        head = f"{what}: " if what else ""
+        text = " ".join(outcome.message.split())
+        print(f"glideplan: error: {head}{outcome.status.value}: {text}", file=sys.stderr)
     raise typer.Exit(outcome.status.exit_code)
 
 

@@ -341,7 +341,8 @@ def glide_final(
                 else:
                     write_tsk_task(path, a, b)
             exports[flag[2:]] = path
-    emit(result, json=json_out, plot=plot, exports=exports or None, summary=_final_summary)
+    emit(result, json=json_out, plot=plot, exports=exports or None, summary=_final_summary,
+         what="final glide")
 
 
 def _final_summary(result: Any) -> None:

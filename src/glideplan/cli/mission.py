@@ -228,7 +228,8 @@ def mission_plan(
         print_warnings([f"no track to draw: {plot} not written"])
         plot = None
     # the plan's JSON is the library's (`to_dict`); emit adds only the files written
-    emit(mission, json=json_out, plot=plot, exports=files, summary=_print_summary)
+    emit(mission, json=json_out, plot=plot, exports=files, summary=_print_summary,
+         what="mission")
 
 
 def _plan_in_field(r: Any, path: pathlib.Path, speed: float, radius: float, when: Any,

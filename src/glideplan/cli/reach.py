@@ -353,7 +353,8 @@ def glide_reach_cmd(
             with file_flag(flag, path):
                 write(path)
             exports[flag[2:]] = path
-    emit(result, json=json_out, plot=plot, exports=exports or None, summary=_reach_summary)
+    emit(result, json=json_out, plot=plot, exports=exports or None, summary=_reach_summary,
+         what="reach")
 
 
 def _reach_summary(result: Any) -> None:
@@ -458,4 +459,4 @@ def glide_turnback_cmd(
                           safety_height=one_height, safety_glide_ratio=safety_glide_ratio,
                           resolution_m=resolution,  # the example's 700 m grid: not used
                           terrain_clearance=terrain_clearance, arrival_height=arrival_height)
-    emit(result, json=json_out, plot=plot)
+    emit(result, json=json_out, plot=plot, what="turnback")

@@ -288,7 +288,7 @@ def route_command(
     emit(result, json=json_out, plot=plot, exports=exports or None,
          summary=lambda r: _print_summary(r.to_dict()),
          plot_kw={"flow": flow, "speed": speed, "start": from_, "goal": to},
-         save_kw={"tight": False})
+         save_kw={"tight": False}, what="route")
 
 
 def _print_summary(out: dict[str, Any]) -> None:

@@ -156,7 +156,8 @@ def _emit(res: Any, opts: dict[str, Any], ranged: bool) -> NoReturn:
 
     exports = _write_files(res, opts, ranged)
     emit(res, json=opts["json_out"], plot=opts["plot"], exports=exports or None,
-         summary=lambda r: _print(r.to_dict(), ranged), save_kw={"tight": False})
+         summary=lambda r: _print(r.to_dict(), ranged), save_kw={"tight": False},
+         what="route")
 
 
 def _write_files(res: Any, opts: dict[str, Any], ranged: bool) -> dict[str, pathlib.Path]:

@@ -129,7 +129,8 @@ def route_replay_command(
         write_replay_geojson(res, geojson)
         exports["geojson"] = geojson
     emit(res, json=json_out, plot=plot, exports=exports or None,
-         summary=lambda r: _print_summary(r.to_dict()), plot_kw={"truth": flow})
+         summary=lambda r: _print_summary(r.to_dict()), plot_kw={"truth": flow},
+         what="route replay")
 
 
 def _print_summary(out: dict[str, Any]) -> None:

@@ -82,7 +82,7 @@ class FieldLeg:
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
-class FieldMission(Outcome, LegTotals):
+class FieldMission(LegTotals, Outcome):
     """A mission routed through a field; the interface of `MissionPlan` the exporters use.
 
     An `Outcome` (`glideplan.results`): status SOLVED or the first failed leg's (UNREACHABLE,

@@ -201,7 +201,7 @@ class LegTotals:
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
-class MissionPlan(Outcome, LegTotals):
+class MissionPlan(LegTotals, Outcome):
     """A planned mission: the route, chosen headings (rad), verified legs and statistics.
 
     An `Outcome` (`glideplan.results`): status SOLVED (every leg verified) or the first failed
