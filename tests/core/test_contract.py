@@ -200,3 +200,25 @@ def test_emit_exit_codes_follow_the_status():
         with pytest.raises(typer.Exit) as exc:
             emit(chain, json=True)
         assert exc.value.exit_code == status.exit_code
+
+
+def test_final_glide_plan_failure_is_a_status(monkeypatch):
+    """`final_glide` to an arrival heading whose plan fails returns the plan's status with a
+    message saying so (it used to raise PlanningError): an ordinary failure is a status."""
+    import glideplan
+    from glideplan.pose import Pose
+    from glideplan.solution import Solution
+    from glideplan.vehicles.sailplane import dg1001m_sailplane
+
+    def failed(*args, **kwargs):
+        return Solution(status=Status.SOLVER_FAILED, planner="final_glide", objective="altitude",
+                        start=Pose(0, 0, 0), goal=Pose(1, 0, 0), vehicle=args[2], path=None,
+                        cost=math.inf, message="IPOPT did not converge", reason="solver")
+
+    monkeypatch.setattr("glideplan.planning.plan", failed)
+    res = glideplan.final_glide(dg1001m_sailplane().polar, (47.0, 8.0, 1500.0),
+                                (47.05, 8.0, 400.0), arrival_heading=90.0)
+    assert res.status is Status.SOLVER_FAILED and res.reason is Reason.SOLVER
+    assert "IPOPT did not converge" in res.message and res.altitude_loss_m is None
+    d = res.to_dict()
+    assert d["status"] == "solver_failed" and d["ok"] is False
