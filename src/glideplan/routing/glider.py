@@ -26,7 +26,7 @@ from numpy.typing import NDArray
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import FlowField
 from glideplan.geodesy import LocalProjection
-from glideplan.results import Outcome
+from glideplan.results import Outcome, Reason
 from glideplan.routing.route import RouteResult
 from glideplan.routing.verify import local_current
 from glideplan.simulation.disturbances import VelocityFunction
@@ -198,7 +198,8 @@ def follow_route(
     eps, r_f, proj = fp.disturbance_ratio, fp.feasible_radius_m, fp.proj
     if fp.path is None:
         return GliderFollow(status=Status.INFEASIBLE, radius_m=radius, disturbance_ratio=eps,
-                            feasible_radius_m=None, message=fp.message, flyable=fp)
+                            feasible_radius_m=None, message=fp.message, flyable=fp,
+                            reason=Reason.NO_FEASIBLE_RADIUS)
     path_length = fp.length_m
     t0 = result.depart_s
     settings = FollowerSettings(
@@ -219,11 +220,13 @@ def follow_route(
     every = np.unique(np.r_[np.arange(0, steps + 1, 20), steps])
     lat, lon = proj.to_geographic(xy[every, 0], xy[every, 1])
     status, message = Status.SOLVED, "followed to the goal's finish line"
+    reason: Reason | None = None
     if not res.crossed[0]:
         status = Status.LOST
         if res.stopped is not None and res.stopped[0]:
-            message = _why_stopped(field_, proj, t0 + steps * settings.dt, xy[-1])
+            reason, message = _why_stopped(field_, proj, t0 + steps * settings.dt, xy[-1])
         else:
+            reason = Reason.TIMEOUT
             message = "did not cross the goal's finish line before the time-out"
     end = fp.path.end[0]
     final = float(res.error[0]) if res.crossed[0] else math.hypot(
@@ -235,7 +238,7 @@ def follow_route(
         status=status, radius_m=radius, disturbance_ratio=eps, feasible_radius_m=r_f,
         legs=fp.pieces, path_length_m=path_length, duration_s=float(res.time[0]),
         max_cross_track_m=float(e.max()), rms_cross_track_m=float(np.sqrt(np.mean(e**2))),
-        final_distance_m=final, message=message,
+        final_distance_m=final, message=message, reason=reason,
         track=Track(every * settings.dt, px, py, course, lat=lat, lon=lon),
         flyable=fp,
     )
@@ -316,12 +319,13 @@ def _local_velocity(field_: FlowField, proj: LocalProjection) -> VelocityFunctio
     return velocity
 
 
-def _why_stopped(field_: FlowField, proj: LocalProjection, t: float, xy: FloatArray) -> str:
+def _why_stopped(field_: FlowField, proj: LocalProjection, t: float, xy: FloatArray
+                 ) -> tuple[Reason, str]:
     try:
         local_current(field_, proj, t, xy[:1], xy[1:2])
     except InvalidParameterError as exc:
-        return f"the vehicle left the field ({exc})"
-    return "the vehicle reached land"
+        return Reason.LEFT_FIELD, f"the vehicle left the field ({exc})"
+    return Reason.LAND, "the vehicle reached land"
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -412,7 +416,7 @@ def trochoid_chain(
     residual = float(np.max(np.hypot(cx - mean[piece, 0], cy - mean[piece, 1]))) / speed
     if float(np.max(np.hypot(mean[:, 0], mean[:, 1]))) / speed + residual >= 1.0:
         return TrochoidChain(status=Status.INFEASIBLE, residual_ratio=residual,
-                             feasible_radius_m=None,
+                             feasible_radius_m=None, reason=Reason.NO_FEASIBLE_RADIUS,
                              message="mean current + residual reach the speed: no feasible "
                              "radius (|c| + eps' V must be < V)")
     r_f = float(feasible_radius(radius, residual))
