@@ -24,6 +24,7 @@ An ordinary failure is a status, never an exception; bad input raises
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import StrEnum
 from typing import TYPE_CHECKING, Any
@@ -33,7 +34,7 @@ from glideplan.status import Status
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-__all__ = ["Outcome", "Reason", "Status", "as_figure"]
+__all__ = ["BAD_INPUT", "Outcome", "Reason", "Status", "as_figure", "no_outcome_dict"]
 
 
 class Reason(StrEnum):
@@ -124,6 +125,21 @@ class Outcome:
         from glideplan.outcome_plot import plot_outcome_text
 
         return plot_outcome_text(self, ax=ax, **kwargs)
+
+
+#: What the explorer shows for an input it refuses (the CLI's exit 2): not a `Status`.
+BAD_INPUT = "bad input"
+
+
+def no_outcome_dict(message: str, errors: Mapping[str, str] | None = None) -> dict[str, Any]:
+    """The JSON when there is no outcome because the input was refused (the explorer's
+    downloads): the base keys with status None (no `Status`: bad input is exit 2, not an
+    outcome), the one-line message and the errors by input name."""
+    out: dict[str, Any] = {"status": None, "ok": False, "message": message, "warnings": [],
+                           "reason": None}
+    if errors is not None:
+        out["errors"] = dict(errors)
+    return out
 
 
 def default_message(status: Status, reason: Reason | None) -> str:
