@@ -182,7 +182,6 @@ def route_command(
     """
     from glideplan.cli.common import (
         check_figure_file,
-        check_input_file,
         flag_names,
         usage_error,
     )
@@ -228,23 +227,7 @@ def route_command(
         usage_error("give --field FILE or --example NAME, not both")
     when = parse_depart(depart)
 
-    from glideplan.fields import FlowField, double_gyre, open_field
-
-    if example is not None:
-        if example not in _EXAMPLES:
-            raise InvalidParameterError("--example", example, f"must be one of {_EXAMPLES}")
-        if depth_range is not None:
-            raise InvalidParameterError("--depth-range", depth_range, "needs --field files")
-        flow: FlowField = double_gyre()
-        source: dict[str, Any] = {"file": None, "example": example}
-    else:
-        assert field is not None
-        for path in field:
-            check_input_file(path, "--field")
-        with flag_names(field="--field", depth_range="--depth-range"):
-            flow = open_field(field, depth_range=depth_range)
-        source = {"file": [str(p) for p in field]}
-
+    flow, source = _open_flow(field, example, depth_range)
     check_depart(flow, when)
 
     import sys
@@ -271,24 +254,52 @@ def route_command(
         with flag_names(**names):
             result = solving("following the flyable path",
                              lambda: with_flyable_path(result, flow, speed, radius))
-    exports: dict[str, pathlib.Path] = {}
-    if (geojson is not None or kml is not None) and result.track.size:
-        from glideplan.formats.tracks import write_track_geojson, write_track_kml
-
-        props = {"kind": "route", "status": result.status.value,
-                 "duration_s": result.duration_s, "distance_m": result.distance_m,
-                 "method": result.method}
-        if geojson is not None:
-            write_track_geojson(geojson, result.lat, result.lon, props)
-            exports["geojson"] = geojson
-        if kml is not None:
-            write_track_kml(kml, result.lat, result.lon, name="glideplan route",
-                            description=f"{result.status.value}, {result.duration_s or 0:.0f} s")
-            exports["kml"] = kml
+    exports = _write_exports(result, geojson, kml)
     emit(result, json=json_out, plot=plot, exports=exports or None,
          summary=lambda r: _print_summary(r.to_dict()),
          plot_kw={"flow": flow, "speed": speed, "start": from_, "goal": to},
          save_kw={"tight": False}, what="route")
+
+
+def _open_flow(field: list[pathlib.Path] | None, example: str | None,
+               depth_range: tuple[float, float] | None) -> tuple[Any, dict[str, Any]]:
+    """The field of `--field FILE...` or `--example NAME`, and where it came from (JSON)."""
+    from glideplan.cli.common import check_input_file, flag_names
+    from glideplan.errors import InvalidParameterError
+    from glideplan.fields import double_gyre, open_field
+
+    if example is not None:
+        if example not in _EXAMPLES:
+            raise InvalidParameterError("--example", example, f"must be one of {_EXAMPLES}")
+        if depth_range is not None:
+            raise InvalidParameterError("--depth-range", depth_range, "needs --field files")
+        return double_gyre(), {"file": None, "example": example}
+    assert field is not None
+    for path in field:
+        check_input_file(path, "--field")
+    with flag_names(field="--field", depth_range="--depth-range"):
+        flow = open_field(field, depth_range=depth_range)
+    return flow, {"file": [str(p) for p in field]}
+
+
+def _write_exports(result: Any, geojson: pathlib.Path | None, kml: pathlib.Path | None
+                   ) -> dict[str, pathlib.Path]:
+    """The route's track as GeoJSON / KML (when it has one): {format: path} written."""
+    exports: dict[str, pathlib.Path] = {}
+    if (geojson is None and kml is None) or not result.track.size:
+        return exports
+    from glideplan.formats.tracks import write_track_geojson, write_track_kml
+
+    props = {"kind": "route", "status": result.status.value, "duration_s": result.duration_s,
+             "distance_m": result.distance_m, "method": result.method}
+    if geojson is not None:
+        write_track_geojson(geojson, result.lat, result.lon, props)
+        exports["geojson"] = geojson
+    if kml is not None:
+        write_track_kml(kml, result.lat, result.lon, name="glideplan route",
+                        description=f"{result.status.value}, {result.duration_s or 0:.0f} s")
+        exports["kml"] = kml
+    return exports
 
 
 def _print_summary(out: dict[str, Any]) -> None:
