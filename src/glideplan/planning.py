@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 from glideplan.errors import InvalidParameterError
 from glideplan.objectives import get_objective
 from glideplan.pose import Pose, wrap_to_pi
+from glideplan.results import Reason
 from glideplan.solution import Candidate, Solution, Status
 from glideplan.vehicles.base import Vehicle
 from glideplan.verify import EndpointError, endpoint_error
@@ -58,7 +59,9 @@ class PlannerOutput:
     stats: Mapping[str, Any] = field(default_factory=dict)
     message: str = ""
     extras: Mapping[str, Any] = field(default_factory=dict)
-    solver_failed: bool = False
+    # the planner's own failure when it returns no candidate (Status.SOLVER_FAILED: a
+    # numerical solver did not converge); None: `plan()` decides (NO_PATH / NOT_VERIFIED)
+    failure: Status | None = None
     # Things the user must know even when a path is returned (a skipped root bracket, a
     # failed re-timing, ...): one sentence each; `plan()` adds its own and the Solution
     # carries them all (and `--json` prints them).
@@ -223,22 +226,11 @@ def _same_pose_solution(
     path = Path((Straight(start, 0.0, speed=speed),), vehicle)
     cand = Candidate("", "", 0.0, path, Status.FEASIBLE, {"zero_length": True})
     return Solution(
-        Status.SOLVED,
-        spec.name,
-        objective,
-        start,
-        goal,
-        vehicle,
-        path,
-        0.0,
-        "",
-        "",
-        (cand,),
-        endpoint_error(path, goal),
-        "the goal is the start: the optimal path has zero length (cost 0)",
-        {"planner_seconds": 0.0},
-        {},
-        (),
+        status=Status.SOLVED, planner=spec.name, objective=objective, start=start, goal=goal,
+        vehicle=vehicle, path=path, cost=0.0, candidates=(cand,),
+        endpoint_error=endpoint_error(path, goal),
+        message="the goal is the start: the optimal path has zero length (cost 0)",
+        stats={"planner_seconds": 0.0},
     )
 
 
@@ -279,6 +271,46 @@ def plan(
         InvalidParameterError: `vehicle` is not a glideplan vehicle, a pose is not three
             finite numbers, no planner matches, or an option is unknown.
     """
+    start_p, goal_p, objective, spec = _request(start, goal, vehicle, objective, method,
+                                                verify, tolerance, options)
+    local_goal = goal_p.relative_to(start_p)
+    scale = _verification_scale(vehicle)
+    if (
+        math.hypot(local_goal.x, local_goal.y) <= _SAME_POSE_TOL * scale
+        and abs(float(wrap_to_pi(local_goal.heading))) <= _SAME_POSE_TOL
+    ):
+        return _same_pose_solution(spec, objective, start_p, goal_p, vehicle)
+    problem = Problem(Pose(0.0, 0.0, 0.0), local_goal, vehicle, objective, start_p)
+    t0 = time.perf_counter()
+    out = spec.function(problem, **options)
+    stats = {"planner_seconds": time.perf_counter() - t0, **out.stats}
+    candidates = _world_candidates(out, start_p, vehicle)
+    best, err, rejected = _verified(candidates, goal_p, tolerance * scale, tolerance, verify)
+    common: dict[str, Any] = {
+        "planner": spec.name, "objective": objective, "start": start_p, "goal": goal_p,
+        "vehicle": vehicle, "candidates": tuple(candidates), "stats": stats,
+        "extras": dict(out.extras)}
+    if best is None or err is None:
+        return _unsolved(out, candidates, rejected, common)
+    assert best.path is not None
+    warnings = tuple(out.warnings)
+    if rejected:
+        stats["rejected_by_verification"] = rejected
+        warnings += (
+            f"{rejected} cheaper candidate(s) failed verification by integration; "
+            f"returned the cheapest verified one ({best.word}, cost {best.cost:.6g})",
+        )
+    return Solution(status=Status.SOLVED, path=best.path, cost=best.cost,
+                    word=_path_word(best), family=best.family, endpoint_error=err,
+                    message=out.message, warnings=warnings, **common)
+
+
+def _request(start: Pose | tuple[float, float, float], goal: Pose | tuple[float, float, float],
+             vehicle: Vehicle, objective: str | None, method: str | None, verify: bool,
+             tolerance: float, options: Mapping[str, Any]
+             ) -> tuple[Pose, Pose, str, PlannerSpec]:
+    """`plan()`'s arguments checked: start and goal poses, the objective and the planner
+    (bad input raises `InvalidParameterError` naming the parameter)."""
     if not isinstance(vehicle, Vehicle):
         raise InvalidParameterError(
             "vehicle", vehicle, "must be a glideplan vehicle model (e.g. DubinsCar(1.0, 1.0))"
@@ -300,24 +332,18 @@ def plan(
             options[unknown[0]],
             f"is not an option of planner {spec.name!r} (known: {known})",
         )
-    local_goal = goal_p.relative_to(start_p)
-    scale = _verification_scale(vehicle)
-    if (
-        math.hypot(local_goal.x, local_goal.y) <= _SAME_POSE_TOL * scale
-        and abs(float(wrap_to_pi(local_goal.heading))) <= _SAME_POSE_TOL
-    ):
-        return _same_pose_solution(spec, objective, start_p, goal_p, vehicle)
-    problem = Problem(Pose(0.0, 0.0, 0.0), local_goal, vehicle, objective, start_p)
-    t0 = time.perf_counter()
-    out = spec.function(problem, **options)
-    elapsed = time.perf_counter() - t0
-    candidates = sorted(
+    return start_p, goal_p, objective, spec
+
+
+def _world_candidates(out: PlannerOutput, start: Pose, vehicle: Vehicle) -> list[Candidate]:
+    """The planner's candidates placed at the world start, feasible first, cheapest first."""
+    return sorted(
         (
             Candidate(
                 c.word,
                 c.family,
                 c.cost,
-                _placed(c.path, start_p, vehicle) if c.path is not None else None,
+                _placed(c.path, start, vehicle) if c.path is not None else None,
                 c.status,
                 c.info,
             )
@@ -325,79 +351,45 @@ def plan(
         ),
         key=lambda c: (not c.feasible, c.cost if math.isfinite(c.cost) else math.inf),
     )
-    stats = {"planner_seconds": elapsed, **out.stats}
-    feasible = [c for c in candidates if c.feasible]
-    tol = tolerance * scale
-    best: Candidate | None = None
-    err: EndpointError | None = None
+
+
+def _verified(candidates: list[Candidate], goal: Pose, tol: float, tolerance: float,
+              verify: bool) -> tuple[Candidate | None, EndpointError | None, int]:
+    """The cheapest feasible candidate whose controls, integrated (or its path's own end
+    without `verify`), end within `tol` (m) and `tolerance` (rad) of the goal; its endpoint
+    error; how many cheaper ones were rejected."""
     rejected = 0
-    for cand in feasible:
+    for cand in candidates:
+        if not cand.feasible:
+            continue
         assert cand.path is not None
         e = (
-            endpoint_error(cand.path, goal_p)
+            endpoint_error(cand.path, goal)
             if verify
-            else EndpointError(*cand.path.endpoint_gap(goal_p))
+            else EndpointError(*cand.path.endpoint_gap(goal))
         )
         if e.position <= tol and e.heading <= tolerance:
-            best, err = cand, e
-            break
+            return cand, e, rejected
         rejected += 1
-    if best is None:
-        if out.solver_failed and not feasible:
-            status = Status.SOLVER_FAILED
-        elif feasible:
-            status = Status.NOT_VERIFIED
-        else:
-            status = Status.NO_PATH
-        message = (
-            out.message
-            or {
-                Status.NO_PATH: "no candidate path reaches the goal",
-                Status.NOT_VERIFIED: f"{rejected} candidate(s) failed verification by integration",
-                Status.SOLVER_FAILED: "the solver failed",
-            }[status]
-        )
-        return Solution(
-            status,
-            spec.name,
-            objective,
-            start_p,
-            goal_p,
-            vehicle,
-            None,
-            math.inf,
-            "",
-            "",
-            tuple(candidates),
-            None,
-            message,
-            stats,
-            dict(out.extras),
-            tuple(out.warnings),
-        )
-    assert best.path is not None
-    warnings = tuple(out.warnings)
-    if rejected:
-        stats["rejected_by_verification"] = rejected
-        warnings += (
-            f"{rejected} cheaper candidate(s) failed verification by integration; "
-            f"returned the cheapest verified one ({best.word}, cost {best.cost:.6g})",
-        )
-    return Solution(
-        Status.SOLVED,
-        spec.name,
-        objective,
-        start_p,
-        goal_p,
-        vehicle,
-        best.path,
-        best.cost,
-        _path_word(best),
-        best.family,
-        tuple(candidates),
-        err,
-        out.message,
-        stats,
-        dict(out.extras),
-        warnings,
-    )
+    return None, None, rejected
+
+
+def _unsolved(out: PlannerOutput, candidates: list[Candidate], rejected: int,
+              common: Mapping[str, Any]) -> Solution:
+    """No verified path: the planner's own failure (SOLVER_FAILED, reason SOLVER) when it
+    returned no feasible candidate, NOT_VERIFIED when some failed verification, else
+    NO_PATH."""
+    feasible = any(c.feasible for c in candidates)
+    if out.failure is not None and not feasible:
+        status = out.failure
+    elif feasible:
+        status = Status.NOT_VERIFIED
+    else:
+        status = Status.NO_PATH
+    message = out.message or {
+        Status.NO_PATH: "no candidate path reaches the goal",
+        Status.NOT_VERIFIED: f"{rejected} candidate(s) failed verification by integration",
+    }.get(status, "the solver failed")
+    return Solution(status=status, path=None, cost=math.inf, message=message,
+                    warnings=tuple(out.warnings),
+                    reason=Reason.SOLVER if status is Status.SOLVER_FAILED else None, **common)

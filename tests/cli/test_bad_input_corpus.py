@@ -464,7 +464,7 @@ CASES: dict[str, Case] = {
     "mission plan --export/--plot --json say what they wrote": Case(
         (*MISSION, "--export", "{tmp}/m", "--formats", "gpx", "--plot", "{tmp}/m.png", "--json"),
         0,
-        "wrote gpx: {tmp}/m/buzzards_bay.gpx\nwrote plot: {tmp}/m.png",
+        "wrote {tmp}/m.png\nwrote {tmp}/m/buzzards_bay.gpx",
     ),
     "load-factor --plot: wrote after the table": Case(
         ("plan", "load-factor", "--goal", "0", "0", "0", "--plot", "{tmp}/z.png"),

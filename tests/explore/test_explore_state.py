@@ -248,7 +248,7 @@ def test_downloads_after_an_error_carry_the_message(catalog, cli_error):
     line = cli_error("plan", "dubins", "--goal", "4", "3", "90", "--radius", "-1")
     message = line.removeprefix("glideplan: error: ")
     data = json.loads(solution_json(None, view.errors))
-    assert data["status"] == "no_path" and data["message"] == message
+    assert data["status"] is None and data["ok"] is False and data["message"] == message
     assert data["errors"] == {"radius": message}
     rows = list(csv.DictReader(io.StringIO(path_csv(None, view.errors))))
     assert rows == [{"error": message}]

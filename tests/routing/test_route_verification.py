@@ -87,8 +87,8 @@ def test_a_solved_route_verifies_independently():
 def test_cli_states_the_tolerance_and_exits_1_when_unverified(run_cli, monkeypatch):
     """`glideplan route --example double-gyre ... --speed 0.1 --json` (the walkthrough case):
     solved with endpoint_error_m <= endpoint_tolerance_m = the grid spacing. Forced
-    not verified (no refinement, 60 cells), the command prints `glideplan: not_verified: ...`
-    on one line and exits 1."""
+    not verified (no refinement, 60 cells), the command prints
+    `glideplan: error: route: not_verified: ...` on one line and exits 1."""
     args = ("route", "--example", "double-gyre", "--from", "30.45", "-39.8", "--to", "30.45",
             "-38.2", "--speed", "0.1")
     code, out, err = run_cli(*args, "--json")
@@ -104,5 +104,5 @@ def test_cli_states_the_tolerance_and_exits_1_when_unverified(run_cli, monkeypat
     code, out, err = run_cli(*args)
     assert code == 1
     lines = err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("glideplan: not_verified: ")
+    assert len(lines) == 1 and lines[0].startswith("glideplan: error: route: not_verified: ")
     assert "status: not_verified" in out

@@ -143,6 +143,6 @@ def test_cli_answers_strong_currents(tmp_path, run_cli):
                              *map(str, START), "--speed", str(V))
     assert code == 1
     lines = err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("glideplan: unreachable: the goal lies "
-                                                   "outside the drift cone")
+    assert len(lines) == 1 and lines[0].startswith(
+        "glideplan: error: route: unreachable: the goal lies outside the drift cone")
     assert "unreachable (outside_drift_cone)" in out

@@ -71,7 +71,7 @@ app.add_typer(map_app, name="map")
 app.add_typer(study_app, name="study")
 app.add_typer(design_app, name="design")
 
-_SKIP = frozenset({"app", "common"})
+_SKIP = frozenset({"app", "common", "emit"})
 _GLOBAL_FLAGS = frozenset({"--debug"})
 
 

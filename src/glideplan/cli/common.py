@@ -11,7 +11,7 @@ from typing import Any, NoReturn, TypeVar
 
 import typer
 
-from glideplan.errors import InvalidParameterError, PlanningError
+from glideplan.errors import InvalidParameterError
 from glideplan.jsonio import json_default, to_json, write_json
 from glideplan.pose import Pose
 from glideplan.solution import Solution
@@ -409,22 +409,23 @@ def emit_solution(
     *,
     extra: dict[str, Any] | None = None,
     plot_candidates: bool = False,
-) -> None:
-    """Print the solution (JSON or a table), draw it if asked, and fail when not solved."""
-    data = solution.to_dict() | (extra or {})
-    if json_out:
-        print_json(data)
-    else:
+) -> NoReturn:
+    """`cli.emit.emit` of a `plan` command's solution (`extra` joins its JSON as extras; a
+    table for people; a failed plan has no path to draw: said in a warning)."""
+    from dataclasses import replace
+
+    from glideplan.cli.emit import emit
+
+    if extra:
+        solution = replace(solution, extras={**solution.extras, **extra})
+    if plot_file is not None and solution.path is None:
+        print_warnings([f"no path to draw: {plot_file} not written"])
+        plot_file = None
+
+    def table(outcome: Any) -> None:
         from rich.console import Console
 
-        Console().print(_solution_table(solution, data))
-    print_warnings(solution.warnings)
+        Console().print(_solution_table(outcome, outcome.to_dict()))
 
-    def draw() -> None:
-        from glideplan.plotting import plot_solution, save_figure
-
-        save_figure(plot_solution(solution, candidates=plot_candidates), str(plot_file))
-
-    write_figure(plot_file, json_out, draw if solution.path is not None else None)
-    if not solution.ok:
-        raise PlanningError(f"{solution.planner}: {solution.status.value}: {solution.message}")
+    emit(solution, json=json_out, plot=plot_file, summary=table,
+         plot_kw={"candidates": plot_candidates}, what=solution.planner)

@@ -9,7 +9,7 @@ from typing import Annotated, Any
 import typer
 
 from glideplan.cli.app import glide_app
-from glideplan.errors import InvalidParameterError, PlanningError
+from glideplan.errors import InvalidParameterError
 
 MC_TABLE = tuple(0.5 * k for k in range(11))  # 0, 0.5, ..., 5 m/s
 
@@ -285,12 +285,12 @@ def glide_final(
 ) -> None:
     """Altitude needed to reach a goal: straight final glide, or to an arrival heading."""
     from glideplan.cli.common import (
-        announce,
         check_figure_file,
         check_output_file,
         file_flag,
         flag_names,
     )
+    from glideplan.cli.emit import emit
     from glideplan.geodesy import wind_from_to_vector
     from glideplan.sailplane.request import final_glide
 
@@ -325,29 +325,7 @@ def glide_final(
             start_heading=start_heading,
             bank_max=bank_max,
         )
-    data, drawing = result.to_dict(), result.drawing
-    if json_out:
-        _print(data)
-    elif data["status"] == "unreachable":
-        typer.echo(
-            f"unreachable: distance {data['distance_m'] / 1000:.2f} km on bearing "
-            f"{data['bearing_deg']:.0f}°, wind {data['wind']['speed_ms']:g} m/s from "
-            f"{data['wind']['from_deg']:g}°: no altitude is enough"
-        )
-    else:
-        typer.echo(
-            f"{data['status']}: distance {data['distance_m'] / 1000:.2f} km, loss "
-            f"{_fmt(data['altitude_loss_m'])} m, required {_fmt(data['altitude_required_m'])} m, "
-            f"margin {_fmt(data['arrival_margin_m'])} m, glide ratio needed "
-            f"{_fmt(data['glide_ratio_required'], 1)}, speed to fly "
-            f"{_fmt(data['speed_to_fly_kmh'])} km/h"
-            + (f", path {data['word']}" if "word" in data else "")
-        )
-    if plot is not None:
-        from glideplan.sailplane.plot import draw_final_glide
-
-        draw_final_glide(drawing, plot)
-        announce(f"wrote {plot}", json_out)
+    exports: dict[str, pathlib.Path] = {}
     if cup is not None or tsk is not None:
         from glideplan.sailplane import TaskPoint, write_cup_task, write_tsk_task
 
@@ -362,11 +340,29 @@ def glide_final(
                     write_cup_task(path, a, b, description=f"final glide {p.name}")
                 else:
                     write_tsk_task(path, a, b)
-            announce(f"wrote {path}", json_out)
-    if data.get("error"):
-        raise PlanningError(data["error"])
+            exports[flag[2:]] = path
+    emit(result, json=json_out, plot=plot, exports=exports or None, summary=_final_summary,
+         what="final glide")
+
+
+def _final_summary(result: Any) -> None:
+    """The human summary of `glide final` (one line)."""
+    data = result.to_dict()
     if data["status"] == "unreachable":
-        raise PlanningError(f"final glide: unreachable: {data['message']}")
+        typer.echo(
+            f"unreachable: distance {data['distance_m'] / 1000:.2f} km on bearing "
+            f"{data['bearing_deg']:.0f}°, wind {data['wind']['speed_ms']:g} m/s from "
+            f"{data['wind']['from_deg']:g}°: no altitude is enough"
+        )
+        return
+    typer.echo(
+        f"{data['status']}: distance {data['distance_m'] / 1000:.2f} km, loss "
+        f"{_fmt(data['altitude_loss_m'])} m, required {_fmt(data['altitude_required_m'])} m, "
+        f"margin {_fmt(data['arrival_margin_m'])} m, glide ratio needed "
+        f"{_fmt(data['glide_ratio_required'], 1)}, speed to fly "
+        f"{_fmt(data['speed_to_fly_kmh'])} km/h"
+        + (f", path {data['word']}" if "word" in data else "")
+    )
 
 
 def _fmt(value: Any, digits: int = 0) -> str:

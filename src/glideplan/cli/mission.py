@@ -2,25 +2,23 @@
 
 from __future__ import annotations
 
-import dataclasses
 import pathlib
+from dataclasses import replace
 from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
 from glideplan.cli.app import mission_app
 from glideplan.cli.common import (
-    announce,
     check_figure_file,
     check_output_dir,
     check_writable,
     file_flag,
     flag_names,
     phase_progress,
-    print_json,
     print_warnings,
 )
-from glideplan.errors import InvalidParameterError, PlanningError
+from glideplan.errors import InvalidParameterError
 
 if TYPE_CHECKING:
     from glideplan.missions.field_mission import FieldMission
@@ -163,6 +161,7 @@ def mission_plan(
     Each leg is the optimal Dubins (or, with --wind, convected-Dubins minimum-time) path,
     verified by integration. With --export the mission is written for GIS tools and vehicles.
     """
+    from glideplan.cli.emit import emit
     from glideplan.cli.route import check_depth_range, parse_depart
     from glideplan.formats import ExportOptions, export_mission, parse_formats, read_route
     from glideplan.formats.export import skipped_formats, skipped_warning
@@ -200,7 +199,6 @@ def mission_plan(
     with file_flag("ROUTE", route):
         # legs through a field are routed on the sphere: no one-plane size limit then
         r = read_route(route, check_extent=field is None)
-    print_warnings(r.warnings)
     if formats is not None and export is None:
         raise InvalidParameterError("--formats", formats, "needs --export DIR")
     mission: MissionPlan | FieldMission
@@ -219,34 +217,25 @@ def mission_plan(
                 mission = plan_mission(r, speed=speed, radius=radius, objective=obj,
                                        wind_vector=vector, headings=headings,
                                        progress=progress)
-    print_warnings([w for w in mission.warnings if w not in r.warnings])  # those read: above
     if when is not None and field is None:  # the ETAs as UTC times
-        mission = dataclasses.replace(mission, depart=when)
-    if not mission.ok:
-        raise PlanningError(_failure(mission))
-    files: dict[str, Any] = {}
-    with flag_names(**{"max-deviation": "--max-deviation", "goto-number": "--goto-number",
-                       "max-goto-waypoints": "--max-goto-waypoints"}):
-        if export is not None:
-            files, legs = export_mission(mission, export, fmts, options)
-        else:
-            legs = straight_leg_list(mission, options.deviation)
-    if plot is not None:
-        from glideplan.missions.plot import plot_mission
-        from glideplan.plotting import save_figure
-
-        save_figure(plot_mission(mission, legs), str(plot))
-        files["plot"] = str(plot)
-    # the plan's JSON is the library's (`to_dict`); the CLI adds only the files it wrote
-    data = mission.to_dict(straight_legs=legs) | {"files": files}
+        mission = replace(mission, depart=when)
     if skipped:
-        data["warnings"].append(skipped_warning(skipped))
-    if json_out:
-        print_json(data)
-    else:
-        _print_summary(mission, legs)
-    for fmt, path in files.items():
-        announce(f"wrote {fmt}: {path if isinstance(path, str) else ', '.join(path)}", json_out)
+        mission = replace(mission, warnings=(*mission.warnings, skipped_warning(skipped)))
+    files: dict[str, Any] = {}
+    if mission.ok:  # a failed mission has no track to export or draw
+        with flag_names(**{"max-deviation": "--max-deviation", "goto-number": "--goto-number",
+                           "max-goto-waypoints": "--max-goto-waypoints"}):
+            if export is not None:
+                files, legs = export_mission(mission, export, fmts, options)
+            else:
+                legs = straight_leg_list(mission, options.deviation)
+        mission = replace(mission, straight_legs=legs)
+    elif plot is not None:
+        print_warnings([f"no track to draw: {plot} not written"])
+        plot = None
+    # the plan's JSON is the library's (`to_dict`); emit adds only the files written
+    emit(mission, json=json_out, plot=plot, exports=files, summary=_print_summary,
+         what="mission")
 
 
 def _plan_in_field(r: Any, path: pathlib.Path, speed: float, radius: float, when: Any,
@@ -272,21 +261,11 @@ def _plan_in_field(r: Any, path: pathlib.Path, speed: float, radius: float, when
         r, flow, speed=speed, depart=when, radius=radius))
 
 
-def _failure(mission: Any) -> str:
-    r = mission.route
-    for leg in mission.legs:
-        solution = getattr(leg, "solution", None)
-        if solution is None and not leg.ok:  # a FieldLeg
-            return (f"leg {leg.index + 1} ({r.names[leg.start]} -> {r.names[leg.end]}): "
-                    f"unreachable through the field: {leg.result.message}")
-        if solution is not None and not solution.ok:
-            return (f"leg {leg.index + 1} ({r.names[leg.start]} -> {r.names[leg.end]}): "
-                    f"{leg.solution.status.value}: {leg.solution.message}")
-    return "planning failed"
-
-
-def _print_summary(mission: Any, legs: Any) -> None:
-    r = mission.route
+def _print_summary(mission: Any) -> None:
+    r, legs = mission.route, mission.straight_legs
+    if not mission.ok:
+        typer.echo(f"mission {r.source}: {mission.status.value}: {mission.message}")
+        return
     through = " (through the field)" if hasattr(mission, "field_info") else ""
     typer.echo(f"mission {r.source}: {r.n} waypoints, {len(mission.legs)} legs, objective "
                f"{mission.objective}{through}")

@@ -8,7 +8,6 @@ from typing import Annotated, Any
 import typer
 
 from glideplan.cli.app import glide_app
-from glideplan.errors import PlanningError
 
 PolarOpt = Annotated[
     pathlib.Path | None,
@@ -251,16 +250,6 @@ def _shared(ex: Any, start: Any, wind: Any, mc: float | None, safety_height: flo
     )
 
 
-def _save_plot(result: Any, plot: pathlib.Path | None, json_out: bool) -> None:
-    """The result's figure into `plot` (if given), announced."""
-    if plot is not None:
-        from glideplan.cli.common import announce
-        from glideplan.plotting import save_figure
-
-        save_figure(result.plot(), str(plot))
-        announce(f"wrote {plot}", json_out)
-
-
 @glide_app.command("reach")
 def glide_reach_cmd(
     polar_file: PolarOpt = None,
@@ -296,15 +285,14 @@ def glide_reach_cmd(
     Try it without files: glideplan glide reach --example ridge
     """
     from glideplan.cli.common import (
-        announce,
         check_figure_file,
         check_input_file,
         check_output_file,
         file_flag,
         flag_names,
-        print_json,
         print_warnings,
     )
+    from glideplan.cli.emit import emit
     from glideplan.reach import glide_reach
 
     ex = _example(example_name, write_example_dir)
@@ -358,19 +346,20 @@ def glide_reach_cmd(
 
         result = dataclasses.replace(result, warnings=(*(f"--landables {n}" for n in notes),
                                                        *result.warnings))
-    if json_out:
-        print_json(result.to_dict())
-    else:
-        typer.echo(result.message)
-        _table(result)
-    print_warnings(result.warnings)
+    exports: dict[str, pathlib.Path] = {}
     for path, flag, write in ((geojson, "--geojson", result.write_geojson),
                               (kml, "--kml", result.write_kml)):
         if path is not None:
             with file_flag(flag, path):
                 write(path)
-            announce(f"wrote {path}", json_out)
-    _save_plot(result, plot, json_out)
+            exports[flag[2:]] = path
+    emit(result, json=json_out, plot=plot, exports=exports or None, summary=_reach_summary,
+         what="reach")
+
+
+def _reach_summary(result: Any) -> None:
+    typer.echo(result.message)
+    _table(result)
 
 
 def _table(result: Any) -> None:
@@ -422,9 +411,8 @@ def glide_turnback_cmd(
     from glideplan.cli.common import (
         check_figure_file,
         flag_names,
-        print_json,
-        print_warnings,
     )
+    from glideplan.cli.emit import emit
     from glideplan.reach import turnback
 
     ex = _example(example_name, write_example_dir)
@@ -471,11 +459,4 @@ def glide_turnback_cmd(
                           safety_height=one_height, safety_glide_ratio=safety_glide_ratio,
                           resolution_m=resolution,  # the example's 700 m grid: not used
                           terrain_clearance=terrain_clearance, arrival_height=arrival_height)
-    if json_out:
-        print_json(result.to_dict())
-    else:
-        typer.echo(f"{result.status.value}: {result.message}")
-    print_warnings(result.warnings)
-    _save_plot(result, plot, json_out)
-    if not result.ok:
-        raise PlanningError(f"turnback: {result.status.value}: {result.message}")
+    emit(result, json=json_out, plot=plot, what="turnback")

@@ -194,11 +194,8 @@ def route_command(
     one grid spacing), 2 bad input, 3 internal error.
     """
     from glideplan.cli.common import (
-        announce,
         check_figure_file,
-        check_input_file,
         flag_names,
-        print_json,
         usage_error,
     )
     from glideplan.errors import InvalidParameterError
@@ -247,28 +244,14 @@ def route_command(
         usage_error("give --field FILE or --example NAME, not both")
     when = parse_depart(depart)
 
-    from glideplan.fields import FlowField, double_gyre, open_field
-
-    if example is not None:
-        if example not in _EXAMPLES:
-            raise InvalidParameterError("--example", example, f"must be one of {_EXAMPLES}")
-        if depth_range is not None:
-            raise InvalidParameterError("--depth-range", depth_range, "needs --field files")
-        flow: FlowField = double_gyre()
-        source: dict[str, Any] = {"file": None, "example": example}
-    else:
-        assert field is not None
-        for path in field:
-            check_input_file(path, "--field")
-        with flag_names(field="--field", depth_range="--depth-range"):
-            flow = open_field(field, depth_range=depth_range)
-        source = {"file": [str(p) for p in field]}
-
+    flow, source = _open_flow(field, example, depth_range)
     check_depart(flow, when)
 
     import sys
+    from dataclasses import replace
 
     from glideplan.cli.common import solving
+    from glideplan.cli.emit import emit
     from glideplan.routing import RouteSettings, route
 
     names = {"from": "--from", "to": "--to", "speed": "--speed", "resolution": "--resolution",
@@ -281,47 +264,53 @@ def route_command(
             progress=sys.stderr.isatty())
         # Progress: the front draws its own bar on a terminal (after ~2 s).
         result = route(flow, from_, to, speed, depart=when, settings=settings)
-    for warning in result.warnings:
-        if not json_out:
-            typer.echo(f"glideplan: warning: {warning}", err=True)
-    out = result.to_dict()
-    out["field"] = {**source, **out["field"]}
-    glider = None
+    result = replace(result, field_info={**source, **result.field_info})
     if radius is not None and result.ok:
-        from glideplan.routing.glider import follow_route, trochoid_chain
+        from glideplan.routing.glider import with_flyable_path
 
         with flag_names(**names):
-            glider = solving("following", lambda: follow_route(result, flow, speed, radius))
-            out["glider"] = glider.to_dict()
-            if glider.status != "infeasible":
-                chain = solving("trochoid pieces",
-                                lambda: trochoid_chain(result, flow, speed, radius))
-                out["glider"]["trochoid"] = chain.to_dict()
+            result = solving("following the flyable path",
+                             lambda: with_flyable_path(result, flow, speed, radius))
     if exports and result.track.size:
         from glideplan.formats.route_export import route_export_warnings
 
-        for warning in route_export_warnings(result):
-            out["warnings"].append(warning)
-            if not json_out:
-                typer.echo(f"glideplan: warning: {warning}", err=True)
-    if json_out:
-        print_json(out)
-    else:
-        _print_summary(out)
-    if plot is not None:
-        from glideplan.routing.plot import plot_route
+        result = replace(result, warnings=(*result.warnings, *route_export_warnings(result)))
+    written = _write_exports(result, exports)
+    emit(result, json=json_out, plot=plot, exports=written or None,
+         summary=lambda r: _print_summary(r.to_dict()),
+         plot_kw={"flow": flow, "speed": speed, "start": from_, "goal": to},
+         save_kw={"tight": False}, what="route")
 
-        plot_route(result, flow, plot, speed=speed, start=from_, goal=to, glider=glider)
-        announce(f"wrote {plot}", json_out)
-    if exports:
-        from glideplan.formats.route_export import export_route
 
-        for written in export_route(result, exports).values():
-            announce(f"wrote {written}", json_out)
-    if not result.ok:
-        if not json_out:
-            typer.echo(f"glideplan: {result.status.value}: {result.message}", err=True)
-        raise typer.Exit(1)
+def _open_flow(field: list[pathlib.Path] | None, example: str | None,
+               depth_range: tuple[float, float] | None) -> tuple[Any, dict[str, Any]]:
+    """The field of `--field FILE...` or `--example NAME`, and where it came from (JSON)."""
+    from glideplan.cli.common import check_input_file, flag_names
+    from glideplan.errors import InvalidParameterError
+    from glideplan.fields import double_gyre, open_field
+
+    if example is not None:
+        if example not in _EXAMPLES:
+            raise InvalidParameterError("--example", example, f"must be one of {_EXAMPLES}")
+        if depth_range is not None:
+            raise InvalidParameterError("--depth-range", depth_range, "needs --field files")
+        return double_gyre(), {"file": None, "example": example}
+    assert field is not None
+    for path in field:
+        check_input_file(path, "--field")
+    with flag_names(field="--field", depth_range="--depth-range"):
+        flow = open_field(field, depth_range=depth_range)
+    return flow, {"file": [str(p) for p in field]}
+
+
+def _write_exports(result: Any, exports: dict[str, pathlib.Path]) -> dict[str, pathlib.Path]:
+    """The route's track as GeoJSON / KML / GPX / CSV with each vertex's time (when it has a
+    track): {format: path} written (`glideplan.formats.route_export`)."""
+    if not exports or not result.track.size:
+        return {}
+    from glideplan.formats.route_export import export_route
+
+    return {fmt: pathlib.Path(p) for fmt, p in export_route(result, exports).items()}
 
 
 def _print_summary(out: dict[str, Any]) -> None:

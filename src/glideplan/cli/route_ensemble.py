@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import json
 import pathlib
-from typing import Any
+from typing import Any, NoReturn
 
 import typer
 
@@ -148,42 +148,32 @@ def run(**opts: Any) -> None:
 
             res = route_ensemble(fields, *args, when, settings=settings, names=names, **batch)
     _emit(res, opts, times is not None)
-    if not res.ok:
-        if not opts["json_out"]:
-            typer.echo(f"glideplan: {res.status.value}: {res.message}", err=True)
-        raise typer.Exit(1)
 
 
-def _emit(res: Any, opts: dict[str, Any], ranged: bool) -> None:
-    from glideplan.cli.common import announce, print_json
+def _emit(res: Any, opts: dict[str, Any], ranged: bool) -> NoReturn:
+    """The extra files (the corridor figure of a range, --geojson), then `cli.emit.emit`."""
+    from glideplan.cli.emit import emit
 
-    json_out = opts["json_out"]
+    exports = _write_files(res, opts, ranged)
+    emit(res, json=opts["json_out"], plot=opts["plot"], exports=exports or None,
+         summary=lambda r: _print(r.to_dict(), ranged), save_kw={"tight": False},
+         what="route")
+
+
+def _write_files(res: Any, opts: dict[str, Any], ranged: bool) -> dict[str, pathlib.Path]:
+    exports: dict[str, pathlib.Path] = {}
     out = res.to_dict()
-    if json_out:
-        print_json(out)
-    else:
-        for w in res.warnings:
-            typer.echo(f"glideplan: warning: {w}", err=True)
-        _print(out, ranged)
     ens = None
     if ranged and res.ensembles and res.best is not None:
         ens = res.ensembles[res.best]
     elif not ranged:
         ens = res
-    if opts["plot"] is not None:
-        from glideplan.routing.ensemble_plot import plot_departures, plot_ensemble
+    if opts["plot"] is not None and ranged and ens is not None:
+        from glideplan.routing.ensemble_plot import plot_ensemble
 
-        if ranged:
-            plot_departures(res, opts["plot"])
-            announce(f"wrote {opts['plot']}", json_out)
-            if ens is not None:
-                extra = opts["plot"].with_name(opts["plot"].stem + "_corridor"
-                                               + opts["plot"].suffix)
-                plot_ensemble(ens, extra)
-                announce(f"wrote {extra}", json_out)
-        else:
-            plot_ensemble(res, opts["plot"])
-            announce(f"wrote {opts['plot']}", json_out)
+        extra = opts["plot"].with_name(opts["plot"].stem + "_corridor" + opts["plot"].suffix)
+        plot_ensemble(ens, extra)
+        exports["corridor"] = extra
     if opts["geojson"] is not None:
         path: pathlib.Path = opts["geojson"]
         if ens is not None:
@@ -199,7 +189,8 @@ def _emit(res: Any, opts: dict[str, Any], ranged: bool) -> None:
                                                               "depart": out["best_departure"],
                                                               "duration_s": best.duration_s}}]}
         path.write_text(json.dumps(data, indent=1, allow_nan=False) + "\n", encoding="utf-8")
-        announce(f"wrote {path}", json_out)
+        exports["geojson"] = path
+    return exports
 
 
 def _hours(v: float | None) -> str:

@@ -81,7 +81,7 @@ def route_replay_command(
     baselines naive, plan_once and hindsight. Exit 0 reached, 1 not reached, 2 bad input."""
     import numpy as np
 
-    from glideplan.cli.common import announce, check_figure_file, print_json
+    from glideplan.cli.common import check_figure_file
     from glideplan.cli.route import parse_depart
     from glideplan.errors import InvalidParameterError
     from glideplan.routing.forecasts import open_forecasts
@@ -116,29 +116,21 @@ def route_replay_command(
     if follow not in ("track", "headings"):
         raise InvalidParameterError("--follow", follow, "must be track or headings")
     res = replay(flow, fcs, mission, ReplaySettings(resolution=resolution, follow=follow))
-    out = res.to_dict()
-    out["truth"] = str(truth)
-    out["forecasts"] = [p for fc in fcs for p in fc.paths]
-    if json_out:
-        print_json(out)
-    else:
-        for w in res.warnings:
-            typer.echo(f"glideplan: warning: {w}", err=True)
-        _print_summary(out)
-    if plot is not None:
-        from glideplan.routing.replay_plot import plot_replay
+    from dataclasses import replace
 
-        plot_replay(res, flow, plot)
-        announce(f"wrote {plot}", json_out)
+    from glideplan.cli.emit import emit
+
+    res = replace(res, sources={"truth": str(truth),
+                                "forecasts": [p for fc in fcs for p in fc.paths]})
+    exports: dict[str, pathlib.Path] = {}
     if geojson is not None:
         from glideplan.routing.replay_plot import write_replay_geojson
 
         write_replay_geojson(res, geojson)
-        announce(f"wrote {geojson}", json_out)
-    if out["status"] != "solved":
-        if not json_out:
-            typer.echo(f"glideplan: unreachable: {out['unreachable_reason']}", err=True)
-        raise typer.Exit(1)
+        exports["geojson"] = geojson
+    emit(res, json=json_out, plot=plot, exports=exports or None,
+         summary=lambda r: _print_summary(r.to_dict()), plot_kw={"truth": flow},
+         what="route replay")
 
 
 def _print_summary(out: dict[str, Any]) -> None:

@@ -304,7 +304,7 @@ PRODUCTS: tuple[ProductCase, ...] = (
     ProductCase(
         "route", "route: double gyre, 0.5 m/s",
         "fields.examples.double_gyre (Shadden et al. 2005); straight line with crab angle",
-        _route, _route_check, lambda r: {"field_": _gyre()},
+        _route, _route_check, lambda r: {"flow": _gyre()},
     ),
     ProductCase(
         "mission", "mission: GPX lawn-mower survey, 8 waypoints",

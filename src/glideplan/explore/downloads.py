@@ -22,18 +22,14 @@ def _message(errors: Mapping[str, str] | None) -> str:
 
 def solution_json(solution: Any, errors: Mapping[str, str] | None = None) -> str:
     """`Solution.to_dict()` written by the library's JSON encoder (`glideplan.jsonio`): the
-    object `plan --json` prints; without a solution, status `no_path` and why: "message"
-    (the page's messages, one line) and "errors" (by input name; "" for the page's own)."""
+    object `plan --json` prints; without a solution (refused input), no status
+    (`results.no_outcome_dict`) and why: "message" (the page's messages, one line) and
+    "errors" (by input name; "" for the page's own)."""
     from glideplan.jsonio import to_json
-    from glideplan.solution import Status
+    from glideplan.results import no_outcome_dict
 
     if solution is None:
-        out = {
-            "status": Status.NO_PATH.value,
-            "message": _message(errors) or "no solution",
-            "errors": dict(errors or {}),
-        }
-        return to_json(out) + "\n"
+        return to_json(no_outcome_dict(_message(errors) or "no solution", errors or {})) + "\n"
     return to_json(solution.to_dict()) + "\n"
 
 

@@ -41,6 +41,7 @@ from glideplan.explore.map_page import (
 )
 from glideplan.explore.state import one_line
 from glideplan.explore.texts import FastHtml, error_html, html_pane
+from glideplan.results import BAD_INPUT
 
 __all__ = ["EXAMPLE_ROUTE", "MissionPage", "MissionState", "mission_view"]
 
@@ -283,7 +284,7 @@ class MissionPage(MapPage):
         p = view.plan if view is not None else None
         cost = view.cost_text if view is not None else "n/a"
         status = (
-            "bad input"
+            BAD_INPUT
             if view is not None and view.errors
             else (str(getattr(p.status, "value", p.status)) if p is not None else "")
         )
@@ -318,9 +319,10 @@ class MissionPage(MapPage):
 
     def _json_file(self) -> io.StringIO:
         from glideplan.jsonio import to_json
+        from glideplan.results import no_outcome_dict
 
         p = self.view.plan if self.view is not None else None
-        out = p.to_dict() if p is not None else {"status": "no_path", "message": self._messages()}
+        out = p.to_dict() if p is not None else no_outcome_dict(self._messages())
         return io.StringIO(to_json(out) + "\n")
 
     def _gpx_file(self) -> io.BytesIO:

@@ -37,6 +37,7 @@ from glideplan.explore.map_page import (
 )
 from glideplan.explore.state import one_line
 from glideplan.explore.texts import FastHtml, html_pane
+from glideplan.results import BAD_INPUT
 
 __all__ = ["ReachPage", "ReachState", "hillshade", "reach_view"]
 
@@ -365,7 +366,7 @@ class ReachPage(MapPage):
             status = str(getattr(r.status, "value", r.status))
         else:
             cost, total, best = "n/a", "", "&ndash;"
-            status = "bad input" if view is not None and view.errors else ""
+            status = BAD_INPUT if view is not None and view.errors else ""
         return busy_html(
             item("reachable landables", f"{html.escape(cost)} {total}", "gp-cost")
             + item("best margin", best, "gp-word")

@@ -43,6 +43,7 @@ from glideplan.explore.map_page import (
 )
 from glideplan.explore.state import one_line
 from glideplan.explore.texts import FastHtml, error_html, html_pane
+from glideplan.results import BAD_INPUT
 
 __all__ = ["EXAMPLES", "RoutePage", "RouteState", "load_field", "route_view"]
 
@@ -611,7 +612,7 @@ class RoutePage(MapPage):
         r = view.result if view is not None else None
         cost = view.cost_text if view is not None else "n/a"
         if view is not None and view.errors:
-            status = "bad input"
+            status = BAD_INPUT
         elif r is not None:
             status = str(getattr(r.status, "value", r.status))
             if not r.ok and r.message:
@@ -649,10 +650,11 @@ class RoutePage(MapPage):
     # ----- downloads --------------------------------------------------------------------------
     def _json_file(self) -> io.StringIO:
         from glideplan.jsonio import to_json
+        from glideplan.results import no_outcome_dict
 
         r = self.view.result if self.view is not None else None
         if r is None:
-            out: dict[str, Any] = {"status": "no_path", "message": self._messages() or "no route"}
+            out: dict[str, Any] = no_outcome_dict(self._messages() or "no route")
         else:
             out = r.to_dict()
             source: dict[str, Any] = (

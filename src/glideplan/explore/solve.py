@@ -20,6 +20,7 @@ import numpy as np
 from glideplan.errors import InvalidParameterError
 from glideplan.explore.catalog import Catalog, PlannerEntry
 from glideplan.explore.state import ExploreState, Request, one_line, request
+from glideplan.results import BAD_INPUT
 
 __all__ = ["View", "cost_unit", "partition_image", "solve_view", "with_candidates"]
 
@@ -70,7 +71,7 @@ class View:
     @property
     def status(self) -> str:
         if self.errors:
-            return "bad input"
+            return BAD_INPUT
         if self.solution is None:
             return ""
         s = self.solution

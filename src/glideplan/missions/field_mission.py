@@ -24,15 +24,16 @@ import math
 import pathlib
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
 from glideplan.geodesy import LocalProjection, compass_to_heading
-from glideplan.missions.plan import LegTotals, Track
+from glideplan.missions.plan import LegTotals, Track, mission_outcome
 from glideplan.missions.route import Route
+from glideplan.results import Outcome, Reason
 from glideplan.solution import Status
 from glideplan.validation import check_positive
 
@@ -66,22 +67,29 @@ class FieldLeg:
         return bool(self.result.ok)
 
     @property
+    def status(self) -> Status:
+        return self.result.status
+
+    @property
+    def reason(self) -> Reason | None:
+        return self.result.reason
+
+    @property
     def status_text(self) -> str:
         """The leg's route status and message."""
         res = self.result
         return str(res.status) + (f": {res.message}" if getattr(res, "message", "") else "")
 
 
-@dataclass(frozen=True, eq=False)
-class FieldMission(LegTotals):
+@dataclass(frozen=True, eq=False, kw_only=True)
+class FieldMission(LegTotals, Outcome):
     """A mission routed through a field; the interface of `MissionPlan` the exporters use.
 
-    An `Outcome` (`glideplan.results`): status SOLVED or UNREACHABLE (a leg is). `warnings`:
+    An `Outcome` (`glideplan.results`): status SOLVED or the first failed leg's (UNREACHABLE,
+    NOT_VERIFIED; `missions.plan.mission_outcome`). `warnings`:
     the field's (`FlowField.warnings`) and the legs' routes', and headings given but not
     enforced.
     """
-
-    failure_status: ClassVar[Status] = Status.UNREACHABLE
 
     route: Route
     headings: NDArray[np.float64]
@@ -91,11 +99,7 @@ class FieldMission(LegTotals):
     stats: dict[str, Any] = field(default_factory=dict)
     objective: str = "time"
     radius: float | None = None
-    warnings: tuple[str, ...] = ()
-
-    @property
-    def ok(self) -> bool:
-        return all(leg.ok for leg in self.legs)
+    straight_legs: StraightLegList | None = None
 
     @property
     def depart_time(self) -> np.datetime64 | None:
@@ -175,9 +179,7 @@ class FieldMission(LegTotals):
         r = self.route
         assert r.lat is not None and r.lon is not None
         return self._with_track({
-            "status": self.status.value,
-            "message": self.message,
-            "warnings": list(self.warnings),
+            **super().to_dict(),
             "objective": "time",
             "speed": self.speed,
             "radius": self.radius,
@@ -295,7 +297,8 @@ def plan_mission_in_field(
         warnings += [w for w in leg.result.warnings if w not in warnings]
     warnings += [f"heading given at {name} is not enforced when routing through a field (the "
                  "router steers a point mass)" for name in stats["headings_not_enforced"]]
-    return FieldMission(route=route, headings=np.nan_to_num(h), legs=tuple(legs), speed=speed,
+    return FieldMission(**mission_outcome(legs, route.names), route=route,
+                        headings=np.nan_to_num(h), legs=tuple(legs), speed=speed,
                         field_info=info, stats=stats, radius=radius, warnings=tuple(warnings))
 
 

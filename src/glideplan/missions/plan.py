@@ -17,9 +17,9 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -35,15 +35,18 @@ from glideplan.missions.headings import (
 )
 from glideplan.missions.route import Route
 from glideplan.path import Path
+from glideplan.results import Outcome, Reason
 from glideplan.solution import Solution, Status
 from glideplan.track import Track, iso_times
 from glideplan.validation import check_finite, check_physical
 
 if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
     from glideplan.missions.straight_legs import StraightLegList
 
-__all__ = ["DEFAULT_MAX_DEVIATION_M", "MissionLeg", "MissionPlan", "Track", "plan_mission",
-           "wind_compass"]
+__all__ = ["DEFAULT_MAX_DEVIATION_M", "MissionLeg", "MissionPlan", "Track", "mission_outcome",
+           "plan_mission", "wind_compass"]
 
 OBJECTIVES = ("length", "time")
 # The straight-leg deviation of `to_dict()` when none is given (m): the CLI's default, half its
@@ -89,24 +92,48 @@ class MissionLeg:
         return self.solution.ok
 
     @property
+    def status(self) -> Status:
+        return self.solution.status
+
+    @property
+    def reason(self) -> Reason | None:
+        return self.solution.reason
+
+    @property
     def status_text(self) -> str:
         """The leg's status and message (`Solution`)."""
         sol = self.solution
         return sol.status.value + (f": {sol.message}" if sol.message else "")
 
 
+def mission_outcome(legs: Sequence[Any], names: Sequence[str]) -> dict[str, Any]:
+    """The `Outcome` fields of a mission from its legs (each with `ok`, `status`, `reason`,
+    `status_text`, `index`, `start`, `end`): SOLVED with the legs and totals when every leg
+    is, else the first failing leg's status and reason (NO_PATH, NOT_VERIFIED,
+    SOLVER_FAILED, UNREACHABLE, ...; reason LEG_FAILED when the leg gives none) and a message
+    naming the leg."""
+    for leg in legs:
+        if not leg.ok:
+            return {"status": leg.status, "reason": leg.reason or Reason.LEG_FAILED,
+                    "message": (f"leg {leg.index + 1} ({names[leg.start]} -> "
+                                f"{names[leg.end]}): {leg.status_text}")}
+    length = float(sum(leg.length_m for leg in legs))
+    duration = float(sum(leg.duration_s for leg in legs))
+    return {"status": Status.SOLVED, "reason": None,
+            "message": f"{len(legs)} legs, {length:.0f} m, {duration:.0f} s"}
+
+
 class LegTotals:
     """Totals over a mission's `legs` (each with `length_m`, `duration_s`, `ok`) and its
-    `headings`, and the `Outcome` contract's status, message and plot shared by the mission
-    results (`MissionPlan`, `glideplan.missions.FieldMission`)."""
+    `headings`, and the plot shared by the mission results (`MissionPlan`,
+    `glideplan.missions.FieldMission`; their status, message and reason: `mission_outcome`)."""
 
     legs: tuple[Any, ...]
     headings: NDArray[np.float64]
     route: Route
-    # the status of a mission that is not solved (a leg failed)
-    failure_status: ClassVar[Status] = Status.FAILED
-    warnings: tuple[str, ...] = ()
     stats: dict[str, Any]
+    # the exported straight-leg list (`missions.straight_legs`), set by whoever exported it
+    straight_legs: StraightLegList | None
     # (east, north) m/s the wind/current moves towards; None in still air or in a field
     wind_vector: tuple[float, float] | None = None
 
@@ -115,26 +142,6 @@ class LegTotals:
 
     def track_spacing(self, tolerance: float) -> float:
         raise NotImplementedError
-
-    @property
-    def ok(self) -> bool:
-        return all(leg.ok for leg in self.legs)
-
-    @property
-    def status(self) -> Status:
-        """SOLVED when every leg is, else `failure_status` (FAILED, or UNREACHABLE in a field)."""
-        return Status.SOLVED if self.ok else self.failure_status
-
-    @property
-    def message(self) -> str:
-        """One line: the legs and totals, or the first leg that failed and why."""
-        names = self.route.names
-        for leg in self.legs:
-            if not leg.ok:
-                why = getattr(leg, "status_text", "")
-                return f"leg {leg.index + 1} ({names[leg.start]} -> {names[leg.end]}): {why}"
-        return (f"{len(self.legs)} legs, {self.total_length_m:.0f} m, "
-                f"{self.total_duration_s:.0f} s")
 
     @property
     def total_length_m(self) -> float:
@@ -163,16 +170,18 @@ class LegTotals:
         """Compass bearing (deg) at each waypoint, chosen or given."""
         return [float(b) for b in np.atleast_1d(heading_to_compass(self.headings))]
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
-        """The mission figure (`glideplan.missions.plot.plot_mission`); returns the figure."""
+    def plot(self, ax: Any = None, **kwargs: Any) -> Figure:
+        """The mission figure (`glideplan.missions.plot.plot_mission`)."""
         from glideplan.missions.plot import plot_mission
+        from glideplan.results import as_figure
 
-        return plot_mission(self, ax=ax, **kwargs)  # type: ignore[arg-type]
+        legs = kwargs.pop("legs", self.straight_legs)
+        return as_figure(plot_mission(self, legs, ax=ax, **kwargs))  # type: ignore[arg-type]
 
     def track_json(self) -> dict[str, list[float]] | None:
         """The track of `--json`: lat/lon (deg, 1e-9; -180..180) of a geographic route, else
         x/y (m, 1e-4); None when a leg failed (no track)."""
-        if not self.ok:
+        if not all(leg.ok for leg in self.legs):
             return None
         track = self.track()
         proj = self.route.projection
@@ -188,7 +197,8 @@ class LegTotals:
         """`data` with the track and, in `stats`, the straight-leg list (`straight_legs`, a
         `StraightLegList`; default: the list within `DEFAULT_MAX_DEVIATION_M`)."""
         stats = dict(data.get("stats", {}))
-        if self.ok:
+        straight_legs = straight_legs or self.straight_legs
+        if all(leg.ok for leg in self.legs):
             if straight_legs is None:
                 from glideplan.missions.straight_legs import straight_leg_list
 
@@ -209,11 +219,12 @@ class LegTotals:
         return data
 
 
-@dataclass(frozen=True, eq=False)
-class MissionPlan(LegTotals):
+@dataclass(frozen=True, eq=False, kw_only=True)
+class MissionPlan(LegTotals, Outcome):
     """A planned mission: the route, chosen headings (rad), verified legs and statistics.
 
-    An `Outcome` (`glideplan.results`): status SOLVED (every leg verified) or FAILED.
+    An `Outcome` (`glideplan.results`): status SOLVED (every leg verified) or the first failed
+    leg's (`mission_outcome`).
     """
 
     route: Route
@@ -225,7 +236,7 @@ class MissionPlan(LegTotals):
     heading_plan: HeadingPlan
     wind_vector: tuple[float, float] | None = None  # (east, north) m/s, moving TOWARDS
     stats: dict[str, Any] = field(default_factory=dict)
-    warnings: tuple[str, ...] = ()
+    straight_legs: StraightLegList | None = None
     depart: np.datetime64 | None = None  # UTC of the departure: the waypoints' ETAs as times
 
     def track_spacing(self, tolerance: float) -> float:
@@ -266,9 +277,7 @@ class MissionPlan(LegTotals):
         r = self.route
         wind = None if self.wind_vector is None else wind_compass(self.wind_vector)
         return self._with_track({
-            "status": self.status.value,
-            "message": self.message,
-            "warnings": list(self.warnings),
+            **super().to_dict(),
             "objective": self.objective,
             "speed": self.speed,
             "radius": self.radius,
@@ -410,6 +419,7 @@ def plan_mission(
         }
     )
     return MissionPlan(
+        **mission_outcome(legs, route.names),
         route=route, headings=h, legs=tuple(legs), objective=objective, speed=speed,
         radius=radius, wind_vector=wind_vector, heading_plan=hp, stats=stats,
         warnings=tuple(route.warnings),  # what reading the route file skipped or assumed

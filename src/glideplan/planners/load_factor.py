@@ -289,7 +289,7 @@ def plan_load_factor(
             stats=stats,
             message=f"direct method failed: {res.message}",
             extras={"starts": starts},
-            solver_failed=True,
+            failure=Status.SOLVER_FAILED,
             warnings=res.warnings,
         )
     assert res.path is not None  # a solved DirectResult carries its path

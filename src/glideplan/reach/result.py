@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import pathlib
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -14,9 +14,12 @@ from glideplan.reach.flight import FlownPath
 from glideplan.reach.footprint import Polygon
 from glideplan.reach.model import Glide
 from glideplan.reach.problem import Landable
-from glideplan.solution import Status
+from glideplan.results import Outcome
 from glideplan.terrain.grid import Terrain
 from glideplan.track import Track
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = ["ReachPoint", "ReachResult"]
 
@@ -91,15 +94,13 @@ class ReachPoint:
         }
 
 
-@dataclass(frozen=True, eq=False)
-class ReachResult:
+@dataclass(frozen=True, eq=False, kw_only=True)
+class ReachResult(Outcome):
     """The glide reach (`glideplan.reach.glide_reach`): status SOLVED when the solve ran;
     points in the landables' order; footprint polygons (lon, lat rings); the front grid
     (lat, lon, altitude lost `arrival`, pooled terrain `z`, clearance `margin`); clipped:
     the terrain's sides the footprint reaches (it is cut there)."""
 
-    status: Status
-    message: str
     start: tuple[float, float, float]
     safety_height: float
     glide: Glide
@@ -117,15 +118,10 @@ class ReachResult:
     stop_reason: str
     front_steps: int = 0
     timings: dict[str, float] = field(default_factory=dict)
-    warnings: tuple[str, ...] = ()
     #: en-route terrain clearance (m) and arrival height above a field (m); None: both are
     #: `safety_height` (results built before the two heights existed)
     terrain_clearance: float | None = None
     arrival_height: float | None = None
-
-    @property
-    def ok(self) -> bool:
-        return self.status is Status.SOLVED
 
     @property
     def nodes(self) -> int:
@@ -134,8 +130,7 @@ class ReachResult:
     def to_dict(self) -> dict[str, Any]:
         lat, lon, alt = self.start
         return {
-            "status": self.status.value,
-            "message": self.message,
+            **super().to_dict(),
             "start": {"lat": lat, "lon": lon, "altitude_m": alt,
                       "ground_m": _num(float(self.terrain.elevation(lat, lon)))},
             "safety_height_m": self.safety_height,
@@ -153,7 +148,6 @@ class ReachResult:
                           "area_km2": self.footprint_area_km2()},
             "points": [p.to_dict() for p in self.points],
             "timings_s": dict(self.timings),
-            "warnings": list(self.warnings),
         }
 
     def footprint_coordinates(self) -> list[list[list[list[float]]]]:
@@ -173,11 +167,12 @@ class ReachResult:
         cell = (R * dlat) * R * np.cos(np.radians(self.lat)) * dlon
         return float(np.sum((self.margin >= 0) * cell[:, None]) / 1e6)
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+    def plot(self, ax: Any = None, **kwargs: Any) -> Figure:
         """Hillshade, footprint, landables coloured by margin, paths, wind (`reach.plot`)."""
         from glideplan.reach.plot import plot_reach
+        from glideplan.results import as_figure
 
-        return plot_reach(self, ax=ax, **kwargs)
+        return as_figure(plot_reach(self, ax=ax, **kwargs))
 
     def to_geojson(self) -> dict[str, Any]:
         from glideplan.reach.export import reach_geojson

@@ -22,18 +22,21 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import FlowField
-from glideplan.results import OutcomeBase
+from glideplan.results import Outcome
 from glideplan.routing.ensemble import EnsembleResult, RouteTask, run_task, summarise
 from glideplan.routing.result import RouteResult
 from glideplan.routing.route import GRID_TIME_TOLERANCE
 from glideplan.routing.settings import RouteSettings
 from glideplan.solution import Status
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = ["DepartureResult", "departure_times", "route_departures"]
 
@@ -64,12 +67,9 @@ def _iso(t: Any) -> Any:
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
-class DepartureResult(OutcomeBase):
+class DepartureResult(Outcome):
     """Routes (one field) or ensembles (members) per departure, and the best departure."""
 
-    status: Status
-    message: str = ""
-    warnings: tuple[str, ...] = ()
     departures: tuple[Any, ...] = ()
     routes: tuple[RouteResult, ...] = ()
     ensembles: tuple[EnsembleResult, ...] = ()
@@ -105,17 +105,16 @@ class DepartureResult(OutcomeBase):
         `best_departure`."""
         items: Sequence[Any] = self.ensembles or self.routes
         base = items[self.best if self.best is not None else 0]
-        out = base.to_dict()
-        out["status"] = self.status.value
-        out["message"] = self.message
+        out = {**base.to_dict(), **super().to_dict()}
         out["departures"] = self.rows()
         out["best_departure"] = None if self.best is None else _iso(self.departures[self.best])
         return out
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+    def plot(self, ax: Any = None, **kwargs: Any) -> Figure:
+        from glideplan.results import as_figure
         from glideplan.routing.ensemble_plot import departure_figure
 
-        return departure_figure(self, ax=ax, **kwargs)
+        return as_figure(departure_figure(self, ax=ax, **kwargs))
 
 
 def _best(keys: Sequence[tuple[float, float]]) -> int | None:

@@ -27,17 +27,20 @@ import math
 import pathlib
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import FlowField, GriddedField
-from glideplan.results import OutcomeBase
+from glideplan.results import Outcome
 from glideplan.routing.result import RouteResult
 from glideplan.routing.settings import RouteSettings
 from glideplan.solution import Status
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = [
     "BATCH_CELLS",
@@ -217,12 +220,9 @@ def corridor_envelope(tracks: Sequence[tuple[FloatArray, FloatArray]],
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
-class EnsembleResult(OutcomeBase):
+class EnsembleResult(Outcome):
     """The ensemble's answer (module docstring): member routes, statistics, the chosen route."""
 
-    status: Status
-    message: str = ""
-    warnings: tuple[str, ...] = ()
     members: tuple[str, ...] = ()
     routes: tuple[RouteResult, ...] = ()
     max_duration_s: float | None = None
@@ -281,17 +281,16 @@ class EnsembleResult(OutcomeBase):
     def to_dict(self) -> dict[str, Any]:
         """The chosen route's JSON (the first member's if none) plus `ensemble`."""
         base = self.chosen_route or (self.routes[0] if self.routes else None)
-        out: dict[str, Any] = base.to_dict() if base is not None else {}
-        out["status"] = self.status.value
-        out["message"] = self.message
-        out["warnings"] = list(self.warnings)
+        out: dict[str, Any] = {**(base.to_dict() if base is not None else {}),
+                               **super().to_dict()}
         out["ensemble"] = self.summary()
         return out
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+    def plot(self, ax: Any = None, **kwargs: Any) -> Figure:
+        from glideplan.results import as_figure
         from glideplan.routing.ensemble_plot import ensemble_figure
 
-        return ensemble_figure(self, **kwargs)
+        return as_figure(ensemble_figure(self, ax=ax, **kwargs))
 
 
 def _member_limit(fields: Sequence[FlowField], routes: Sequence[RouteResult], speed: float,

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -26,21 +26,24 @@ from numpy.typing import NDArray
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import FlowField
 from glideplan.geodesy import LocalProjection
-from glideplan.results import OutcomeBase
+from glideplan.results import Outcome, Reason
 from glideplan.routing.route import RouteResult
 from glideplan.routing.verify import local_current
 from glideplan.simulation.disturbances import VelocityFunction
 from glideplan.solution import Status
 from glideplan.track import Track
 
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
 __all__ = ["FlyablePath", "GliderFollow", "TrochoidChain", "flyable_path", "follow_route",
-           "trochoid_chain"]
+           "trochoid_chain", "with_flyable_path"]
 
 FloatArray = NDArray[np.float64]
 
 
-@dataclass(frozen=True, eq=False)
-class GliderFollow(OutcomeBase):
+@dataclass(frozen=True, eq=False, kw_only=True)
+class GliderFollow(Outcome):
     """Outcome of building and following the flyable path (m, s): an `Outcome`.
 
     status: SOLVED (crossed the goal's finish line), LOST (stopped on land, off the field or
@@ -48,7 +51,6 @@ class GliderFollow(OutcomeBase):
     the simulated vehicle, geographic, heading its ground course.
     """
 
-    status: Status
     radius_m: float
     disturbance_ratio: float
     feasible_radius_m: float | None
@@ -58,14 +60,12 @@ class GliderFollow(OutcomeBase):
     max_cross_track_m: float | None = None
     rms_cross_track_m: float | None = None
     final_distance_m: float | None = None
-    message: str = ""
     track: Track = field(default_factory=Track.empty)
     flyable: FlyablePath | None = None
-    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         return {
-            "status": self.status.value,
+            **super().to_dict(),
             "radius_m": self.radius_m,
             "disturbance_ratio": self.disturbance_ratio,
             "feasible_radius_m": self.feasible_radius_m,
@@ -75,17 +75,17 @@ class GliderFollow(OutcomeBase):
             "max_cross_track_m": self.max_cross_track_m,
             "rms_cross_track_m": self.rms_cross_track_m,
             "final_distance_m": self.final_distance_m,
-            "message": self.message,
-            "warnings": list(self.warnings),
             "track": self.track.to_dict() if self.track.size else {},
         }
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+    def plot(self, ax: Any = None, **kwargs: Any) -> Figure:
         """The followed track (lon, lat; deg)."""
         from glideplan.plotting import plot_track
+        from glideplan.results import as_figure
 
-        return plot_track(self.track, ax, label=f"glider following, R0 = {self.radius_m:.4g} m",
-                          title=f"following: {self.status.value}", **kwargs)
+        label = f"glider following, R0 = {self.radius_m:.4g} m"
+        return as_figure(plot_track(self.track, ax, label=label,
+                                    title=f"following: {self.status.value}", **kwargs))
 
 
 def _waypoints(x: FloatArray, y: FloatArray, spacing: float) -> FloatArray:
@@ -198,7 +198,8 @@ def follow_route(
     eps, r_f, proj = fp.disturbance_ratio, fp.feasible_radius_m, fp.proj
     if fp.path is None:
         return GliderFollow(status=Status.INFEASIBLE, radius_m=radius, disturbance_ratio=eps,
-                            feasible_radius_m=None, message=fp.message, flyable=fp)
+                            feasible_radius_m=None, message=fp.message, flyable=fp,
+                            reason=Reason.NO_FEASIBLE_RADIUS)
     path_length = fp.length_m
     t0 = result.depart_s
     settings = FollowerSettings(
@@ -219,11 +220,13 @@ def follow_route(
     every = np.unique(np.r_[np.arange(0, steps + 1, 20), steps])
     lat, lon = proj.to_geographic(xy[every, 0], xy[every, 1])
     status, message = Status.SOLVED, "followed to the goal's finish line"
+    reason: Reason | None = None
     if not res.crossed[0]:
         status = Status.LOST
         if res.stopped is not None and res.stopped[0]:
-            message = _why_stopped(field_, proj, t0 + steps * settings.dt, xy[-1])
+            reason, message = _why_stopped(field_, proj, t0 + steps * settings.dt, xy[-1])
         else:
+            reason = Reason.TIMEOUT
             message = "did not cross the goal's finish line before the time-out"
     end = fp.path.end[0]
     final = float(res.error[0]) if res.crossed[0] else math.hypot(
@@ -235,7 +238,7 @@ def follow_route(
         status=status, radius_m=radius, disturbance_ratio=eps, feasible_radius_m=r_f,
         legs=fp.pieces, path_length_m=path_length, duration_s=float(res.time[0]),
         max_cross_track_m=float(e.max()), rms_cross_track_m=float(np.sqrt(np.mean(e**2))),
-        final_distance_m=final, message=message,
+        final_distance_m=final, message=message, reason=reason,
         track=Track(every * settings.dt, px, py, course, lat=lat, lon=lon),
         flyable=fp,
     )
@@ -316,16 +319,17 @@ def _local_velocity(field_: FlowField, proj: LocalProjection) -> VelocityFunctio
     return velocity
 
 
-def _why_stopped(field_: FlowField, proj: LocalProjection, t: float, xy: FloatArray) -> str:
+def _why_stopped(field_: FlowField, proj: LocalProjection, t: float, xy: FloatArray
+                 ) -> tuple[Reason, str]:
     try:
         local_current(field_, proj, t, xy[:1], xy[1:2])
     except InvalidParameterError as exc:
-        return f"the vehicle left the field ({exc})"
-    return "the vehicle reached land"
+        return Reason.LEFT_FIELD, f"the vehicle left the field ({exc})"
+    return Reason.LAND, "the vehicle reached land"
 
 
-@dataclass(frozen=True, eq=False)
-class TrochoidChain(OutcomeBase):
+@dataclass(frozen=True, eq=False, kw_only=True)
+class TrochoidChain(Outcome):
     """The route's flyable path from trochoid pieces (m, s): each piece the minimum-time path of
     the Dubins car in the piece's mean current (`planners.wind.convected_dubins`, dissertation
     §3.2), planned with R0' = R0 (1 + eps')^2 for the residual eps' = max |c - c_mean| / V.
@@ -336,7 +340,6 @@ class TrochoidChain(OutcomeBase):
     field itself (`routing.verify.integrate_headings`), distance from the route's end.
     """
 
-    status: Status
     residual_ratio: float
     feasible_radius_m: float | None
     pieces: int = 0
@@ -344,22 +347,37 @@ class TrochoidChain(OutcomeBase):
     ground_length_m: float = 0.0
     max_piece_error_m: float | None = None
     field_endpoint_error_m: float | None = None
-    message: str = ""
     track: Track = field(default_factory=Track.empty)
-    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {k: getattr(self, k) for k in (
             "residual_ratio", "feasible_radius_m", "pieces", "duration_s",
-            "ground_length_m", "max_piece_error_m", "field_endpoint_error_m", "message")}
-        return {"status": self.status.value, **out, "warnings": list(self.warnings)}
+            "ground_length_m", "max_piece_error_m", "field_endpoint_error_m")}
+        return {**super().to_dict(), **out}
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+    def plot(self, ax: Any = None, **kwargs: Any) -> Figure:
         """The chain's waypoint poses (lon, lat; deg)."""
         from glideplan.plotting import plot_track
+        from glideplan.results import as_figure
 
-        return plot_track(self.track, ax, label=f"trochoid chain, {self.pieces} pieces",
-                          title=f"trochoid chain: {self.status.value}", **kwargs)
+        label = f"trochoid chain, {self.pieces} pieces"
+        return as_figure(plot_track(self.track, ax, label=label,
+                                    title=f"trochoid chain: {self.status.value}", **kwargs))
+
+
+def with_flyable_path(result: RouteResult, field_: FlowField, speed: float,
+                      radius: float) -> RouteResult:
+    """`result` with its flyable path of turn radius `radius` (m) followed through the field
+    (`follow_route`: `result.glider`) and, unless no radius is feasible, its trochoid chain
+    (`trochoid_chain`: `result.trochoid`); a route that is not solved is returned as is."""
+    from dataclasses import replace
+
+    if not result.ok:
+        return result
+    glider = follow_route(result, field_, speed, radius)
+    chain = (None if glider.status is Status.INFEASIBLE
+             else trochoid_chain(result, field_, speed, radius))
+    return replace(result, glider=glider, trochoid=chain)
 
 
 def trochoid_chain(
@@ -398,7 +416,7 @@ def trochoid_chain(
     residual = float(np.max(np.hypot(cx - mean[piece, 0], cy - mean[piece, 1]))) / speed
     if float(np.max(np.hypot(mean[:, 0], mean[:, 1]))) / speed + residual >= 1.0:
         return TrochoidChain(status=Status.INFEASIBLE, residual_ratio=residual,
-                             feasible_radius_m=None,
+                             feasible_radius_m=None, reason=Reason.NO_FEASIBLE_RADIUS,
                              message="mean current + residual reach the speed: no feasible "
                              "radius (|c| + eps' V must be < V)")
     r_f = float(feasible_radius(radius, residual))

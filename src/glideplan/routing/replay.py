@@ -39,15 +39,20 @@ import math
 import time as timer
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import FlowField
+from glideplan.results import Outcome, Reason
 from glideplan.routing.forecasts import Forecast, mean_current, newest, planning_field
 from glideplan.routing.steering import _follow, _naive, _tracker
+from glideplan.solution import Status
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = ["REASONS", "Flight", "Mission", "Plan", "ReplayResult", "ReplaySettings", "replay"]
 
@@ -141,15 +146,26 @@ class Flight:
                 "unreachable_reason": self.reason}
 
 
-@dataclass(frozen=True, eq=False)
-class ReplayResult:
-    """The replay (closed loop) and its baselines (module docstring)."""
+@dataclass(frozen=True, eq=False, kw_only=True)
+class ReplayResult(Outcome):
+    """The replay (closed loop) and its baselines (module docstring): an `Outcome` whose status
+    and reason are the closed loop's flight's (SOLVED, or UNREACHABLE with reason
+    max_duration / field_extent / aground)."""
 
     mission: Mission
     flight: Flight
     baselines: dict[str, Flight]
-    warnings: tuple[str, ...] = ()
     stats: dict[str, Any] = field(default_factory=dict)
+    #: where the truth and forecasts came from (JSON "truth", "forecasts"; set by the CLI)
+    sources: dict[str, Any] = field(default_factory=dict)
+
+    def plot(self, ax: Any = None, truth: FlowField | None = None, **kwargs: Any) -> Figure:
+        """The flown track, its plans and the baselines (`replay_plot.replay_figure`), over
+        the truth's current when `truth` (a FlowField) is given."""
+        from glideplan.results import as_figure
+        from glideplan.routing.replay_plot import replay_figure
+
+        return as_figure(replay_figure(self, truth, ax=ax))
 
     def regret_s(self) -> float | None:
         """Replay duration minus hindsight duration (s), when both arrived."""
@@ -164,14 +180,15 @@ class ReplayResult:
         arrival = None if f.duration_s is None else str(
             (dep + np.timedelta64(round(f.duration_s), "s")).astype("datetime64[s]")) + "Z"
         return {
-            "status": f.status, "unreachable_reason": f.reason, "duration_s": f.duration_s,
+            **super().to_dict(),
+            "unreachable_reason": f.reason, "duration_s": f.duration_s,
             "depart": str(dep.astype("datetime64[s]")) + "Z", "arrival_time": arrival,
             "track": {"time_s": f.t.tolist(), "lat": f.lat.tolist(),
                       "lon": (((f.lon + 180.0) % 360.0) - 180.0).tolist()},
             "replans": [p.to_dict() for p in f.plans],
             "baselines": {k: b.summary() for k, b in self.baselines.items()},
             "regret_s": self.regret_s(),
-            "warnings": list(self.warnings), "stats": dict(self.stats),
+            "stats": dict(self.stats), **self.sources,
         }
 
 
@@ -487,5 +504,8 @@ def replay(truth: FlowField, forecasts: list[Forecast], mission: Mission,
                     "replaces it); first: " + warnings[0]]
     stats = {"replay_s": round(t_replay, 3), "total_s": round(timer.perf_counter() - clock, 3),
              "replans": len(flight.plans)}
-    return ReplayResult(mission, flight, {"naive": naive, "plan_once": once,
-                                          "hindsight": hindsight}, tuple(warnings), stats)
+    return ReplayResult(status=Status(flight.status),
+                        reason=None if flight.reason is None else Reason(flight.reason),
+                        mission=mission, flight=flight,
+                        baselines={"naive": naive, "plan_once": once, "hindsight": hindsight},
+                        warnings=tuple(warnings), stats=stats)

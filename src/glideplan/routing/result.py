@@ -3,10 +3,11 @@
 Built by keyword, frozen. status: `Status.SOLVED` (the heading controls, flown through the
 field itself, end within `endpoint_tolerance_m` of the goal, in the water and in the field),
 `Status.NOT_VERIFIED` (they miss by more, or touch land, or leave the field: the track and
-times are kept, `message` says by how much) or `Status.UNREACHABLE` (`unreachable_reason`:
-"front_stopped" -- the reachable set stopped growing; "field_extent" -- it reached the
-field's edge (or +-85 deg latitude) without the goal; "time_span" -- the field's last time
-came first; "max_duration" -- the given (or default) longest duration came first;
+times are kept, `message` says by how much) or `Status.UNREACHABLE` (`reason`, a
+`glideplan.results.Reason`; `unreachable_reason` its word: "front_stopped" -- the
+reachable set stopped growing; "field_extent" -- it reached the field's edge (or +-85 deg
+latitude) without the goal; "time_span" -- the field's last time came first;
+"max_duration" -- the given (or default) longest duration came first;
 "window_limit" -- the window would exceed `RouteSettings.max_nodes` (a coarser grid goes on);
 "outside_drift_cone" -- the goal lies outside the set the current and the vehicle's speed can
 reach at all (`routing.extract.drift_cone`: found before any front, at any resolution);
@@ -24,20 +25,26 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from glideplan.solution import Status
+from glideplan.results import Outcome, Reason
 from glideplan.track import Track
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from glideplan.fields.field import FlowField
 
 __all__ = ["UNREACHABLE_REASONS", "FrontMap", "RouteResult"]
 
 FloatArray = NDArray[np.float64]
 
-UNREACHABLE_REASONS = ("front_stopped", "field_extent", "time_span", "max_duration",
-                       "window_limit", "outside_drift_cone", "polar_limit", "missing_data")
+UNREACHABLE_REASONS = tuple(Reason(r) for r in (
+    "front_stopped", "field_extent", "time_span", "max_duration", "window_limit",
+    "outside_drift_cone", "polar_limit", "missing_data"))
 
 
 @dataclass(frozen=True, eq=False)
@@ -51,13 +58,10 @@ class FrontMap:
     obstacles: FloatArray | None = None
 
 
-@dataclass(frozen=True, eq=False)
-class RouteResult:
+@dataclass(frozen=True, eq=False, kw_only=True)
+class RouteResult(Outcome):
     """A route's outcome (module docstring)."""
 
-    status: Status
-    message: str = ""
-    warnings: tuple[str, ...] = ()
     start: tuple[float, float] = (0.0, 0.0)
     goal: tuple[float, float] = (0.0, 0.0)
     speed: float = 0.0
@@ -73,19 +77,19 @@ class RouteResult:
     refined_duration_s: float | None = None
     method: str = "none"
     best_distance_m: float = 0.0
-    unreachable_reason: str | None = None
     land_clearance_m: float = 0.0
     field_info: Mapping[str, Any] = field(default_factory=dict)
     stats: Mapping[str, Any] = field(default_factory=dict)
     front: FrontMap | None = None
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "status", Status(self.status))
-        object.__setattr__(self, "warnings", tuple(self.warnings))
+    #: the flyable path followed through the field (`routing.glider.with_flyable_path`:
+    #: a `GliderFollow`) and its trochoid chain (a `TrochoidChain`); JSON "glider"
+    glider: Any = None
+    trochoid: Any = None
 
     @property
-    def ok(self) -> bool:
-        return self.status is Status.SOLVED
+    def unreachable_reason(self) -> str | None:
+        """The reason's word when unreachable (the former field; JSON keeps the key)."""
+        return None if self.reason is None else self.reason.value
 
     # The track's arrays, by the names missions, the glider path and the figures use.
     @property
@@ -127,9 +131,7 @@ class RouteResult:
         track = self.track.to_dict() if self.track.size else {
             "t": [], "lat": [], "lon": [], "heading_deg": []}
         return {
-            "status": self.status.value,
-            "message": self.message,
-            "warnings": list(self.warnings),
+            **super().to_dict(),
             "duration_s": self.duration_s,
             "distance_m": self.distance_m,
             "depart": iso(self.depart) if self.depart is not None else self.depart_s,
@@ -147,11 +149,16 @@ class RouteResult:
             "land_clearance_m": self.land_clearance_m,
             "field": dict(self.field_info),
             "stats": dict(self.stats),
+            **({} if self.glider is None else {"glider": {
+                **self.glider.to_dict(),
+                **({} if self.trochoid is None else {"trochoid": self.trochoid.to_dict()})}}),
         }
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
-        """The route's figure (`glideplan.routing.plot.route_figure`); `field_=` the FlowField
+    def plot(self, ax: Any = None, flow: FlowField | None = None, **kwargs: Any) -> Figure:
+        """The route's figure (`glideplan.routing.plot.route_figure`); `flow` (a FlowField)
         draws land and the current (without it: the track, the front and the goal)."""
+        from glideplan.results import as_figure
         from glideplan.routing.plot import route_figure
 
-        return route_figure(self, kwargs.pop("field_", None), ax=ax, **kwargs)
+        kwargs.setdefault("glider", self.glider)
+        return as_figure(route_figure(self, flow, ax=ax, **kwargs))

@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 
 from glideplan.errors import InvalidParameterError
+from glideplan.results import Reason
 from glideplan.routing.result import FrontMap, RouteResult
 from glideplan.routing.settings import RouteSettings
 from glideplan.solution import Status
@@ -114,7 +115,7 @@ def route(
         stats["spacing_m"] = phases.spacing_for(problem)
         return RouteResult(status=Status.UNREACHABLE, message=cone.message,
                            warnings=tuple(warnings), best_distance_m=problem.distance_m,
-                           unreachable_reason=cone.reason, stats=stats, **common)
+                           reason=Reason(cone.reason), stats=stats, **common)
     rg = phases.grid(problem)
     tolerance = settings.endpoint_tolerance_cells * rg.spacing_m
     lap("grid")
@@ -169,7 +170,7 @@ def route(
                    f"{MAX_LAT_DEG:g} deg")
         return RouteResult(status=Status.UNREACHABLE, message=msg, warnings=tuple(warnings),
                            straight_line_duration_s=straight, best_distance_m=fo.closest_m,
-                           unreachable_reason=why, stats=stats, **common)
+                           reason=Reason(why), stats=stats, **common)
 
     grid_T = fo.goal_time - problem.t0
     # where the current reaches the vehicle's speed, the characteristic's own controls

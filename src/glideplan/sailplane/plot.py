@@ -103,15 +103,28 @@ def draw_final_glide(d: FinalGlideDrawing, filename: str | pathlib.Path) -> None
     save_figure(final_glide_figure(d), filename)
 
 
-def final_glide_figure(d: FinalGlideDrawing) -> Any:
+def _two_panels(ax: Any) -> tuple[Any, tuple[Any, Any]]:
+    """The figure and the two panels: new, the pair given, or side by side inside one axes."""
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        fig, pair = plt.subplots(1, 2, figsize=(12, 5.6), layout="constrained")
+        return fig, (pair[0], pair[1])
+    if isinstance(ax, (tuple, list)) or hasattr(ax, "flat"):
+        ax1, ax2 = list(getattr(ax, "flat", ax))[:2]
+        return ax1.figure, (ax1, ax2)
+    ax.set_axis_off()
+    return ax.figure, (ax.inset_axes((0.0, 0.0, 0.45, 1.0)), ax.inset_axes((0.55, 0.0, 0.45, 1.0)))
+
+
+def final_glide_figure(d: FinalGlideDrawing, ax: Any = None) -> Any:
     """Left: ground track (km, x east, y north) with start and goal and the track direction
     there, and the wind (arrow where it blows to, labelled with speed and the direction it
     blows from). Right: altitude (m) against ground distance (km) with the goal elevation,
     the safety height and the arrival. Legends below the panels; the title states the problem
-    (`d.title`, the wind) and the answer (`glide_summary`)."""
-    import matplotlib.pyplot as plt
-
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 5.6), layout="constrained")
+    (`d.title`, the wind) and the answer (`glide_summary`). `ax`: a pair of axes for the two
+    panels, or one axes whose area the two panels share (None: a new figure)."""
+    fig, (ax1, ax2) = _two_panels(ax)
     below = {"loc": "upper center", "bbox_to_anchor": (0.5, -0.14), "borderaxespad": 0.0,
              "fontsize": 8, "ncol": 2}
     xk, yk = d.x / 1000, d.y / 1000

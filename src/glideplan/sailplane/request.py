@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from glideplan.errors import InvalidParameterError
+from glideplan.results import Outcome, Reason
 from glideplan.sailplane.straight import straight_final_glide
 from glideplan.solution import Status
 from glideplan.track import Track
@@ -31,6 +32,8 @@ from glideplan.validation import check_finite, check_nonnegative
 from glideplan.vehicles.sailplane_polar import SailplanePolar
 
 if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
     from glideplan.solution import Solution
 
 __all__ = ["FinalGlide", "FinalGlideDrawing", "final_glide", "run_final"]
@@ -54,8 +57,8 @@ class FinalGlideDrawing:
     wind_from_deg: float | None = None
 
 
-@dataclass(frozen=True, eq=False)
-class FinalGlide:
+@dataclass(frozen=True, eq=False, kw_only=True)
+class FinalGlide(Outcome):
     """The outcome of `final_glide()`: an `Outcome` (`glideplan.results`).
 
     status SOLVED / BELOW_GLIDE / UNREACHABLE (module docstring); altitudes in m (None when
@@ -66,8 +69,6 @@ class FinalGlide:
     (speeds to fly, the straight glide, the path's word, endpoint error, ...).
     """
 
-    status: Status
-    message: str
     polar: SailplanePolar
     distance_m: float
     wind: tuple[float, float]
@@ -79,11 +80,6 @@ class FinalGlide:
     drawing: FinalGlideDrawing
     details: Mapping[str, Any] = field(default_factory=dict)
     solution: Solution | None = None
-    warnings: tuple[str, ...] = ()
-
-    @property
-    def ok(self) -> bool:
-        return self.status is Status.SOLVED
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON object of `glideplan glide final --json`."""
@@ -92,17 +88,16 @@ class FinalGlide:
             "altitude_required_m": self.altitude_required_m,
             "arrival_margin_m": self.arrival_margin_m,
             "glide_ratio_required": self.glide_ratio_required,
-            "status": self.status.value,
-            "message": self.message,
-            "warnings": list(self.warnings),
+            **super().to_dict(),
         }
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
-        """Ground track and altitude profile (`sailplane.plot.final_glide_figure`); returns the
-        figure (two panels: `ax` is not used)."""
+    def plot(self, ax: Any = None, **kwargs: Any) -> Figure:
+        """Ground track and altitude profile (`sailplane.plot.final_glide_figure`): two panels,
+        in a new figure, in the pair of axes `ax`, or side by side inside the one axes `ax`."""
+        from glideplan.results import as_figure
         from glideplan.sailplane.plot import final_glide_figure
 
-        return final_glide_figure(self.drawing)
+        return as_figure(final_glide_figure(self.drawing, ax=ax))
 
 
 def _finite(v: float | None) -> float | None:
@@ -115,6 +110,54 @@ def _wind_from_deg(wind: tuple[float, float]) -> float:
 
     b = float(heading_to_compass(math.atan2(-wind[1], -wind[0])))
     return round(b, 9) % 360.0  # round-off of the vector's components, not the data
+
+
+@dataclass(frozen=True, eq=False)
+class FinalGlideRequest:
+    """The final-glide problem, checked (`final_glide_request`): the polar, start (lat, lon,
+    altitude m), goal (lat, lon, elevation m), MC (m/s), the wind (east, north) m/s towards
+    (`wind_given`: False in still air), safety height (m), the compass headings (deg; None
+    free / straight), bank limit (deg) and the number of track samples."""
+
+    polar: SailplanePolar
+    start: tuple[float, float, float]
+    goal: tuple[float, float, float]
+    mc: float
+    wind: tuple[float, float]
+    wind_given: bool
+    safety_height: float
+    arrival_heading: float | None
+    start_heading: float | None
+    bank_max: float
+    track_points: int
+
+
+@dataclass(frozen=True, eq=False)
+class _Frame:
+    """The local plane about the start: projection, goal (gx, gy) m, distance (m), track
+    angle (rad CCW from east), and the arrival heading still to plan (None: straight)."""
+
+    proj: Any
+    gx: float
+    gy: float
+    dist: float
+    track: float
+    arrival_heading: float | None
+
+
+@dataclass(frozen=True, eq=False)
+class _Glide:
+    """One solve step's answer: the altitude loss (m; inf when no airspeed makes progress),
+    its JSON details, the drawing, the samples' times (s) and air headings (rad) of a planned
+    path (None: straight), the verified `Solution`, and a failed plan (status, message)."""
+
+    loss: float
+    details: dict[str, Any]
+    drawing: FinalGlideDrawing
+    times: np.ndarray | None = None
+    headings: np.ndarray | None = None
+    solution: Solution | None = None
+    failed: Solution | None = None
 
 
 def final_glide(
@@ -136,9 +179,50 @@ def final_glide(
     wind: (east, north) velocity of the air (m/s, towards), None for still air;
     safety_height: arrival height above the goal (m); arrival_heading, start_heading: compass
     degrees (start heading None: the best one); bank_max: bank limit in turns (degrees).
-    Bad input raises `InvalidParameterError` naming the parameter (`start latitude`, `mc`, ...).
+    Bad input raises `InvalidParameterError` naming the parameter (`start latitude`, `mc`, ...);
+    a plan to the arrival heading that fails is a status (its own), never an exception.
+
+    A pipeline: the request (`final_glide_request`), the local frame (`_frame`), the straight
+    glide (always), one solve step (`_straight`, `_no_progress` or `_arrival`), the result
+    (`_final`).
     """
-    from glideplan.geodesy import LocalProjection, check_latlon, heading_to_compass
+    req = final_glide_request(polar, start, goal, mc=mc, wind=wind, safety_height=safety_height,
+                              arrival_heading=arrival_heading, start_heading=start_heading,
+                              bank_max=bank_max, track_points=track_points)
+    frame = _frame(req)
+    sg = straight_final_glide(req.polar, frame.dist, frame.track, wind=req.wind, mc=req.mc,
+                              start_altitude=req.start[2], goal_elevation=req.goal[2],
+                              safety_height=req.safety_height)
+    row = sg.row()
+    if frame.dist <= 0.0:  # start = goal: nothing to fly (as plan() answers a start = goal)
+        row.update(altitude_loss=0.0, duration=0.0)
+    title = (f"{polar.name} ({polar.mass_kg:.0f} kg): final glide {frame.dist / 1000:.1f} km "
+             f"on bearing {_bearing(frame):.0f}°, MC {req.mc:g} m/s")
+    if frame.arrival_heading is None:
+        step = _straight(req, frame, row, title)
+    elif not math.isfinite(row["altitude_loss"]):
+        step = _no_progress(req, frame, row, title)  # no path to plan
+    else:
+        step = _arrival(req, frame, row, title)
+    return _final(req, frame, row, step)
+
+
+def final_glide_request(
+    polar: SailplanePolar,
+    start: tuple[float, float, float],
+    goal: tuple[float, float, float],
+    *,
+    mc: float = 0.0,
+    wind: tuple[float, float] | None = None,
+    safety_height: float = 300.0,
+    arrival_heading: float | None = None,
+    start_heading: float | None = None,
+    bank_max: float = 45.0,
+    track_points: int = 200,
+) -> FinalGlideRequest:
+    """`final_glide`'s arguments checked into a `FinalGlideRequest` (bad input raises
+    `InvalidParameterError` naming the parameter)."""
+    from glideplan.geodesy import check_latlon
 
     lat0, lon0, alt0 = start
     lat1, lon1, elev1 = goal
@@ -150,11 +234,22 @@ def final_glide(
     safety = check_nonnegative("safety_height", safety_height)
     wx, wy = (0.0, 0.0) if wind is None else (
         check_finite("wind east", wind[0]), check_finite("wind north", wind[1]))
-    wind_speed = math.hypot(wx, wy)
-    proj = LocalProjection(float(lat0), float(lon0))
+    return FinalGlideRequest(polar, (float(lat0), float(lon0), alt0),
+                             (float(lat1), float(lon1), elev1), mc, (wx, wy), wind is not None,
+                             safety, arrival_heading, start_heading, bank_max, track_points)
+
+
+def _frame(req: FinalGlideRequest) -> _Frame:
+    """The local plane about the start and the goal in it; a start = goal with a free (or
+    the same) start heading needs no turn: no arrival heading to plan."""
+    from glideplan.geodesy import LocalProjection
+
+    (lat0, lon0, _), (lat1, lon1, _) = req.start, req.goal
+    proj = LocalProjection(lat0, lon0)
     gx, gy = (float(v) for v in proj.to_local(lat1, lon1))
     proj.check_extent(np.array([lat0, lat1]), np.array([lon0, lon1]))
     dist = math.hypot(gx, gy)
+    arrival_heading, start_heading = req.arrival_heading, req.start_heading
     same_heading = start_heading is None or (arrival_heading is not None and abs(
         math.remainder(float(start_heading) - float(arrival_heading), 360.0)) < 1e-9)
     if dist <= 0.0 and arrival_heading is not None:
@@ -166,21 +261,18 @@ def final_glide(
         # start = goal, heading free or equal: the glider is there, on the arrival heading:
         # solved with zero loss, as plan() answers a start = goal
         arrival_heading = None
-    track = math.atan2(gy, gx)
-    sg = straight_final_glide(
-        polar,
-        dist,
-        track,
-        wind=(wx, wy),
-        mc=mc,
-        start_altitude=alt0,
-        goal_elevation=elev1,
-        safety_height=safety,
-    )
-    row = sg.row()
-    if dist <= 0.0:  # start = goal: nothing to fly (as plan() answers a start = goal)
-        row.update(altitude_loss=0.0, duration=0.0)
-    straight = {
+    return _Frame(proj, gx, gy, dist, math.atan2(gy, gx), arrival_heading)
+
+
+def _bearing(frame: _Frame) -> float:
+    from glideplan.geodesy import heading_to_compass
+
+    return float(heading_to_compass(frame.track))
+
+
+def _straight_json(row: dict[str, float]) -> dict[str, Any]:
+    """The straight glide's JSON (speeds km/h, winds m/s, crab deg, duration s)."""
+    return {
         "altitude_loss_m": _finite(row["altitude_loss"]),
         "speed_to_fly_kmh": _finite(row["speed"] * 3.6),
         "ground_speed_kmh": _finite(row["ground_speed"] * 3.6),
@@ -189,126 +281,88 @@ def final_glide(
         "crab_angle_deg": _finite(math.degrees(row["crab"])),
         "duration_s": _finite(row["duration"]),
     }
-    wind_from = None if wind is None else _wind_from_deg((wx, wy))
+
+
+def _line(req: FinalGlideRequest, frame: _Frame, altitude: np.ndarray, title: str
+          ) -> FinalGlideDrawing:
+    """The drawing of the straight line to the goal with the given altitude profile."""
+    return FinalGlideDrawing(x=np.array([0.0, frame.gx]), y=np.array([0.0, frame.gy]),
+                             distance=np.array([0.0, frame.dist]), altitude=altitude,
+                             goal_elevation=req.goal[2], safety_height=req.safety_height,
+                             title=title)
+
+
+def _straight(req: FinalGlideRequest, frame: _Frame, row: dict[str, float], title: str
+              ) -> _Glide:
+    """The straight glide is the answer (no arrival heading)."""
+    straight, loss, alt0 = _straight_json(row), row["altitude_loss"], req.start[2]
+    details = {key: straight[key] for key in (
+        "altitude_loss_m", "speed_to_fly_kmh", "ground_speed_kmh", "headwind_ms",
+        "crab_angle_deg", "duration_s")}
+    # the start altitude is known even when the goal is not reachable (loss inf)
+    altitude = (alt0 - np.array([0.0, 1.0]) * loss if math.isfinite(loss) and frame.dist > 0
+                else np.array([alt0, alt0 - loss if math.isfinite(loss) else np.nan]))
+    return _Glide(loss, details, _line(req, frame, altitude, title))
+
+
+def _no_progress(req: FinalGlideRequest, frame: _Frame, row: dict[str, float], title: str
+                 ) -> _Glide:
+    """No airspeed makes progress against the wind: no path to the arrival heading."""
+    details: dict[str, Any] = {
+        "altitude_loss_m": None, "speed_to_fly_kmh": None, "duration_s": None, "word": "",
+        "track": {"lat": [], "lon": [], "alt": []}, "endpoint_error": None,
+        "straight": _straight_json(row)}
+    return _Glide(math.inf, details, _line(req, frame, np.array([req.start[2], np.nan]), title))
+
+
+def _final(req: FinalGlideRequest, frame: _Frame, row: dict[str, float], step: _Glide
+           ) -> FinalGlide:
+    """The `FinalGlide` of a solve step: status, message, reason, the track and the JSON."""
+    alt0, elev1 = req.start[2], req.goal[2]
+    wind_speed = math.hypot(*req.wind)
+    wind_from = _wind_from_deg(req.wind) if req.wind_given else None
     data: dict[str, Any] = {
-        "polar": polar.name,
-        "mass_kg": polar.mass_kg,
-        "distance_m": dist,
-        "bearing_deg": float(heading_to_compass(track)),
-        "mc": mc,
-        "safety_height_m": safety,
-        "wind": {"speed_ms": wind_speed, "from_deg": wind_from},
-    }
-    floor = elev1 + safety
-    title = (
-        f"{polar.name} ({polar.mass_kg:.0f} kg): final glide {dist / 1000:.1f} km "
-        f"on bearing {data['bearing_deg']:.0f}°, MC {mc:g} m/s"
-    )
-    sol = None
-    if arrival_heading is None:
-        loss = row["altitude_loss"]
-        data.update(
-            altitude_loss_m=_finite(loss),
-            speed_to_fly_kmh=straight["speed_to_fly_kmh"],
-            ground_speed_kmh=straight["ground_speed_kmh"],
-            headwind_ms=straight["headwind_ms"],
-            crab_angle_deg=straight["crab_angle_deg"],
-            duration_s=straight["duration_s"],
-        )
-        s = np.linspace(0.0, dist, 2)
-        frac = s / dist if dist > 0.0 else s
-        drawing = FinalGlideDrawing(
-            x=np.array([0.0, gx]),
-            y=np.array([0.0, gy]),
-            distance=s,
-            # the start altitude is known even when the goal is not reachable (loss inf)
-            altitude=alt0 - frac * loss if math.isfinite(loss) else np.array([alt0, np.nan]),
-            goal_elevation=elev1,
-            safety_height=safety,
-            title=title,
-        )
-    elif not math.isfinite(row["altitude_loss"]):
-        # no airspeed makes progress against this wind: no path to plan
-        loss = math.inf
-        data.update(
-            altitude_loss_m=None,
-            speed_to_fly_kmh=None,
-            duration_s=None,
-            word="",
-            track={"lat": [], "lon": [], "alt": []},
-            endpoint_error=None,
-            straight=straight,
-        )
-        drawing = FinalGlideDrawing(
-            x=np.array([0.0, gx]),
-            y=np.array([0.0, gy]),
-            distance=np.array([0.0, dist]),
-            altitude=np.array([alt0, np.nan]),
-            goal_elevation=elev1,
-            safety_height=safety,
-            title=title,
-        )
+        "polar": req.polar.name, "mass_kg": req.polar.mass_kg, "distance_m": frame.dist,
+        "bearing_deg": _bearing(frame), "mc": req.mc, "safety_height_m": req.safety_height,
+        "wind": {"speed_ms": wind_speed, "from_deg": wind_from}, **step.details}
+    floor = elev1 + req.safety_height
+    loss = step.loss
+    required, height, margin = floor + loss, alt0 - floor, alt0 - floor - loss
+    status, reason = _status(loss, margin), None
+    if step.failed is not None:
+        status, reason = step.failed.status, step.failed.reason or Reason.SOLVER
+        message = f"no verified path to the arrival heading: {step.failed.message}"
+    elif status is Status.UNREACHABLE:
+        reason, message = Reason.HEADWIND, _unreachable_why(req.polar, req.wind, row)
     else:
-        data_arr, drawing, sol = _arrival(
-            polar,
-            proj,
-            alt0,
-            elev1,
-            safety,
-            gx,
-            gy,
-            (wx, wy),
-            mc,
-            arrival_heading,
-            start_heading,
-            bank_max,
-            track_points,
-            title,
-        )
-        loss = data_arr.pop("_loss")
-        data.update(data_arr)
-        data["straight"] = straight
-        data["extra_loss_vs_straight_m"] = (
-            loss - row["altitude_loss"] if math.isfinite(row["altitude_loss"]) else None
-        )
-    required = floor + loss
-    height = alt0 - floor
-    margin = alt0 - required
-    status = _status(loss, margin)
-    if status is Status.UNREACHABLE:
-        message = _unreachable_why(polar, (wx, wy), row)
-    else:
-        message = (f"arrives {margin:.0f} m " + ("above" if margin >= 0.0 else "below")
+        reason = None if status is Status.SOLVED else Reason.BELOW_SAFETY_HEIGHT
+        message = (f"arrives {abs(margin):.0f} m " + ("above" if margin >= 0.0 else "below")
                    + f" the goal elevation + safety height ({floor:.0f} m)")
-    drawing = replace(drawing, wind_speed=wind_speed, wind_from_deg=wind_from)
-    lat_t, lon_t = proj.to_geographic(drawing.x, drawing.y)
-    if sol is not None:  # the planned path: its sample times and air headings
-        times = np.asarray(data.pop("_times"), dtype=float)
-        heading = np.asarray(data.pop("_headings"), dtype=float)
-    else:  # a straight glide at constant ground speed, crabbing (no time when unreachable)
-        t_end = data.get("duration_s") or 0.0
-        times = drawing.distance / max(float(drawing.distance[-1]), 1e-300) * t_end
-        crab = row["crab"] if math.isfinite(row["crab"]) else 0.0
-        heading = np.full(times.size, track + crab)
-    ground_track = Track(times, drawing.x, drawing.y, heading, lat=lat_t, lon=lon_t,
-                         alt=drawing.altitude)
-    if sol is not None:  # the planned path's samples: t, lat, lon, heading_deg, alt
+    drawing = replace(step.drawing, wind_speed=wind_speed, wind_from_deg=wind_from)
+    ground_track = _ground_track(frame, row, step, drawing, data.get("duration_s") or 0.0)
+    if step.solution is not None:  # the planned path's samples: t, lat, lon, heading_deg, alt
         data["track"] = ground_track.to_dict()
     return FinalGlide(
-        status=status,
-        message=message,
-        polar=polar,
-        distance_m=dist,
-        wind=(wx, wy),
-        altitude_loss_m=_finite(loss),
-        altitude_required_m=_finite(required),
+        status=status, message=message, reason=reason, polar=req.polar, distance_m=frame.dist,
+        wind=req.wind, altitude_loss_m=_finite(loss), altitude_required_m=_finite(required),
         arrival_margin_m=_finite(margin),
-        glide_ratio_required=dist / height if height > 0.0 else None,
-        track=ground_track,
-        drawing=drawing,
-        details=data,
-        solution=sol,
-    )
+        glide_ratio_required=frame.dist / height if height > 0.0 else None,
+        track=ground_track, drawing=drawing, details=data, solution=step.solution)
+
+
+def _ground_track(frame: _Frame, row: dict[str, float], step: _Glide,
+                  drawing: FinalGlideDrawing, t_end: float) -> Track:
+    """The ground track: the planned path's samples (times, air headings), or a straight
+    glide at constant ground speed, crabbing (no time when unreachable)."""
+    lat_t, lon_t = frame.proj.to_geographic(drawing.x, drawing.y)
+    if step.times is not None and step.headings is not None:
+        times, heading = np.asarray(step.times, float), np.asarray(step.headings, float)
+    else:
+        times = drawing.distance / max(float(drawing.distance[-1]), 1e-300) * t_end
+        crab = row["crab"] if math.isfinite(row["crab"]) else 0.0
+        heading = np.full(times.size, frame.track + crab)
+    return Track(times, drawing.x, drawing.y, heading, lat=lat_t, lon=lon_t,
+                 alt=drawing.altitude)
 
 
 def run_final(
@@ -353,99 +407,65 @@ def _unreachable_why(polar: SailplanePolar, wind: tuple[float, float], row: dict
     )
 
 
-def _arrival(
-    polar: SailplanePolar,
-    proj: Any,
-    alt0: float,
-    elev1: float,
-    safety: float,
-    gx: float,
-    gy: float,
-    wind: tuple[float, float],
-    mc: float,
-    arrival_heading: float,
-    start_heading: float | None,
-    bank_max: float,
-    track_points: int,
-    title: str,
-) -> tuple[dict[str, Any], FinalGlideDrawing, Solution]:
+def _arrival(req: FinalGlideRequest, frame: _Frame, row: dict[str, float], title: str
+             ) -> _Glide:
+    """The path to the arrival heading: `plan()` with the `final_glide` planner from the
+    given or the best start heading, verified by integration; its samples and JSON. A plan
+    that fails is returned as `failed` (a status, not an exception)."""
     from glideplan.geodesy import compass_to_heading, heading_to_compass
     from glideplan.planners.final_glide import best_start_heading
     from glideplan.planning import plan
     from glideplan.pose import Pose
     from glideplan.vehicles.sailplane import Sailplane
 
-    check_finite("arrival_heading", arrival_heading)
-    bank = check_finite("bank_max", bank_max)
+    assert frame.arrival_heading is not None
+    arrival_heading = check_finite("arrival_heading", frame.arrival_heading)
+    bank = check_finite("bank_max", req.bank_max)
     if not 0.0 < bank <= 80.0:
-        raise InvalidParameterError("bank_max", bank_max, "must be in (0, 80] degrees")
+        raise InvalidParameterError("bank_max", req.bank_max, "must be in (0, 80] degrees")
+    wind, mc = req.wind, req.mc
     speed = math.hypot(*wind)
-    vehicle = Sailplane(
-        polar,
-        bank_max=math.radians(bank),
-        wind_speed=speed,
-        wind_direction=math.atan2(wind[1], wind[0]) if speed > 0.0 else 0.0,
-    )
-    goal_pose = Pose(gx, gy, float(compass_to_heading(arrival_heading)))
-    if start_heading is None:
+    vehicle = Sailplane(req.polar, bank_max=math.radians(bank), wind_speed=speed,
+                        wind_direction=math.atan2(wind[1], wind[0]) if speed > 0.0 else 0.0)
+    goal_pose = Pose(frame.gx, frame.gy, float(compass_to_heading(arrival_heading)))
+    if req.start_heading is None:
         psi0 = best_start_heading((0.0, 0.0), goal_pose, vehicle, mc=mc)
     else:
-        psi0 = float(compass_to_heading(check_finite("start_heading", start_heading)))
+        psi0 = float(compass_to_heading(check_finite("start_heading", req.start_heading)))
     sol = plan(Pose(0.0, 0.0, psi0), goal_pose, vehicle, "altitude", mc=mc)
-    if not sol.ok or sol.path is None:
-        raise_planning(sol.message or sol.status.value)
-    assert sol.path is not None and sol.endpoint_error is not None
+    if not sol.ok or sol.path is None or sol.endpoint_error is None:
+        failed = _no_progress(req, frame, row, title)
+        return replace(failed, loss=math.nan, failed=sol)
     path = sol.path
     # half the samples over the whole glide, half over the approach (the last segment)
     t_gate = path.duration - path.segments[-1].duration
-    half = max(2, track_points // 2)
-    times = np.unique(
-        np.concatenate(
-            [np.linspace(0.0, path.duration, half), np.linspace(t_gate, path.duration, half)]
-        )
-    )
+    half = max(2, req.track_points // 2)
+    times = np.unique(np.concatenate(
+        [np.linspace(0.0, path.duration, half), np.linspace(t_gate, path.duration, half)]))
     smp = path.sample(times=times, objective="altitude")
     assert smp.cost is not None
-    alt = alt0 - smp.cost
     ground = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(smp.x), np.diff(smp.y)))])
     gsx = smp.speed[-1] * math.cos(smp.heading[-1]) + wind[0]
     gsy = smp.speed[-1] * math.sin(smp.heading[-1]) + wind[1]
     loss = float(sol.cost)
-    data = {
-        "_loss": loss,
-        "_times": smp.t,
-        "_headings": smp.heading,
-        "altitude_loss_m": loss,
-        "speed_to_fly_kmh": float(smp.speed[0] * 3.6),
-        "duration_s": path.duration,
-        "word": sol.word,
+    details = {
+        "altitude_loss_m": loss, "speed_to_fly_kmh": float(smp.speed[0] * 3.6),
+        "duration_s": path.duration, "word": sol.word,
         "start_heading_deg": float(heading_to_compass(psi0)),
-        "start_heading_free": start_heading is None,
+        "start_heading_free": req.start_heading is None,
         "arrival_heading_deg": float(arrival_heading) % 360.0,
         "arrival_track_deg": float(heading_to_compass(math.atan2(gsy, gsx))),
-        "bank_max_deg": bank,
-        "path_ground_length_m": float(ground[-1]),
-        "track": {},  # `final_glide` puts the `Track` here
-        "endpoint_error": sol.endpoint_error.to_dict(),
-        "planner": sol.planner,
+        "bank_max_deg": bank, "path_ground_length_m": float(ground[-1]),
+        "track": {},  # `_final` puts the `Track` here
+        "endpoint_error": sol.endpoint_error.to_dict(), "planner": sol.planner,
         "approach_warm_starts": sol.extras.get("warm_starts", []),
+        "straight": _straight_json(row),
+        "extra_loss_vs_straight_m": (loss - row["altitude_loss"]
+                                     if math.isfinite(row["altitude_loss"]) else None),
     }
     drawing = FinalGlideDrawing(
-        x=smp.x,
-        y=smp.y,
-        distance=ground,
-        altitude=alt,
-        goal_elevation=elev1,
-        safety_height=safety,
-        title=(
-            f"{title}, arrival heading {float(arrival_heading) % 360.0:.0f}° "
-            f"(path {sol.word}, start heading {heading_to_compass(psi0):.0f}°)"
-        ),
-    )
-    return data, drawing, sol
-
-
-def raise_planning(message: str) -> None:
-    from glideplan.errors import PlanningError
-
-    raise PlanningError(f"final glide: no verified path: {message}")
+        x=smp.x, y=smp.y, distance=ground, altitude=req.start[2] - smp.cost,
+        goal_elevation=req.goal[2], safety_height=req.safety_height,
+        title=(f"{title}, arrival heading {float(arrival_heading) % 360.0:.0f}° "
+               f"(path {sol.word}, start heading {heading_to_compass(psi0):.0f}°)"))
+    return _Glide(loss, details, drawing, smp.t, smp.heading, sol)

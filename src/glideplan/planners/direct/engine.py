@@ -17,6 +17,7 @@ from glideplan.planners.direct.results import DirectResult, StartResult
 from glideplan.planners.direct.system import ControlSystem
 from glideplan.planners.direct.timing import fly_controls, retime
 from glideplan.pose import TWO_PI, Pose, wrap_to_pi
+from glideplan.results import Reason
 from glideplan.segments import Sampled
 from glideplan.solution import Status
 from glideplan.validation import check_integer, check_nonnegative, check_positive
@@ -302,7 +303,8 @@ def _failed(
 ) -> DirectResult:
     """A failed `DirectResult` (no path) with the effort spent."""
     stats.update(iterations=iterations, seconds=time.perf_counter() - t_start)
-    return DirectResult(Status.FAILED, None, math.inf, stats, tuple(starts), message=message)
+    return DirectResult(status=Status.FAILED, path=None, cost=math.inf, stats=stats,
+                        starts=tuple(starts), message=message, reason=Reason.SOLVER)
 
 
 def _check_options(
@@ -482,7 +484,8 @@ def solve_direct(
     )
     warnings = (out_info["retime_failed"],) if "retime_failed" in out_info else ()
     return DirectResult(
-        Status.SOLVED, path, best.solve.cost, stats, tuple(starts), controls, message, warnings
+        status=Status.SOLVED, path=path, cost=best.solve.cost, stats=stats,
+        starts=tuple(starts), controls=controls, message=message, warnings=warnings,
     )
 
 

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from glideplan.path import Path
+from glideplan.results import Outcome
 from glideplan.solution import Status
 
 __all__ = ["DirectResult", "StartResult"]
@@ -40,8 +41,8 @@ class StartResult:
         }
 
 
-@dataclass(frozen=True, eq=False)
-class DirectResult:
+@dataclass(frozen=True, eq=False, kw_only=True)
+class DirectResult(Outcome):
     """Outcome of `solve_direct`.
 
     `status` is `Status.SOLVED` or `Status.FAILED` ("solved" / "failed"); `path` (one
@@ -50,19 +51,17 @@ class DirectResult:
     cost on each mesh, starts tried and succeeded, and the endpoint error of the returned
     path's controls; `starts` has one `StartResult` (unpacks as (cost, status)) per guess;
     `controls` the dense control history by name (plus "t", "speed", "turn_rate") along the
-    returned path; `warnings` what the caller must pass on (a failed re-timing).
+    returned path; `warnings` what the caller must pass on (a failed re-timing). An
+    `Outcome` (`glideplan.results`): a failure's reason is SOLVER.
     """
 
-    status: Status
     path: Path | None
     cost: float
     stats: dict[str, Any]
     starts: tuple[StartResult, ...]
     controls: Mapping[str, np.ndarray] = field(default_factory=dict)
-    message: str = ""
-    # things the caller must pass on to the user (e.g. a failed re-timing), one sentence each
-    warnings: tuple[str, ...] = ()
 
-    @property
-    def ok(self) -> bool:
-        return self.status is Status.SOLVED and self.path is not None
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.status is Status.SOLVED and self.path is None:
+            raise ValueError("a solved DirectResult needs its path")

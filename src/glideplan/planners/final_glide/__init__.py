@@ -138,7 +138,7 @@ def plan_final_glide(
         if cands:
             return PlannerOutput(tuple(cands), stats, "the direct check failed", extras)
         return PlannerOutput(
-            (), stats, res.direct.message or "IPOPT failed", extras, solver_failed=True
+            (), stats, res.direct.message or "IPOPT failed", extras, failure=Status.SOLVER_FAILED
         )
     seg = res.path.segments[0]
     assert isinstance(seg, DriftingSampled)
@@ -160,7 +160,7 @@ def plan_final_glide(
             "its path is not offered" + (", the synthesis is" if cands else ""),
         )
         if not cands:
-            return PlannerOutput((), stats, warnings[0], extras, solver_failed=True)
+            return PlannerOutput((), stats, warnings[0], extras, failure=Status.SOLVER_FAILED)
         return PlannerOutput(tuple(cands), stats, "", extras, warnings=warnings)
     cands.append(
         Candidate(

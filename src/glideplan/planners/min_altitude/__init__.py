@@ -194,7 +194,7 @@ def plan_min_altitude_direct(
             stats,
             res.message or "IPOPT failed",
             extras,
-            solver_failed=True,
+            failure=Status.SOLVER_FAILED,
             warnings=res.warnings,
         )
     path = res.path.with_vehicle(glider)

@@ -193,7 +193,7 @@ def plan_time_optimal_direct(
     stats["starts"] = [s.to_dict() for s in res.starts]
     if not res.ok or res.path is None:
         return PlannerOutput(
-            (), stats, message=res.message, solver_failed=True, warnings=res.warnings
+            (), stats, message=res.message, failure=Status.SOLVER_FAILED, warnings=res.warnings
         )
     path = res.path.with_vehicle(vehicle)
     seg = path.segments[0]
