@@ -143,6 +143,65 @@ def _pick(tot: float, k: float, best: float, bk: float, second: float
     return (tot if better else best), (k if better else bk), second
 
 
+@njit(cache=True, error_model="numpy", fastmath={"contract"}, inline="always")
+def six_words(x: float, y: float, psi: float, sp: float, cp: float
+              ) -> tuple[float, float, float, bool]:
+    """Shortest total (unit radius), its word (as a float), the second-best total and the
+    risk flag (module docstring) of the goal (x, y, psi), sp, cp = sin psi, cos psi."""
+    # LSL
+    lx, ly = x - sp, y + cp - 1.0
+    phi_l = _atan2(ly, lx)  # also LRL's
+    t, p, q = _mod(phi_l), math.sqrt(lx * lx + ly * ly), _mod(psi - phi_l)
+    bad = _edge(t) | _edge(q) | (p < _EDGE)
+    best, bk, second = (max(t, 0.0) + p) + max(q, 0.0), 0.0, np.inf
+    # LSR
+    vx, vy = x + sp, y - cp - 1.0
+    p2 = vx * vx + vy * vy - 4.0
+    p = math.sqrt(max(p2, 0.0))
+    phi = _atan2(vy * p + 2.0 * vx, vx * p - 2.0 * vy)
+    t, q = _mod(phi), _mod(phi - psi)
+    ok = p2 + FEAS >= 0.0
+    bad |= (abs(p2) < _EDGE) | (ok & (_edge(t) | _edge(q)))
+    best, bk, second = _pick((max(t, 0.0) + p) + max(q, 0.0) if ok else np.inf,
+                             1.0, best, bk, second)
+    # RSL
+    vx, vy = x - sp, y + cp + 1.0
+    p2 = vx * vx + vy * vy - 4.0
+    p = math.sqrt(max(p2, 0.0))
+    phi = _atan2(vy * p - 2.0 * vx, vx * p + 2.0 * vy)
+    t, q = _mod(-phi), _mod(psi - phi)
+    ok = p2 + FEAS >= 0.0
+    bad |= (abs(p2) < _EDGE) | (ok & (_edge(t) | _edge(q)))
+    best, bk, second = _pick((max(t, 0.0) + p) + max(q, 0.0) if ok else np.inf,
+                             2.0, best, bk, second)
+    # RSR
+    rx, ry = x + sp, y - cp + 1.0
+    phi_r = _atan2(ry, rx)  # also RLR's
+    r2 = rx * rx + ry * ry
+    t, p, q = _mod(-phi_r), math.sqrt(r2), _mod(phi_r - psi)
+    bad |= _edge(t) | _edge(q) | (p < _EDGE)
+    best, bk, second = _pick((max(t, 0.0) + p) + max(q, 0.0), 3.0, best, bk, second)
+    # RLR (right circles), LRL (left circles): |V| <= 4
+    c = min(max(1.0 - 0.125 * r2, -1.0), 1.0)
+    pm = TWO_PI - _atan2(math.sqrt((1.0 - c) * (1.0 + c)), c)
+    t = _mod(0.5 * pm - phi_r)
+    q = _mod(pm - t - psi)
+    ok = r2 <= _NEAR
+    bad |= (abs(r2 - 16.0) < _EDGE) | (ok & (_edge(t) | _edge(q)))
+    best, bk, second = _pick((max(t, 0.0) + pm) + max(q, 0.0) if ok else np.inf,
+                             4.0, best, bk, second)
+    v2 = lx * lx + ly * ly
+    c = min(max(1.0 - 0.125 * v2, -1.0), 1.0)
+    pm = TWO_PI - _atan2(math.sqrt((1.0 - c) * (1.0 + c)), c)
+    t = _mod(phi_l + 0.5 * pm)
+    q = _mod(psi - t + pm)
+    ok = v2 <= _NEAR
+    bad |= (abs(v2 - 16.0) < _EDGE) | (ok & (_edge(t) | _edge(q)))
+    best, bk, second = _pick((max(t, 0.0) + pm) + max(q, 0.0) if ok else np.inf,
+                             5.0, best, bk, second)
+    return best, bk, second, bad
+
+
 @njit(cache=True, error_model="numpy", fastmath={"contract"})
 def _vector_pass(h0s: np.ndarray, h1s: np.ndarray, dxs: np.ndarray, dys: np.ndarray,
                  out: np.ndarray, word: np.ndarray, flag: np.ndarray) -> None:
@@ -157,62 +216,10 @@ def _vector_pass(h0s: np.ndarray, h1s: np.ndarray, dxs: np.ndarray, dys: np.ndar
         psi = _mod(h1 - h0)
         sp, cp = _sincos(psi)
         bad = not (abs(h0) <= _BIG and abs(h1) <= _BIG and abs(x) < 1e300 and abs(y) < 1e300)
-        # LSL
-        lx, ly = x - sp, y + cp - 1.0
-        phi = _atan2(ly, lx)
-        t, p, q = _mod(phi), math.sqrt(lx * lx + ly * ly), _mod(psi - phi)
-        bad |= _edge(t) | _edge(q) | (p < _EDGE)
-        best, bk, second = (max(t, 0.0) + p) + max(q, 0.0), 0.0, np.inf
-        # LSR
-        vx, vy = x + sp, y - cp - 1.0
-        p2 = vx * vx + vy * vy - 4.0
-        p = math.sqrt(max(p2, 0.0))
-        phi = _atan2(vy * p + 2.0 * vx, vx * p - 2.0 * vy)
-        t, q = _mod(phi), _mod(phi - psi)
-        ok = p2 + FEAS >= 0.0
-        bad |= (abs(p2) < _EDGE) | (ok & (_edge(t) | _edge(q)))
-        best, bk, second = _pick((max(t, 0.0) + p) + max(q, 0.0) if ok else np.inf,
-                                 1.0, best, bk, second)
-        # RSL
-        vx, vy = x - sp, y + cp + 1.0
-        p2 = vx * vx + vy * vy - 4.0
-        p = math.sqrt(max(p2, 0.0))
-        phi = _atan2(vy * p - 2.0 * vx, vx * p + 2.0 * vy)
-        t, q = _mod(-phi), _mod(psi - phi)
-        ok = p2 + FEAS >= 0.0
-        bad |= (abs(p2) < _EDGE) | (ok & (_edge(t) | _edge(q)))
-        best, bk, second = _pick((max(t, 0.0) + p) + max(q, 0.0) if ok else np.inf,
-                                 2.0, best, bk, second)
-        # RSR
-        rx, ry = x + sp, y - cp + 1.0
-        phi = _atan2(ry, rx)
-        r2 = rx * rx + ry * ry
-        t, p, q = _mod(-phi), math.sqrt(r2), _mod(phi - psi)
-        bad |= _edge(t) | _edge(q) | (p < _EDGE)
-        best, bk, second = _pick((max(t, 0.0) + p) + max(q, 0.0), 3.0, best, bk, second)
-        # RLR (right circles), LRL (left circles): |V| <= 4
-        v2 = r2
-        c = min(max(1.0 - 0.125 * v2, -1.0), 1.0)
-        pm = TWO_PI - _atan2(math.sqrt((1.0 - c) * (1.0 + c)), c)
-        t = _mod(0.5 * pm - _atan2(ry, rx))
-        q = _mod(pm - t - psi)
-        ok = v2 <= _NEAR
-        bad |= (abs(v2 - 16.0) < _EDGE) | (ok & (_edge(t) | _edge(q)))
-        best, bk, second = _pick((max(t, 0.0) + pm) + max(q, 0.0) if ok else np.inf,
-                                 4.0, best, bk, second)
-        v2 = lx * lx + ly * ly
-        c = min(max(1.0 - 0.125 * v2, -1.0), 1.0)
-        pm = TWO_PI - _atan2(math.sqrt((1.0 - c) * (1.0 + c)), c)
-        t = _mod(_atan2(ly, lx) + 0.5 * pm)
-        q = _mod(psi - t + pm)
-        ok = v2 <= _NEAR
-        bad |= (abs(v2 - 16.0) < _EDGE) | (ok & (_edge(t) | _edge(q)))
-        best, bk, second = _pick((max(t, 0.0) + pm) + max(q, 0.0) if ok else np.inf,
-                                 5.0, best, bk, second)
-        bad |= (second - best) <= _TIE * max(best, 1.0)
+        best, bk, second, risky = six_words(x, y, psi, sp, cp)
         out[i] = max(best, 0.0)
         word[i] = bk
-        flag[i] = bad
+        flag[i] = bad | risky | ((second - best) <= _TIE * max(best, 1.0))
 
 
 @njit(cache=True)
