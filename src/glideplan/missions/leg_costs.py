@@ -110,7 +110,7 @@ def dubins_dp_step(
     if DP_BLOCKS:
         from glideplan.planners._dubins_dp import dp_leg
 
-        dp_leg(value, x, y, a, b, float(radius), float(scale), new, arg)
+        dp_leg(value, x, y, a, b, dx, dy, float(radius), float(scale), new, arg)
     else:
         jit.dp_leg(value, x, y, a, b, dx, dy, float(radius), float(scale), new, arg)
     return new, arg

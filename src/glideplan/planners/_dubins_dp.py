@@ -30,12 +30,12 @@ _NEAR = 1e-9  # re-evaluate exactly the entries this close (relative) to the blo
 
 
 @njit(cache=True, error_model="numpy", fastmath={"contract"})
-def _block(bj: float, sbj: float, cbj: float, a: np.ndarray, x: np.ndarray, y: np.ndarray,
-           sa: np.ndarray, ca: np.ndarray, v: np.ndarray, rs: float, tot: np.ndarray,
-           flag: np.ndarray) -> None:
-    """tot[r] = v[r] + rs * Dubins total (polynomial), flag[r] the risk, for every r (the
-    arrays are slices: indices from 0 keep the loop free of index wrap-around selects)."""
-    for r in range(a.size):
+def _block(lo: np.uint64, hi: np.uint64, bj: float, sbj: float, cbj: float, a: np.ndarray,
+           x: np.ndarray, y: np.ndarray, sa: np.ndarray, ca: np.ndarray, v: np.ndarray,
+           rs: float, tot: np.ndarray, flag: np.ndarray) -> None:
+    """tot[r] = v[r] + rs * Dubins total (polynomial), flag[r] the risk, for r in [lo, hi)
+    (unsigned: the indices need no wrap-around selects, so the loop vectorises)."""
+    for r in range(lo, hi):
         d = bj - a[r]
         psi = d - TWO_PI * math.floor(d * _INV_2PI + SNAP)
         sp = sbj * ca[r] - cbj * sa[r]  # sin(b - a), cos(b - a) as in leg_costs
@@ -65,9 +65,13 @@ def _exact(i: int, bj: float, sbj: float, cbj: float, a: np.ndarray, x: np.ndarr
 
 @njit(cache=True)
 def dp_leg(value: np.ndarray, x: np.ndarray, y: np.ndarray, a: np.ndarray, b: np.ndarray,
-           radius: float, scale: float, new: np.ndarray, arg: np.ndarray) -> None:
+           dx: float, dy: float, radius: float, scale: float, new: np.ndarray,
+           arg: np.ndarray) -> None:
     """new[j] = min_i value[i] + c(a_i, b_j), arg[j] its first minimiser (module docstring);
-    (x[i], y[i]) the goal in start frame i (units of R), c = scale * R * Dubins total."""
+    (x[i], y[i]) the goal in start frame i, (dx, dy) the leg (units of R), c = scale * R *
+    Dubins total. A block is skipped when its least value plus a lower bound of every leg
+    into b_j (the reversed path from the goal to the start point, `_to_point`) is above the
+    best."""
     rs = radius * scale
     k = a.size
     key = np.empty(k)
@@ -80,6 +84,10 @@ def dp_leg(value: np.ndarray, x: np.ndarray, y: np.ndarray, a: np.ndarray, b: np
     tot = np.empty(k)
     flag = np.empty(k, dtype=np.bool_)
     sb, cb = np.sin(b), np.cos(b)
+    nblk = (k + _BLOCK - 1) // _BLOCK
+    vmin = np.full(nblk, np.inf)
+    for r in range(k):
+        vmin[r // _BLOCK] = min(vmin[r // _BLOCK], vs[r])
     prev = -1
     for j in range(b.size):
         bj, sbj, cbj = b[j], sb[j], cb[j]
@@ -87,12 +95,18 @@ def dp_leg(value: np.ndarray, x: np.ndarray, y: np.ndarray, a: np.ndarray, b: np
         if prev >= 0:
             warm = _exact(prev, bj, sbj, cbj, a, x, y, sa_, ca_, value, radius, scale)
         cut = warm * (1.0 + _NEAR) + _NEAR
+        low_b = _to_point(cbj * dx + sbj * dy, cbj * dy - sbj * dx) * rs  # from (p1, b + pi)
         pos = 0
         low = np.inf
         while pos < k and ks[pos] <= cut:
             hi = min(pos + _BLOCK, k)
-            _block(bj, sbj, cbj, as_[pos:hi], xs[pos:hi], ys[pos:hi], sas[pos:hi], cas[pos:hi],
-                   vs[pos:hi], rs, tot[pos:hi], flag[pos:hi])
+            if vmin[pos // _BLOCK] + low_b > cut:
+                for r in range(pos, hi):
+                    tot[r] = np.inf
+                pos = hi
+                continue
+            _block(np.uint64(pos), np.uint64(hi), bj, sbj, cbj, as_, xs, ys, sas, cas, vs, rs,
+                   tot, flag)
             for r in range(pos, hi):
                 if flag[r]:
                     tot[r] = _exact(order[r], bj, sbj, cbj, a, x, y, sa_, ca_, value, radius,
