@@ -3,7 +3,9 @@
 Same random start/goal pairs for both; OMPL's states are allocated and filled before timing,
 so its loop times only the `distance` calls. Targets (issue 2): lengths agree within 1e-9,
 glideplan >= 3 million optimal lengths per second and >= 2.5 x OMPL's loop; issue 28: the
-compiled kernel (numba, `planners._dubins_jit`) >= 10 x OMPL's loop, equal to the NumPy
+compiled kernel (numba, `planners._dubins_simd`: all six words with vectorised polynomial
+trigonometry, the rare queries near a snap, tie or degenerate case redone by the scalar
+`planners._dubins_jit`) >= 10 x OMPL's loop, equal to the NumPy
 kernel (`dubins_distance`, timed in the same run) within 1e-12 relative. The machine's load
 (1-minute average) is printed with the times: the machine is shared.
 

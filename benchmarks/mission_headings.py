@@ -11,10 +11,12 @@ and run time of
 Targets: never longer than either heuristic; within 0.1 % of a 1-degree brute force on 3-4
 waypoint missions; 200 waypoints with K = 360 in <= 2 s on one core. Issue 28: the heading
 DP of a 3,000-waypoint mission (K = 360) in <= 5 s with the same answers: the compiled DP step
-(`StillAirCost.dp_step`, no K x K matrix) against the NumPy matrix step it replaces (float32,
-the previous default; timed on the first `--long-baseline` legs of the same mission, in the
-same run, and scaled to the whole mission), and against the float64 matrix step on the first
-100 legs (the same headings and values expected).
+(`StillAirCost.dp_step`, no K x K matrix; vectorised blocks, `planners._dubins_dp`) against the
+previous compiled step (scalar, bounded: the same headings and total expected), against the
+NumPy matrix step (float32, the default before the compiled step; timed on the first
+`--long-baseline` legs of the same mission, in the same run, and scaled to the whole
+mission), and against the float64 matrix step on the first 100 legs (the same headings and
+values expected).
 
 Usage: python benchmarks/mission_headings.py [--seeds N] [--brute N] [--long N]
 """
@@ -85,6 +87,7 @@ def long_mission(n: int, baseline_legs: int) -> None:
     """Issue 28: the heading DP alone (K = 360) of an n-waypoint mission, compiled vs NumPy."""
     import os
 
+    from glideplan.missions import leg_costs
     from glideplan.missions.headings import _candidates, _dynamic_programme
 
     rng = np.random.default_rng(28)
@@ -95,8 +98,14 @@ def long_mission(n: int, baseline_legs: int) -> None:
     _dynamic_programme(StillAirCost(pts[:3], 1.0), sets[:3])  # compile or load the cache
     load = os.getloadavg()[0]
     t0, w0 = time.process_time(), time.perf_counter()
-    _, best = _dynamic_programme(StillAirCost(pts, 1.0), sets)
+    h_all, best = _dynamic_programme(StillAirCost(pts, 1.0), sets)
     cpu, wall = time.process_time() - t0, time.perf_counter() - w0
+    leg_costs.DP_BLOCKS = False  # the previous compiled step (scalar, bounded), whole mission
+    _dynamic_programme(StillAirCost(pts[:3], 1.0), sets[:3])
+    t0 = time.process_time()
+    h_scalar, best_scalar = _dynamic_programme(StillAirCost(pts, 1.0), sets)
+    cpu_scalar = time.process_time() - t0
+    leg_costs.DP_BLOCKS = True
     m = min(baseline_legs, n - 1) + 1
     t0 = time.process_time()
     _dynamic_programme(_MatrixOnly(StillAirCost(pts[:m], 1.0)), sets[:m])
@@ -110,6 +119,10 @@ def long_mission(n: int, baseline_legs: int) -> None:
           f"{load:.1f} on {os.cpu_count()} cores:")
     print(f"  compiled DP step: {cpu:.2f} s CPU ({wall:.2f} s wall) [target <= 5 s]: "
           f"{'PASS' if cpu <= 5.0 else 'FAIL'}; total {best:.6f} R")
+    same_all = bool(np.array_equal(h_all, h_scalar)) and best == best_scalar
+    print(f"  previous compiled step (scalar, bounded): {cpu_scalar:.2f} s CPU, whole mission "
+          f"-> vectorised blocks {cpu_scalar / cpu:.2f} x; same headings and total: "
+          f"{'PASS' if same_all else 'FAIL'}")
     print(f"  NumPy float32 matrix step (before): {old:.1f} s CPU, scaled from the first "
           f"{m - 1} legs of the same mission -> compiled {old / cpu:.1f} x")
     print(f"  compiled vs float64 matrix step, first {p - 1} legs: same headings and total "

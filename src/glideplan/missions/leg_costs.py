@@ -24,6 +24,10 @@ from glideplan.pose import mod_2pi
 
 __all__ = ["dubins_dp_step", "dubins_length_matrix"]
 
+DP_BLOCKS = True
+"""The DP step in vectorised blocks (`planners._dubins_dp`); False: the scalar bounded step
+(`planners._dubins_jit.dp_leg`, the previous kernel, kept as the benchmark's baseline)."""
+
 _BLOCK = 32768  # matrix entries per block: its ~10 temporaries stay in the L2 cache (measured:
 # 200 waypoints x K = 360 take ~1.0 s at 32768 against ~1.8 s at 65536 on the CI machine)
 
@@ -102,6 +106,11 @@ def dubins_dp_step(
     y = ca * dy - sa * dx
     new = np.empty(b.size)
     arg = np.empty(b.size, dtype=np.intp)
-    jit.dp_leg(np.ascontiguousarray(value, dtype=float), x, y, a, b, dx, dy, float(radius),
-               float(scale), new, arg)
+    value = np.ascontiguousarray(value, dtype=float)
+    if DP_BLOCKS:
+        from glideplan.planners._dubins_dp import dp_leg
+
+        dp_leg(value, x, y, a, b, dx, dy, float(radius), float(scale), new, arg)
+    else:
+        jit.dp_leg(value, x, y, a, b, dx, dy, float(radius), float(scale), new, arg)
     return new, arg

@@ -19,8 +19,9 @@ ties still go to the first word in `WORDS`.
 heading b, min over start headings a of V(a) + c(a, b), scanning a in increasing V(a) + a
 lower bound of every leg from a (`_to_point`), stopping once that exceeds the best, and asking
 each entry only whether it beats the best so far (`_may_beat`, then `min_total` with the cap).
-The NumPy kernel is the better one for flat batches of random queries (`dubins_distance`):
-there the four sines and cosines per query dominate, and they cost the same compiled.
+Flat batches and the DP's inner blocks now run the vectorised kernels (`_dubins_simd`,
+`_dubins_dp`), which call `min_total` for the queries they flag; `dp_leg` here is the previous
+DP step (`missions.leg_costs.DP_BLOCKS = False`, the benchmark's baseline).
 
 Serial kernels (no prange): callers run them one per process. Imported lazily: importing
 this module imports numba (`glideplan` itself does not).

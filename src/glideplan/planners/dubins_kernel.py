@@ -357,14 +357,17 @@ def compiled_min_lengths(
 ) -> tuple[np.ndarray, np.ndarray]:
     """Shortest total (units of R) and word index of flat `(m, 3)` poses, compiled.
 
-    The same lengths as the minimum of `flat_word_totals` (to rounding; ties to the first
-    word); `radius` scalar or `(m,)`.
+    The same lengths as the minimum of `flat_word_totals` (to ~1e-15 relative; ties to the
+    first word); `radius` scalar or `(m,)`. Vectorised polynomial trigonometry, with the
+    queries near a snap, a tie or a degenerate case recomputed by the scalar kernel
+    (`planners._dubins_simd`).
     """
-    jit = _jit()
+    from glideplan.planners import _dubins_simd
+
     m = start.shape[0]
     out = np.empty(m)
-    idx = np.empty(m, dtype=np.intp)
+    word = np.empty(m)
     inv = np.ascontiguousarray(np.atleast_1d(1.0 / np.asarray(radius, dtype=float)))
-    jit.min_lengths(np.ascontiguousarray(start, dtype=float),
-                    np.ascontiguousarray(goal, dtype=float), inv, out, idx)
-    return out, idx
+    _dubins_simd.flat_min_lengths(np.ascontiguousarray(start, dtype=float),
+                                  np.ascontiguousarray(goal, dtype=float), inv, out, word)
+    return out, word.astype(np.intp)

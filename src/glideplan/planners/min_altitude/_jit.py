@@ -7,6 +7,11 @@ stall band |phi| < phi_s, the free band and the v_max band |phi| > pi - phi_m. W
 is absent its terms are exactly zero, so evaluating every band for every heading gives the
 NumPy kernel's values (which skips a band only when it is absent for the whole batch).
 Serial; imported lazily (importing it imports numba).
+
+The loop over headings is branch-free and vectorised (`_row`): sines and cosines from
+`planners._dubins_simd._sincos` (polynomial, within 2e-16 of glibc's), the three cases of
+e^{i r1}, e^{i r2} as selects, the complex terms in real and imaginary parts, and the whole
+periods' G(pi) computed once per lambda.
 """
 
 from __future__ import annotations
@@ -15,6 +20,8 @@ import math
 
 import numpy as np
 from numba import njit
+
+from glideplan.planners._dubins_simd import _sincos
 
 __all__ = ["primitives"]
 
@@ -47,6 +54,44 @@ def _principal(r: float, lam: float, phi_s: float, phi_m: float, vms: float, v_s
     return P, W, S
 
 
+@njit(cache=True, error_model="numpy", fastmath={"contract"})
+def _row(phi: np.ndarray, lam: np.ndarray, band_s: np.ndarray, band_m: np.ndarray,
+         per: np.ndarray, vms: float, v_stall: float, v_max: float, a: float, w_ms: float,
+         w_stall: float, w_max: float, out: np.ndarray, W: np.ndarray, S: np.ndarray) -> None:
+    """`_principal` plus whole periods for phi[j] with lam[j] (vectorised; P into out[2j],
+    out[2j + 1]); per[:, j] = Re G(pi), W(pi), S(pi) of lam[j]."""
+    for j in range(phi.size):
+        lm, phi_s, phi_m = lam[j], band_s[j], band_m[j]
+        k = math.floor((phi[j] + math.pi) / TWO_PI)
+        r = phi[j] - TWO_PI * k
+        s, c = _sincos(r)
+        r1 = min(max(r, -phi_s), phi_s)
+        r2 = min(max(r, phi_m - math.pi), math.pi - phi_m)
+        t1, u1 = _sincos(r1)
+        t2, u2 = _sincos(r2)
+        s1 = r1 if r1 == 0.0 else (s if r1 == r else t1)  # exp(i 0) = 1 + i r1 exactly
+        c1 = 1.0 if r1 == 0.0 else (c if r1 == r else u1)
+        s2 = s if r2 == r else t2
+        c2 = c if r2 == r else u2
+        d = r2 - r1
+        # P = -i vms (e2 - e1) - lam (d/2 - i/4 (e2^2 - e1^2)), e^2 = (c c - s s) + i (c s + s c)
+        sq_re = (c2 * c2 - s2 * s2) - (c1 * c1 - s1 * s1)
+        sq_im = (c2 * s2 + s2 * c2) - (c1 * s1 + s1 * c1)
+        p_re = vms * (s2 - s1) - lm * (0.5 * d + 0.25 * sq_im)
+        p_im = -vms * (c2 - c1) + lm * (0.25 * sq_re)
+        w = w_ms * d + a * lm * lm * (0.5 * d + 0.5 * (s2 * c2 - s1 * c1))
+        sv = vms * d - lm * (s2 - s1)
+        # the stall and v_max bands (their terms are exactly zero where a band is absent)
+        p_re += v_stall * s1 + v_max * (s - s2)
+        p_im -= v_stall * (c1 - 1.0) + v_max * (c - c2)
+        w += w_stall * r1 + w_max * (r - r2)
+        sv += v_stall * r1 + v_max * (r - r2)
+        out[2 * j] = p_re + k * 2.0 * per[0, j]
+        out[2 * j + 1] = p_im
+        W[j] = w + k * 2.0 * per[1, j]
+        S[j] = sv + k * 2.0 * per[2, j]
+
+
 @njit(cache=True)
 def primitives(phi: np.ndarray, lam: np.ndarray, vms: float, v_stall: float, v_max: float,
                a: float, w_ms: float, w_stall: float, w_max: float, P: np.ndarray,
@@ -56,26 +101,20 @@ def primitives(phi: np.ndarray, lam: np.ndarray, vms: float, v_stall: float, v_m
     lo = vms - v_stall
     hi = v_max - vms
     m = lam.size
+    if m == 0:
+        return
     band_s = np.empty(m)
     band_m = np.empty(m)
-    for j in range(m):  # the clip angles once per lambda (the same expressions as before)
+    per = np.empty((3, m))
+    for j in range(m):  # the clip angles and one period once per lambda
         lm = lam[j]
         band_s[j] = math.acos(min(max(lo / lm, -1.0), 1.0)) if lm > lo else 0.0
         band_m[j] = math.acos(min(max(hi / lm, -1.0), 1.0)) if lm > hi else 0.0
-    for i in range(phi.size):
-        j = i % m
-        lm = lam[j]
-        phi_s = band_s[j]
-        phi_m = band_m[j]
-        k = math.floor((phi[i] + math.pi) / TWO_PI)
-        r = phi[i] - TWO_PI * k
-        p, w, s = _principal(r, lm, phi_s, phi_m, vms, v_stall, v_max, a, w_ms, w_stall, w_max)
-        if k != 0:  # whole periods: G(pi) - G(-pi) = 2 Re G(pi), W and S likewise
-            pp, wp, sp = _principal(math.pi, lm, phi_s, phi_m, vms, v_stall, v_max, a, w_ms,
-                                    w_stall, w_max)
-            p = p + k * 2.0 * pp.real
-            w = w + k * 2.0 * wp
-            s = s + k * 2.0 * sp
-        P[i] = p
-        W[i] = w
-        S[i] = s
+        pp, wp, sp = _principal(math.pi, lm, band_s[j], band_m[j], vms, v_stall, v_max, a,
+                                w_ms, w_stall, w_max)
+        per[0, j], per[1, j], per[2, j] = pp.real, wp, sp
+    out = P.view(np.float64)
+    for row in range(phi.size // m):
+        lo_, hi_ = row * m, (row + 1) * m
+        _row(phi[lo_:hi_], lam, band_s, band_m, per, vms, v_stall, v_max, a, w_ms, w_stall,
+             w_max, out[2 * lo_:2 * hi_], W[lo_:hi_], S[lo_:hi_])
