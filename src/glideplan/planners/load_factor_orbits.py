@@ -31,7 +31,7 @@ from numba import njit
 
 from glideplan.planners.load_factor_kernel import _g, _region, _speed, kappa_of, w_of_g_star
 
-__all__ = ["build_tables", "refine", "search"]
+__all__ = ["brackets", "build_tables", "ends", "refine", "refine_z", "search"]
 
 TWO_PI = 2.0 * math.pi
 NCOL = 10  # phi, w, xi, c, t and their s-derivatives
@@ -359,15 +359,20 @@ def brackets(rows: np.ndarray, ps: np.ndarray) -> np.ndarray:
             nxt += 1
         ki = int(k)
         if end < m and rows[end, 0] == k + 1 and (ps[ki] < 1.0) == (ps[ki + 1] < 1.0):
+            lib = ps[ki] > 1.0
             for r in range(start, end):
                 best, arg = 1e300, -1
+                w1 = int(rows[r, 1])
                 for r2 in range(end, nxt):
-                    if rows[r2, 1] != rows[r, 1] or rows[r2, 2] != rows[r, 2]:
+                    w2 = int(rows[r2, 1])
+                    # the same word, or (librations) the start's or the goal's branch flipped
+                    if w2 != w1 and not (lib and ((w1 ^ w2) == 1 or (w1 ^ w2) == 2)):
                         continue
                     da = abs((rows[r2, 3] - rows[r, 3] + math.pi) % TWO_PI - math.pi)
-                    if da < best:
-                        best, arg = da, r2
-                if arg < 0 or best > 0.5:
+                    score = da + 0.05 * abs(rows[r2, 5] - rows[r, 5])
+                    if da < 0.5 and score < best:
+                        best, arg = score, r2
+                if arg < 0:
                     continue
                 ea, eb = rows[r, 4], rows[arg, 4]
                 if ea * eb > 0.0:
@@ -386,10 +391,11 @@ def brackets(rows: np.ndarray, ps: np.ndarray) -> np.ndarray:
 
 
 @njit(cache=True)
-def pass_state(alpha, p, s0, sg, j, psig, h, lmax, prm) -> np.ndarray:
-    """Fly the orbit from the start (phi = -alpha, w0 = s0 W(P cos alpha)) to its (j + 1)-th
-    pass of heading psig with turn direction sg: (s, xi, eta, C, t, ok)."""
+def pass_state(alpha, p, s0, sg, target, psig, h, lmax, prm) -> np.ndarray:
+    """Fly the orbit from the start (phi = -alpha, w0 = s0 W(P cos alpha)) to its pass of
+    heading psig with turn direction sg nearest arc length `target`: (s, xi, eta, C, t, ok)."""
     out = np.zeros(6)
+    cur = np.zeros(6)
     ws = np.zeros((6, 6))
     y = np.zeros(6)
     y[0] = -alpha
@@ -399,19 +405,15 @@ def pass_state(alpha, p, s0, sg, j, psig, h, lmax, prm) -> np.ndarray:
     d1 = np.zeros(6)
     phig = psig - alpha
     fl = math.floor((y[0] - phig) / TWO_PI)
-    count = 0
     n = int(lmax / h) + 1
     for i in range(n):
         yp[:] = y
         _ostep(y, h, p, prm, ws)
         f2 = math.floor((y[0] - phig) / TWO_PI)
         hit = (sg > 0.0 and f2 > fl) or (sg < 0.0 and f2 < fl)
-        target = phig + TWO_PI * (f2 if f2 > fl else fl)
+        level = phig + TWO_PI * (f2 if f2 > fl else fl)
         fl = f2
         if not hit:
-            continue
-        count += 1
-        if count < j + 1:
             continue
         _orhs(yp, p, prm, d0)
         _orhs(y, p, prm, d1)
@@ -419,16 +421,19 @@ def pass_state(alpha, p, s0, sg, j, psig, h, lmax, prm) -> np.ndarray:
         up = y[0] >= yp[0]
         for _ in range(48):
             mid = 0.5 * (lo + hi)
-            if (_herm(yp[0], y[0], d0[0], d1[0], h, mid) < target) == up:
+            if (_herm(yp[0], y[0], d0[0], d1[0], h, mid) < level) == up:
                 lo = mid
             else:
                 hi = mid
         t = 0.5 * (lo + hi)
-        out[0] = (i + t) * h
+        cur[0] = (i + t) * h
         for c, col in ((1, 2), (2, 3), (3, 4), (4, 5)):
-            out[c] = _herm(yp[col], y[col], d0[col], d1[col], h, t)
-        out[5] = 1.0
-        return out
+            cur[c] = _herm(yp[col], y[col], d0[col], d1[col], h, t)
+        cur[5] = 1.0
+        if out[5] == 0.0 or abs(cur[0] - target) < abs(out[0] - target):
+            out[:] = cur
+        if cur[0] > target:
+            break
     return out
 
 
@@ -453,41 +458,138 @@ def _local_root(guess, p, s0, sg, xg, yg, psig, prm) -> float:
 
 
 @njit(cache=True)
+def _word_signs(word: int) -> tuple[float, float]:
+    return (1.0 if word % 2 == 0 else -1.0), (1.0 if word < 2 else -1.0)
+
+
+@njit(cache=True)
 def refine(ra, rb, ps, xg, yg, psig, h, lmax, prm) -> np.ndarray:
-    """Solve e1 = e2 = 0 between two search rows (regula falsi in log|1 - P|, e1's root in
-    alpha at each P, e2 by flying the orbit): (alpha, P, L, C, t, w0, |e2|, ok)."""
-    out = np.zeros(8)
-    word, j = int(ra[1]), int(ra[2])
-    s0 = 1.0 if word % 2 == 0 else -1.0
-    sg = 1.0 if word < 2 else -1.0
+    """Solve e1 = e2 = 0 between two search rows at neighbouring P (`refine_z`)."""
     pa, pb = ps[int(ra[0])], ps[int(rb[0])]
-    lib = pa > 1.0
     za, zb = math.log(abs(1.0 - pa)), math.log(abs(1.0 - pb))
+    return refine_z(za, zb, pa > 1.0, ra, rb, xg, yg, psig, h, lmax, prm)
+
+
+@njit(cache=True)
+def refine_z(za, zb, lib, ra, rb, xg, yg, psig, h, lmax, prm) -> np.ndarray:
+    """Solve e1 = e2 = 0 for z = log|1 - P| in [za, zb] (regula falsi; at each P the root
+    alpha of e1 near the interpolated one, of either row's word: a root crosses from one word
+    to the other where the start or the goal is an inflection; e2 by flying the orbit to the
+    pass nearest the interpolated length): (alpha, P, L, C, t, w0, |e2|, ok)."""
+    out = np.zeros(8)
     fa, fb = ra[4], rb[4]
     aa, ab = ra[3], rb[3]
-    z, al, p = za, aa, pa
+    la, lb = ra[5], rb[5]
+    z, al, p, s0 = za, aa, 1.0, 1.0
     st = np.zeros(6)
     for _ in range(60):
         z = (za * fb - zb * fa) / (fb - fa) if fb != fa else 0.5 * (za + zb)
         p = 1.0 + math.exp(z) if lib else 1.0 - math.exp(z)
         frac = (z - za) / (zb - za) if zb != za else 0.5
         guess = aa + ((ab - aa + math.pi) % TWO_PI - math.pi) * frac
+        s0, sg = _word_signs(int(ra[1]))
         al = _local_root(guess, p, s0, sg, xg, yg, psig, prm)
+        if math.isnan(al) and rb[1] != ra[1]:
+            s0, sg = _word_signs(int(rb[1]))
+            al = _local_root(guess, p, s0, sg, xg, yg, psig, prm)
         if math.isnan(al):
             return out
-        st = pass_state(al, p, s0, sg, j, psig, h, lmax, prm)
+        st = pass_state(al, p, s0, sg, la + (lb - la) * frac, psig, h, lmax, prm)
         if st[5] == 0.0:
             return out
         fz = st[1] - (math.cos(al) * xg + math.sin(al) * yg)
         if abs(fz) < 1e-11 or abs(zb - za) < 1e-13:
             break
         if fz * fb < 0.0:
-            za, fa, aa = zb, fb, ab
+            za, fa, aa, la = zb, fb, ab, lb
         else:
             fa *= 0.5
-        zb, fb, ab = z, fz, al
+        zb, fb, ab, lb = z, fz, al, st[0]
     out[0], out[1], out[2], out[3], out[4] = al % TWO_PI, p, st[0], st[3], st[4]
     out[5] = s0 * w_of_g_star(p * math.cos(al), prm)
     out[6] = abs(st[1] - (math.cos(al) * xg + math.sin(al) * yg))
     out[7] = 1.0
     return out
+
+
+@njit(cache=True)
+def _near_root(guess, p, s0, sg, xg, yg, psig, prm, radius) -> float:
+    """The root of e1 within `radius` of guess, nearest first; NaN if none."""
+    f0 = _e1(guess, p, s0, sg, xg, yg, psig, prm)
+    if math.isnan(f0):
+        return math.nan
+    if f0 == 0.0:
+        return guess
+    d = radius / 64.0
+    while d <= radius:
+        for sd in (1.0, -1.0):
+            b = guess + sd * d
+            fb = _e1(b, p, s0, sg, xg, yg, psig, prm)
+            if math.isnan(fb) or f0 * fb > 0.0:
+                continue
+            return _root(guess, f0, b, fb, p, s0, sg, xg, yg, psig, prm)
+        d *= 2.0
+    return math.nan
+
+
+@njit(cache=True)
+def ends(rows, ps, xg, yg, psig, h, lmax, prm, c_max) -> np.ndarray:
+    """Roots that end between neighbouring P (a fold, or the start or goal reaching an
+    inflection; roots of rows costing at most c_max, continued by no root of the same word
+    or, for librations, a word with one branch flipped): each is followed to its end by
+    bisection in z = log|1 - P|, and where e2
+    changes sign on the way the bracket is returned as two pseudo-rows (z, word, j, alpha,
+    e2, L, C, t, T) at its ends: rows (za, zb, lib, row a..., row b...)."""
+    m = rows.shape[0]
+    out = np.zeros((16, 21))
+    c = 0
+    vals = np.zeros(21)
+    first = np.full(ps.size + 1, m, dtype=np.int64)  # rows are sorted by k
+    for r in range(m - 1, -1, -1):
+        first[int(rows[r, 0])] = r
+    for k in range(ps.size - 1, -1, -1):
+        first[k] = min(first[k], first[k + 1])
+    for r in range(m):
+        if rows[r, 6] > c_max:
+            continue
+        k = int(rows[r, 0])
+        word = int(rows[r, 1])
+        s0, sg = _word_signs(word)
+        lib = ps[k] > 1.0
+        for kn in (k - 1, k + 1):
+            if not (0 <= kn < ps.size and (ps[kn] > 1.0) == lib):
+                continue
+            cont = False
+            for r2 in range(first[kn], first[kn + 1]):
+                w2 = int(rows[r2, 1])
+                if w2 == word or (lib and ((w2 ^ word) == 1 or (w2 ^ word) == 2)):
+                    da = abs((rows[r2, 3] - rows[r, 3] + math.pi) % TWO_PI - math.pi)
+                    cont = cont or da < 0.5
+            if cont:
+                continue
+            zlo, zhi = math.log(abs(1.0 - ps[k])), math.log(abs(1.0 - ps[kn]))
+            al = rows[r, 3]
+            for _ in range(30):
+                zm = 0.5 * (zlo + zhi)
+                pm = 1.0 + math.exp(zm) if lib else 1.0 - math.exp(zm)
+                am = _near_root(al, pm, s0, sg, xg, yg, psig, prm, 0.25)
+                if math.isnan(am):
+                    zhi = zm
+                else:
+                    zlo, al = zm, am
+            pe = 1.0 + math.exp(zlo) if lib else 1.0 - math.exp(zlo)
+            st = pass_state(al, pe, s0, sg, rows[r, 5], psig, h, lmax, prm)
+            if st[5] == 0.0:
+                continue
+            e2 = st[1] - (math.cos(al) * xg + math.sin(al) * yg)
+            if e2 * rows[r, 4] > 0.0:
+                continue
+            vals[0] = math.log(abs(1.0 - ps[k]))
+            vals[1] = zlo
+            vals[2] = 1.0 if lib else 0.0
+            vals[3:12] = rows[r]
+            vals[12:21] = rows[r]
+            vals[15], vals[16], vals[17], vals[18] = al, e2, st[0], st[3]
+            out = _push(out, c, vals)
+            c += 1
+    return out[:c]

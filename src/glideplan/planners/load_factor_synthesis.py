@@ -139,7 +139,13 @@ def dubins_bound(glider: LoadFactorGlider, goal: Pose) -> tuple[float, str]:
 def synthesize(glider: LoadFactorGlider, goal: Pose, *, polish: int = 1) -> list[Extremal]:
     """Extremals from the origin to `goal`, cheapest first (at most `polish`)."""
     from glideplan.planners.load_factor_kernel import kink_nodes, shoot
-    from glideplan.planners.load_factor_orbits import brackets, refine, search
+    from glideplan.planners.load_factor_orbits import (
+        brackets,
+        ends,
+        refine,
+        refine_z,
+        search,
+    )
 
     tabs = _tables(glider)
     if tabs is None:
@@ -149,10 +155,21 @@ def synthesize(glider: LoadFactorGlider, goal: Pose, *, polish: int = 1) -> list
     lmax = 2.0 * math.hypot(gx, gy) + 15.0
     rows = search(rows_t, off, info, ps, TABLE_STEP, prm, gx, gy, gpsi, lmax, N_ALPHA)
     found: list[np.ndarray] = []
-    for ia, ib, c_est in brackets(rows, ps)[:MAX_REFINE]:
+    seeds: list[tuple[float, tuple]] = [
+        (c, (rows[int(ia)], rows[int(ib)], ps)) for ia, ib, c in brackets(rows, ps)
+    ]
+    # ends of roots are followed only below 1.5 times the cheapest bracket's estimate
+    c_max = 1.5 * seeds[0][0] if seeds else math.inf
+    for e in ends(rows, ps, gx, gy, gpsi, TABLE_STEP, lmax, prm, c_max):
+        ra, rb = e[3:12], e[12:21]
+        c = ra[6] + ra[4] / (ra[4] - rb[4]) * (rb[6] - ra[6]) if ra[4] != rb[4] else ra[6]
+        seeds.append((c, (e[0], e[1], e[2] > 0.0, ra, rb)))
+    seeds.sort(key=lambda sd: sd[0])
+    for c_est, args in seeds[:MAX_REFINE]:
         if found and c_est > min(f[3] for f in found) * (1.0 + COST_MARGIN):
             break
-        res = refine(rows[int(ia)], rows[int(ib)], ps, gx, gy, gpsi, TABLE_STEP, lmax, prm)
+        solve = refine if len(args) == 3 else refine_z
+        res = solve(*args, gx, gy, gpsi, TABLE_STEP, lmax, prm)
         if res[7] == 0.0 or res[6] > 1e-8:
             continue
         if any(abs(f[2] - res[2]) < 1e-6 and abs(f[3] - res[3]) < 1e-7 for f in found):
@@ -169,7 +186,8 @@ def synthesize(glider: LoadFactorGlider, goal: Pose, *, polish: int = 1) -> list
         if z[3] > 1e-7 or not z[2] > 0.0:
             continue
         # the path's nodes: the same RK4 steps as the last Newton iterations
-        n = max(64, math.ceil(z[2] / NODE_STEP))
+        # and w (so kappa on the stall boundary) moving at most 0.02 per node (|w'| <= P)
+        n = max(64, math.ceil(z[2] / NODE_STEP), math.ceil(z[2] * p / 0.02))
         z = shoot(z[:3], gx, gy, gpsi, n, prm, 3)
         if z[3] > 1e-10:
             continue
