@@ -157,14 +157,41 @@ def _region(w: float, prm: np.ndarray) -> int:
 
 
 @njit(cache=True)
+def _signed_region(w: float, prm: np.ndarray) -> int:
+    return _region(w, prm) * (1 if w >= 0.0 else -1)
+
+
+@njit(cache=True)
+def crossed(wa: float, wb: float, da: float, db: float, h: float, prm: np.ndarray) -> bool:
+    """Whether w, a cubic Hermite between (wa, da) and (wb, db) over a step h, leaves the
+    region of k*(w) it starts in (the end or a quarter point elsewhere: grazes count)."""
+    r0 = _signed_region(wa, prm)
+    if _signed_region(wb, prm) != r0:
+        return True
+    for t in (0.25, 0.5, 0.75):
+        t2 = t * t
+        t3 = t2 * t
+        w = (
+            (2.0 * t3 - 3.0 * t2 + 1.0) * wa
+            + (t3 - 2.0 * t2 + t) * h * da
+            + (-2.0 * t3 + 3.0 * t2) * wb
+            + (t3 - t2) * h * db
+        )
+        if _signed_region(w, prm) != r0:
+            return True
+    return False
+
+
+@njit(cache=True)
 def _step(st: np.ndarray, h: float, px: float, py: float, prm: np.ndarray, k1, k2, k3, k4, tmp):
-    """One RK4 step; where w crosses a junction of G (locus, stall, corner: kappa*(w) has a
-    kink there) or the sign of w, the step is redone in 64 sub-steps (RK4 is only first
+    """One RK4 step; where w crosses (or grazes) a junction of G (locus, stall, corner:
+    kappa*(w) has a kink there), the step is redone in 64 sub-steps (RK4 is only first
     order across a kink)."""
     s0, s1, s2, s3, s4, s5 = st[0], st[1], st[2], st[3], st[4], st[5]
-    r0 = _region(st[3], prm) * (1 if st[3] >= 0.0 else -1)
     _rk4(st, h, px, py, prm, k1, k2, k3, k4, tmp)
-    if _region(st[3], prm) * (1 if st[3] >= 0.0 else -1) != r0:
+    da = px * math.sin(s2) - py * math.cos(s2)
+    db = px * math.sin(st[2]) - py * math.cos(st[2])
+    if crossed(s3, st[3], da, db, h, prm):
         st[0], st[1], st[2], st[3], st[4], st[5] = s0, s1, s2, s3, s4, s5
         for _ in range(64):
             _rk4(st, h / 64.0, px, py, prm, k1, k2, k3, k4, tmp)
@@ -355,17 +382,23 @@ def kink_nodes(w0: float, py: float, length: float, n: int, prm: np.ndarray) -> 
     m = 1
     for _ in range(n):
         save[:] = st
-        r0 = _region(st[3], prm) * (1 if st[3] >= 0.0 else -1)
+        r0 = _signed_region(st[3], prm)
         _rk4(st, h, px, py, prm, k1, k2, k3, k4, tmp)
-        if _region(st[3], prm) * (1 if st[3] >= 0.0 else -1) != r0:
+        da = px * math.sin(save[2]) - py * math.cos(save[2])
+        db = px * math.sin(st[2]) - py * math.cos(st[2])
+        last = 0.0
+        if crossed(save[3], st[3], da, db, h, prm):
             st[:] = save
             for i in range(64):
                 _rk4(st, h / 64.0, px, py, prm, k1, k2, k3, k4, tmp)
-                r1 = _region(st[3], prm) * (1 if st[3] >= 0.0 else -1)
-                if r1 != r0 and i < 63:
-                    out = _put(out, m, st, 1.0, prm)
-                    m += 1
+                r1 = _signed_region(st[3], prm)
+                if r1 != r0:
+                    if i < 63:
+                        out = _put(out, m, st, 1.0, prm)
+                        m += 1
+                    else:
+                        last = 1.0
                 r0 = r1
-        out = _put(out, m, st, 0.0, prm)
+        out = _put(out, m, st, last, prm)
         m += 1
     return out[:m]

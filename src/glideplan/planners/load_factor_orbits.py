@@ -29,7 +29,7 @@ import math
 import numpy as np
 from numba import njit
 
-from glideplan.planners.load_factor_kernel import _g, _region, _speed, kappa_of, w_of_g_star
+from glideplan.planners.load_factor_kernel import _g, _speed, crossed, kappa_of, w_of_g_star
 
 __all__ = ["brackets", "build_tables", "ends", "refine", "refine_z", "search"]
 
@@ -68,12 +68,11 @@ def _ork4(y: np.ndarray, h: float, p: float, prm: np.ndarray, ws: np.ndarray) ->
 
 @njit(cache=True)
 def _ostep(y: np.ndarray, h: float, p: float, prm: np.ndarray, ws: np.ndarray) -> None:
-    """One RK4 step, redone in 32 sub-steps where w crosses a kink of k*(w)."""
+    """One RK4 step, redone in 32 sub-steps where w crosses or grazes a kink of k*(w)."""
     save = ws[5]
     save[:] = y
-    r0 = _region(y[1], prm) * (1 if y[1] >= 0.0 else -1)
     _ork4(y, h, p, prm, ws)
-    if _region(y[1], prm) * (1 if y[1] >= 0.0 else -1) != r0:
+    if crossed(save[1], y[1], p * math.sin(save[0]), p * math.sin(y[0]), h, prm):
         y[:] = save
         for _ in range(32):
             _ork4(y, h / 32.0, p, prm, ws)
