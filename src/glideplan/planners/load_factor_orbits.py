@@ -265,6 +265,23 @@ def _root(a, fa, b, fb, p, s0, sg, xg, yg, psig, prm) -> float:
 
 
 @njit(cache=True)
+def _linked(w1: int, w2: int, al: float, p: float, psig: float, prm: np.ndarray) -> bool:
+    """Whether a root of word w1 at alpha can continue as one of word w2 at a neighbouring
+    P: the same word, or (librations) the start's (goal's) branch flipped where the start
+    (goal) is near an inflection, w0 (wg) small."""
+    if w1 == w2:
+        return True
+    if p <= 1.0:
+        return False
+    x = w1 ^ w2
+    if x == 1:
+        return w_of_g_star(p * math.cos(al), prm) < 0.3
+    if x == 2:
+        return w_of_g_star(p * math.cos(psig - al), prm) < 0.3
+    return False
+
+
+@njit(cache=True)
 def _push(rows: np.ndarray, n: int, vals: np.ndarray) -> np.ndarray:
     if n == rows.shape[0]:
         grown = np.zeros((2 * n, rows.shape[1]))
@@ -340,9 +357,9 @@ def search(rows_t, off, info, ps, h, prm, xg, yg, psig, lmax, n_alpha):
 
 
 @njit(cache=True)
-def brackets(rows: np.ndarray, ps: np.ndarray) -> np.ndarray:
-    """Sign changes of e2 between the same word's roots at neighbouring P (same kind):
-    rows (row a, row b, interpolated C), cheapest first."""
+def brackets(rows: np.ndarray, ps: np.ndarray, psig: float, prm: np.ndarray) -> np.ndarray:
+    """Sign changes of e2 between the same root at neighbouring P (same kind; the nearest
+    root of a `_linked` word): rows (row a, row b, interpolated C), cheapest first."""
     m = rows.shape[0]
     out = np.zeros((64, 3))
     c = 0
@@ -358,14 +375,12 @@ def brackets(rows: np.ndarray, ps: np.ndarray) -> np.ndarray:
             nxt += 1
         ki = int(k)
         if end < m and rows[end, 0] == k + 1 and (ps[ki] < 1.0) == (ps[ki + 1] < 1.0):
-            lib = ps[ki] > 1.0
             for r in range(start, end):
                 best, arg = 1e300, -1
                 w1 = int(rows[r, 1])
                 for r2 in range(end, nxt):
                     w2 = int(rows[r2, 1])
-                    # the same word, or (librations) the start's or the goal's branch flipped
-                    if w2 != w1 and not (lib and ((w1 ^ w2) == 1 or (w1 ^ w2) == 2)):
+                    if not _linked(w1, w2, rows[r, 3], ps[ki], psig, prm):
                         continue
                     da = abs((rows[r2, 3] - rows[r, 3] + math.pi) % TWO_PI - math.pi)
                     score = da + 0.05 * abs(rows[r2, 5] - rows[r, 5])
@@ -437,26 +452,6 @@ def pass_state(alpha, p, s0, sg, target, psig, h, lmax, prm) -> np.ndarray:
 
 
 @njit(cache=True)
-def _local_root(guess, p, s0, sg, xg, yg, psig, prm) -> float:
-    """The root of e1 nearest `guess` (searched within +-0.64 rad)."""
-    f0 = _e1(guess, p, s0, sg, xg, yg, psig, prm)
-    if f0 == 0.0:
-        return guess
-    d = 0.01
-    while d < 0.7:
-        for sd in (1.0, -1.0):
-            b = guess + sd * d
-            fb = _e1(b, p, s0, sg, xg, yg, psig, prm)
-            if math.isnan(f0) or math.isnan(fb) or f0 * fb > 0.0:
-                continue
-            if math.isnan(_e1(0.5 * (guess + b), p, s0, sg, xg, yg, psig, prm)):
-                continue
-            return _root(guess, f0, b, fb, p, s0, sg, xg, yg, psig, prm)
-        d *= 2.0
-    return math.nan
-
-
-@njit(cache=True)
 def _word_signs(word: int) -> tuple[float, float]:
     return (1.0 if word % 2 == 0 else -1.0), (1.0 if word < 2 else -1.0)
 
@@ -487,10 +482,10 @@ def refine_z(za, zb, lib, ra, rb, xg, yg, psig, h, lmax, prm) -> np.ndarray:
         frac = (z - za) / (zb - za) if zb != za else 0.5
         guess = aa + ((ab - aa + math.pi) % TWO_PI - math.pi) * frac
         s0, sg = _word_signs(int(ra[1]))
-        al = _local_root(guess, p, s0, sg, xg, yg, psig, prm)
+        al = _near_root(guess, p, s0, sg, xg, yg, psig, prm, 0.6, True)
         if math.isnan(al) and rb[1] != ra[1]:
             s0, sg = _word_signs(int(rb[1]))
-            al = _local_root(guess, p, s0, sg, xg, yg, psig, prm)
+            al = _near_root(guess, p, s0, sg, xg, yg, psig, prm, 0.6, True)
         if math.isnan(al):
             return out
         st = pass_state(al, p, s0, sg, la + (lb - la) * frac, psig, h, lmax, prm)
@@ -512,23 +507,34 @@ def refine_z(za, zb, lib, ra, rb, xg, yg, psig, h, lmax, prm) -> np.ndarray:
 
 
 @njit(cache=True)
-def _near_root(guess, p, s0, sg, xg, yg, psig, prm, radius) -> float:
-    """The root of e1 within `radius` of guess, nearest first; NaN if none."""
-    f0 = _e1(guess, p, s0, sg, xg, yg, psig, prm)
-    if math.isnan(f0):
-        return math.nan
-    if f0 == 0.0:
-        return guess
-    d = radius / 64.0
-    while d <= radius:
-        for sd in (1.0, -1.0):
-            b = guess + sd * d
-            fb = _e1(b, p, s0, sg, xg, yg, psig, prm)
-            if math.isnan(fb) or f0 * fb > 0.0:
-                continue
-            return _root(guess, f0, b, fb, p, s0, sg, xg, yg, psig, prm)
-        d *= 2.0
-    return math.nan
+def _near_root(guess, p, s0, sg, xg, yg, psig, prm, radius, edges) -> float:
+    """The root of e1 within `radius` of guess nearest to it (samples denser near guess, and
+    with `edges` at the domain's edges where the start or the goal is an inflection; the
+    guess itself may lie outside the domain of P); NaN if none."""
+    n = 16
+    a = np.zeros(2 * n + 5)
+    for j in range(-n, n + 1):
+        a[j + n] = guess + radius * (j / n) * abs(j / n)
+    m = 2 * n + 1
+    if edges and p > 1.0:
+        b = math.acos(1.0 / p)
+        for c in (b, -b, psig - b, psig + b):
+            d = (c - guess + math.pi) % TWO_PI - math.pi
+            if abs(d) < radius:
+                a[m] = guess + d
+                m += 1
+    a = np.sort(a[:m])
+    best, out = 1e300, math.nan
+    a_prev, f_prev = 0.0, math.nan
+    for j in range(m):
+        f = _e1(a[j], p, s0, sg, xg, yg, psig, prm)
+        if not math.isnan(f) and not math.isnan(f_prev) and f * f_prev <= 0.0:
+            mid = 0.5 * (a[j] + a_prev)
+            if abs(mid - guess) < best and not math.isnan(_e1(mid, p, s0, sg, xg, yg, psig, prm)):
+                best = abs(mid - guess)
+                out = _root(a_prev, f_prev, a[j], f, p, s0, sg, xg, yg, psig, prm)
+        a_prev, f_prev = a[j], f
+    return out
 
 
 @njit(cache=True)
@@ -560,8 +566,7 @@ def ends(rows, ps, xg, yg, psig, h, lmax, prm, c_max) -> np.ndarray:
                 continue
             cont = False
             for r2 in range(first[kn], first[kn + 1]):
-                w2 = int(rows[r2, 1])
-                if w2 == word or (lib and ((w2 ^ word) == 1 or (w2 ^ word) == 2)):
+                if _linked(word, int(rows[r2, 1]), rows[r, 3], ps[k], psig, prm):
                     da = abs((rows[r2, 3] - rows[r, 3] + math.pi) % TWO_PI - math.pi)
                     cont = cont or da < 0.5
             if cont:
@@ -571,7 +576,7 @@ def ends(rows, ps, xg, yg, psig, h, lmax, prm, c_max) -> np.ndarray:
             for _ in range(30):
                 zm = 0.5 * (zlo + zhi)
                 pm = 1.0 + math.exp(zm) if lib else 1.0 - math.exp(zm)
-                am = _near_root(al, pm, s0, sg, xg, yg, psig, prm, 0.25)
+                am = _near_root(al, pm, s0, sg, xg, yg, psig, prm, 0.25, False)
                 if math.isnan(am):
                     zhi = zm
                 else:

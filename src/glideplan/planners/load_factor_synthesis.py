@@ -156,7 +156,7 @@ def synthesize(glider: LoadFactorGlider, goal: Pose, *, polish: int = 1) -> list
     rows = search(rows_t, off, info, ps, TABLE_STEP, prm, gx, gy, gpsi, lmax, N_ALPHA)
     found: list[np.ndarray] = []
     seeds: list[tuple[float, tuple]] = [
-        (c, (rows[int(ia)], rows[int(ib)], ps)) for ia, ib, c in brackets(rows, ps)
+        (c, (rows[int(ia)], rows[int(ib)], ps)) for ia, ib, c in brackets(rows, ps, gpsi, prm)
     ]
     # ends of roots are followed only below 1.5 times the cheapest bracket's estimate
     c_max = 1.5 * seeds[0][0] if seeds else math.inf
