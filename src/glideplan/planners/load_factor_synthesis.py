@@ -152,6 +152,10 @@ def synthesize(glider: LoadFactorGlider, goal: Pose, *, polish: int = 1) -> list
         return []
     ps, rows_t, off, info, prm = tabs
     gx, gy, gpsi = float(goal.x), float(goal.y), float(goal.heading)
+    if gx > 0.0 and abs(gy) <= 1e-12 * gx and abs(math.remainder(gpsi, 2.0 * math.pi)) <= 1e-12:
+        # straight ahead: wings-level flight (v = n = 1, the saddle itself), 2 p1 per length
+        nd = np.array([[0.0, 0, 0, 0, 0, 0, 0, 1, 0], [gx, 0, 0, 0, gx, gx, 0, 1, 0]])
+        return [Extremal(0.0, 0.0, gx, 2.0 * glider.p1 * gx, nd, 0.0, 1.0)]
     lmax = 2.0 * math.hypot(gx, gy) + 15.0
     rows = search(rows_t, off, info, ps, TABLE_STEP, prm, gx, gy, gpsi, lmax, N_ALPHA)
     found: list[np.ndarray] = []
