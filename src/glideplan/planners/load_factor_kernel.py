@@ -26,12 +26,16 @@ import numpy as np
 from numba import njit
 
 __all__ = [
+    "crossed",
+    "extend_parameters",
     "g_star",
     "integrate",
+    "kappa_newton",
     "kappa_of",
-    "extend_parameters",
+    "kink_nodes",
     "nodes",
     "shoot",
+    "w_newton",
     "w_of_g_star",
 ]
 
@@ -62,7 +66,7 @@ def extend_parameters(prm: np.ndarray, n: int) -> np.ndarray:
     """(p2, a, k_lim, k_c, w_lim, w_c, q_lim, q_c, n) and tables of W(q) on the stall part
     [q_c, q_lim] (slope -1/k) and of k*(w) on [w_lim, w_c] (slope 1/G''(k)), n nodes each,
     for `kappa_of` and `w_of_g_star` (cubic Hermite: about 1e-12 at n = 2048)."""
-    p2, a, kl, kc, wl, wc = prm[0], prm[1], prm[2], prm[3], prm[4], prm[5]
+    p2, a, _kl, kc, wl, wc = prm[0], prm[1], prm[2], prm[3], prm[4], prm[5]
     out = np.zeros(9 + 4 * n)
     out[:6] = prm[:6]
     q_lim = math.sqrt(1.0 - wl * wl)

@@ -172,8 +172,12 @@ def synthesize(glider: LoadFactorGlider, goal: Pose, *, polish: int = 1) -> list
     for c_est, args in seeds[:MAX_REFINE]:
         if found and c_est > min(f[3] for f in found) * (1.0 + COST_MARGIN):
             break
-        solve = refine if len(args) == 3 else refine_z
-        res = solve(*args, gx, gy, gpsi, TABLE_STEP, lmax, prm)
+        if len(args) == 3:
+            ra, rb, _ = args
+            res = refine(ra, rb, ps, gx, gy, gpsi, TABLE_STEP, lmax, prm)
+        else:
+            za, zb, lib, ra, rb = args
+            res = refine_z(za, zb, lib, ra, rb, gx, gy, gpsi, TABLE_STEP, lmax, prm)
         if res[7] == 0.0 or res[6] > 1e-8:
             continue
         if any(abs(f[2] - res[2]) < 1e-6 and abs(f[3] - res[3]) < 1e-7 for f in found):
