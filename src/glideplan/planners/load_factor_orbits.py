@@ -573,7 +573,7 @@ def ends(rows, ps, xg, yg, psig, h, lmax, prm, c_max) -> np.ndarray:
                 continue
             zlo, zhi = math.log(abs(1.0 - ps[k])), math.log(abs(1.0 - ps[kn]))
             al = rows[r, 3]
-            for _ in range(30):
+            for _ in range(18):  # the end to 4e-6 of the grid step: enough to bracket
                 zm = 0.5 * (zlo + zhi)
                 pm = 1.0 + math.exp(zm) if lib else 1.0 - math.exp(zm)
                 am = _near_root(al, pm, s0, sg, xg, yg, psig, prm, 0.25, False)

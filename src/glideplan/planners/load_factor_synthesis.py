@@ -190,13 +190,13 @@ def synthesize(glider: LoadFactorGlider, goal: Pose, *, polish: int = 1) -> list
             break
         al, p, length, w0 = res[0], res[1], res[2], res[5]
         z0 = np.array([w0, p * math.sin(al), length])
-        z = shoot(z0, gx, gy, gpsi, max(16, math.ceil(length / FINE_STEP)), prm, 8)
+        z = shoot(z0, gx, gy, gpsi, max(16, math.ceil(length / FINE_STEP)), prm, 4)
         if z[3] > 1e-7 or not z[2] > 0.0:
             continue
         # the path's nodes: the same RK4 steps as the last Newton iterations
         # and w (so kappa on the stall boundary) moving at most 0.02 per node (|w'| <= P)
         n = max(64, math.ceil(z[2] / NODE_STEP), math.ceil(z[2] * p / 0.02))
-        z = shoot(z[:3], gx, gy, gpsi, n, prm, 3)
+        z = shoot(z[:3], gx, gy, gpsi, n, prm, 2)
         if z[3] > 1e-10:
             continue
         nd = kink_nodes(z[0], z[1], z[2], n, prm)
