@@ -92,9 +92,10 @@ def kernel_parameters(glider: LoadFactorGlider) -> np.ndarray | None:
 def p_grid() -> np.ndarray:
     """Orbit moduli: rotations P = 0.01 ... 1 - 1e-12, librations 1 + 1e-12 ... 101 (log
     spaced in P far from 1 and in |1 - P| near it: the time spent near wings-level flight
-    grows like log(1 / |1 - P|))."""
+    grows like log(1 / |1 - P|)); denser for 1.001 < P < 101, where the root curves of
+    short goals with one inflection are born and die within a few percent of P."""
     rot = np.concatenate([np.geomspace(0.01, 0.5, 14), 1.0 - 10.0 ** -np.linspace(0.35, 12, 55)])
-    lib = 1.0 + 10.0 ** -np.linspace(-2.0, 12.0, 65)
+    lib = 1.0 + 10.0 ** -np.r_[np.linspace(-2.0, 3.0, 70), np.linspace(3.1, 12.0, 40)]
     return np.concatenate([rot, lib])
 
 
