@@ -52,7 +52,7 @@ def plan_load_factor_command(
         common.plot_option("Draw controls, path and control set (Fig 6.11 style)."),
     ] = None,
 ) -> None:
-    """Minimum altitude loss, speed and load-factor controls, by the direct method (6.8).
+    """Minimum altitude loss, speed and load-factor controls (6.8): direct method or synthesis.
 
     Defaults are the dissertation's example (6.21). `cost` is the nondimensional altitude
     loss; the JSON adds the control history (`controls`: s, v, n, bank_deg, label) and the
