@@ -69,6 +69,7 @@ CASES: dict[str, Case] = {
         lambda: VariableSpeedCar(0.3, 1.0, 1.0), (0.0, 2.0, 2 * math.pi / 3)
     ),
     "load-factor": Case(LoadFactorGlider, (-2.0, 4.0, 7 * math.pi / 4)),
+    "load-factor-synthesis": Case(LoadFactorGlider, (1.1, 2.0, 0.0)),
     "min_altitude": Case(dg1001m, (-3.0 * _R_STF, 4.0 * _R_STF, 0.0)),
     "min_altitude_direct": Case(dg1001m, (-3.0 * _R_STF, 4.0 * _R_STF, 0.0)),
     "final_glide": Case(_sailplane, (1500.0, 800.0, math.pi / 2)),

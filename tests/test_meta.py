@@ -50,6 +50,9 @@ CLI_CASES: dict[tuple[str, str], tuple[str, ...]] = {
         "--u-max", "1", "--method", "direct",
     ),
     ("load-factor", "altitude"): ("plan", "load-factor", "--goal", "1", "2", "0"),
+    ("load-factor-synthesis", "altitude"): (
+        "plan", "load-factor", "--goal", "1", "2", "0", "--method", "synthesis"
+    ),
     ("final_glide", "altitude"): (
         "glide", "final", "--polar", str(POLAR), "--from", "47.0", "8.0", "1500", "--to",
         "47.02", "8.01", "450", "--arrival-heading", "90", "--start-heading", "0",

@@ -38,18 +38,27 @@ def plan_load_factor_command(
         int, typer.Option("--max-iterations", help="IPOPT iteration limit per solve.")
     ] = 1000,
     time_limit: Annotated[float | None, common.time_limit_flag()] = None,
+    method: Annotated[
+        str,
+        typer.Option(
+            "--method",
+            help="direct (collocation, the default) or synthesis (extremals from tables of "
+            "the canonical orbits; the direct method answers where it finds none).",
+        ),
+    ] = "direct",
     json_out: Annotated[bool, common.json_flag()] = False,
     plot: Annotated[
         pathlib.Path | None,
         common.plot_option("Draw controls, path and control set (Fig 6.11 style)."),
     ] = None,
 ) -> None:
-    """Minimum altitude loss, speed and load-factor controls, by the direct method (6.8).
+    """Minimum altitude loss, speed and load-factor controls (6.8): direct method or synthesis.
 
     Defaults are the dissertation's example (6.21). `cost` is the nondimensional altitude
     loss; the JSON adds the control history (`controls`: s, v, n, bank_deg, label) and the
     arc classification (`arcs`: extremal locus, stall boundary, corner, wings level).
     """
+    from glideplan.errors import InvalidParameterError
     from glideplan.planning import plan
     from glideplan.vehicles.load_factor_glider import LoadFactorGlider
 
@@ -66,21 +75,29 @@ def plan_load_factor_command(
     }
     with common.flag_names(**names, start="--start", goal="--goal"):
         glider = LoadFactorGlider(l_over_d_max=l_over_d, v_min=v_min, v_max=v_max, n_max=n_max)
-        options = common.time_limit_option(glider, "altitude", "direct", time_limit)
-        solution = common.solving(
-            "planning (load-factor, direct method)",
-            lambda: plan(
-                start_pose,
-                goal_pose,
-                glider,
-                "altitude",
-                "direct",
-                scheme=scheme,
-                max_starts=max_starts,
-                max_iterations=max_iterations,
-                **options,
-            ),
-        )
+        if method == "synthesis":
+            solution = common.solving(
+                "planning (load-factor, synthesis)",
+                lambda: plan(start_pose, goal_pose, glider, "altitude", "synthesis"),
+            )
+        elif method != "direct":
+            raise InvalidParameterError("--method", method, "must be direct or synthesis")
+        else:
+            options = common.time_limit_option(glider, "altitude", "direct", time_limit)
+            solution = common.solving(
+                "planning (load-factor, direct method)",
+                lambda: plan(
+                    start_pose,
+                    goal_pose,
+                    glider,
+                    "altitude",
+                    "direct",
+                    scheme=scheme,
+                    max_starts=max_starts,
+                    max_iterations=max_iterations,
+                    **options,
+                ),
+            )
 
     def draw() -> None:
         assert plot is not None

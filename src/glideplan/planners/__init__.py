@@ -19,7 +19,7 @@ PLANNER_MODULES: dict[str, tuple[str, ...]] = {
     "DubinsCarInWind": ("wind",),
     "VariableSpeedCar": ("min_time",),
     "QuadraticPolarGlider": ("min_altitude",),
-    "LoadFactorGlider": ("load_factor",),
+    "LoadFactorGlider": ("load_factor", "load_factor_synthesis"),
     "Sailplane": ("final_glide",),
 }
 
