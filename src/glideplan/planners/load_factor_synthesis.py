@@ -253,7 +253,7 @@ def _direct_answer(problem: Problem, why: str, seconds: float, extra: dict) -> P
         stats={**out.stats, "synthesis_seconds": seconds, "synthesis_candidates": 0},
         message=f"{msg}: {out.message}" if out.message else msg,
         extras={**out.extras, **extra, "answered_by": "direct"},
-        solver_failed=out.solver_failed,
+        failure=out.failure,
         warnings=(*out.warnings, msg),
     )
 
