@@ -255,7 +255,8 @@ def add_land(fig: Any, x_range: Any, y_range: Any) -> Any:
     """Land (filled) and coastline under every other layer of the lon/lat figure `fig`, the
     sea as its background, and a one-line attribution; returns the layer (its sources are
     `land_src`, `coast_src`, named "gp-land" and "gp-coast")."""
-    from bokeh.models import ColumnDataSource, Label
+    from bokeh.models import ColumnDataSource
+    from bokeh.models.annotations import Label
 
     land_src = ColumnDataSource({"xs": [], "ys": []}, name="gp-land")
     coast_src = ColumnDataSource({"x": [], "y": []}, name="gp-coast")

@@ -200,8 +200,8 @@ class MissionPage(MapPage):
         w, s, e, n = view_with_coast(  # the nearest coast in view
             lon.min() - pad / self.k, lat.min() - pad, lon.max() + pad / self.k, lat.max() + pad
         )
-        self.x_range = Range1d(w, e)
-        self.y_range = Range1d(s, n)
+        self.x_range = Range1d(start=w, end=e)
+        self.y_range = Range1d(start=s, end=n)
         fig = map_figure(self.x_range, self.y_range)
         fig.background_fill_color = "#eef5fb"
         fig.grid.grid_line_color = "#d9e3ee"
