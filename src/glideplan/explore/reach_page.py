@@ -107,7 +107,7 @@ def reach_view(example: Any, polar: Any, state: ReachState) -> ReachView:
             mc=values["mc"][0],
             wind=wind,
             safety_height=values["safety"][0],
-            resolution_m=example.resolution_m,
+            resolution_m=None,  # the DEM's own grid (reach.native), not the example's 700 m
         )
     except InvalidParameterError as err:
         name = {"start": "from", "mc": "mc", "wind": "wind", "safety_height": "safety"}.get(
@@ -191,32 +191,16 @@ class ReachPage(MapPage):
         self.x_range = Range1d(start=float(lon.min()), end=float(lon.max()))
         self.y_range = Range1d(start=float(lat.min()), end=float(lat.max()))
         fig = map_figure(self.x_range, self.y_range)
-        step = max(1, len(lon) // _SHADE_CELLS)
-        z = np.asarray(t.z, dtype=float)[::step, ::step]
-        la, lo = lat[::step], lon[::step]
-        if la[0] > la[-1]:  # rows north to south: the image's rows go up
-            z, la = z[::-1], la[::-1]
-        r = 6_371_000.0
-        dy = math.radians(abs(la[1] - la[0])) * r
-        dx = math.radians(abs(lo[1] - lo[0])) * r * self.k
-        shade = hillshade(np.nan_to_num(z), dx, dy)
-        grey = (60 + 180 * shade).astype(np.uint8)
-        rgba = np.dstack([grey, grey, grey, np.full_like(grey, 255)])
-        image: Any = np.ascontiguousarray(rgba).view(np.uint32).reshape(grey.shape)
-        fig.image_rgba(
-            image=[image],
-            x=float(lo.min()),
-            y=float(la.min()),
-            dw=float(lo.max() - lo.min()),
-            dh=float(la.max() - la.min()),
-        )
+        from glideplan.explore.relief import add_relief
+
+        add_relief(fig, t)  # colour relief, hillshade, labelled contours, elevation key
         self.foot_src = ColumnDataSource({"xs": [], "ys": []}, name="gp-answer")
         fig.multi_polygons(
             "xs",
             "ys",
             source=self.foot_src,
             fill_color="#2e86de",
-            fill_alpha=0.25,
+            fill_alpha=0.18,
             line_color="#1f5fa8",
             line_width=1.5,
             legend_label="footprint (safety height kept)",
