@@ -354,6 +354,7 @@ class ReachPage(MapPage):
             item("reachable landables", f"{html.escape(cost)} {total}", "gp-cost")
             + item("best margin", best, "gp-word")
             + item("status", html.escape(status), "gp-small gp-status")
+            + (item("grid", f"{r.resolution_m:.0f} m", "gp-small gp-grid") if r is not None else "")
             + warnings_item(r),
             stale,
         )
