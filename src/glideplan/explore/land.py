@@ -13,10 +13,11 @@ Accuracy: drawn for 1:10,000,000 (0.1 mm on such a map is 1 km), plus half a gri
 `land_shapes(west, south, east, north)`: the land polygons (with holes) clipped to that box
 (Sutherland-Hodgman, exact for the box's straight sides in lon/lat) and the coastline as
 polylines (NaN between pieces, no edge along the box), thinned to ~1/1500 of the box's
-width when the data is finer than that. `add_land(fig, x_range, y_range)`: draws both under
-every other layer of a lon/lat figure (the maps are lon/lat with equal metres per pixel at
-the view's latitude, as the tracks) for 3 x 3 views about the view, and again whenever the
-view leaves the middle of that region. `distance_to_coast_m` and `on_land` serve the tests.
+width when the data is finer than that. `add_land(fig, x_range, y_range)`: draws the land
+under every layer and the coast over the images only, of a lon/lat figure (the maps are
+lon/lat with equal metres per pixel at the view's latitude, as the tracks) for 3 x 3 views
+about the view, and again whenever the view leaves the middle of that region.
+`distance_to_coast_m` and `on_land` serve the tests.
 """
 
 from __future__ import annotations
@@ -252,8 +253,9 @@ class _LandLayer:
 
 
 def add_land(fig: Any, x_range: Any, y_range: Any) -> Any:
-    """Land (filled) and coastline under every other layer of the lon/lat figure `fig`, the
-    sea as its background, and a one-line attribution; returns the layer (its sources are
+    """Land (filled) under every other layer of the lon/lat figure `fig` and the coastline
+    over its images only (a field's own land mask, a terrain's relief), the sea as its
+    background, and a one-line attribution; returns the layer (its sources are
     `land_src`, `coast_src`, named "gp-land" and "gp-coast")."""
     from bokeh.models import ColumnDataSource
     from bokeh.models.annotations import Label
@@ -264,8 +266,10 @@ def add_land(fig: Any, x_range: Any, y_range: Any) -> Any:
                               line_color=None, name="gp-land")
     coast = fig.line("x", "y", source=coast_src, line_color=COAST, line_width=1.2,
                      name="gp-coast")
+    # land under everything, the coast over the page's images (a field's land mask, relief)
     others = [r for r in fig.renderers if r is not land and r is not coast]
-    fig.renderers = [land, coast, *others]
+    images = [r for r in others if type(getattr(r, "glyph", None)).__name__ == "ImageRGBA"]
+    fig.renderers = [land, *images, coast, *(r for r in others if r not in images)]
     fig.background_fill_color = SEA
     fig.add_layout(Label(x=4, y=4, x_units="screen", y_units="screen",
                          text="land: Natural Earth 1:10m", text_font_size="9px",
