@@ -4,7 +4,8 @@ against the 700 m pooled grid, the relief and contours, and the land/coast per v
 Run: `python benchmarks/explore_map_layers.py` (about a minute). Prints the one-off costs of
 the relief image (and its bytes), the contours, and `land_shapes` for the mission's, a
 1 x 1 deg and a 20 x 15 deg view; then per start the native and pooled reach CPU times (s of
-the process: the machine is shared) and the reachable landables of both. The first call of each kind (compiling) is not timed.
+the process: the machine is shared) and the reachable landables of both. The first call of
+each kind (compiling) is not timed.
 """
 
 from __future__ import annotations
