@@ -5,9 +5,10 @@ hillshade and labelled contours (`explore.relief`), the footprint of
 `glideplan.reach.glide_reach` on the DEM's own grid (`reach.native`; where the glide arrives
 at least the safety height above the terrain) and each landable coloured by its arrival
 margin (green: reachable, its margin in m; red: not, "-240 m" short). The start drags; its
-altitude, the wind (speed m/s, FROM compass deg, as `glide reach --wind`), MC and the safety height are inputs. The built-in example `ridge` (the
-one of `glideplan glide reach --example ridge`) needs no file. `gp-cost` shows the number of
-reachable landables. Reach takes ~1.2 s of CPU (at the DEM's 93 m): a worker thread.
+altitude, the wind (speed m/s, FROM compass deg, as `glide reach --wind`), MC and the safety
+height are inputs. The built-in example `ridge` (the one of `glideplan glide reach --example
+ridge`) needs no file. `gp-cost` shows the number of reachable landables. Reach takes ~1.2 s
+of CPU (at the DEM's 93 m): a worker thread.
 
 URL: `?planner=reach&example=ridge&from=LAT,LON,ALT&wind=SPEED,FROM_DEG&mc=M&safety=H`.
 """
