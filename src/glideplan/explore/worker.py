@@ -95,10 +95,10 @@ class SessionWorker:
             self._deliver(answer)
 
     def deliver_pending(self) -> None:
-        """Show the last answer if its scheduled delivery has not run (call on page load, under
-        the document's lock): a next-tick callback added from the worker while the server
-        builds the session can be lost (the strip said "computing" forever in 2 of 4 fresh
-        mission loads on a loaded machine)."""
+        """Show the last answer if its scheduled delivery has not run (call on page load, via
+        `_held`: one patch, local style sheets): a next-tick callback added from the worker
+        while the server builds the session can be lost (the strip said "computing" forever
+        in 2 of 4 fresh mission loads on a loaded machine)."""
         answer = getattr(self, "_undelivered", None)
         if answer is not None:
             self._deliver_once(answer)
