@@ -579,7 +579,7 @@ def test_reach_map_counts_reachable_landables(server: str, browser_context: Any)
         mc=0.0,
         wind=wind_from_to_vector(4.0, 250.0),
         safety_height=300.0,
-        resolution_m=ex.resolution_m,
+        resolution_m=None,  # the CLI's: the terrain's own grid
     )
     try:
         shown = _wait_result(page, timeout=60.0)

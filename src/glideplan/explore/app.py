@@ -771,6 +771,8 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
         from glideplan.explore.worker import local_styles, resend_data
 
         pages["current"].push_url()
+        page = pages["current"]  # an answer whose delivery was lost, held as the others
+        page._held(page.deliver_pending)
         resend_data(pn.state.curdoc)  # an answer that came while the page was built
         history.arm()
         local_styles(pn.state.curdoc)

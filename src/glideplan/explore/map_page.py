@@ -246,9 +246,11 @@ def finish_map(
         legend.click_policy = "hide"
     equal_scales(fig, x_range, y_range, k)
     follow_url(fig)
+    from glideplan.explore.land import add_land
     from glideplan.explore.map_furniture import add_scale_and_north
 
     add_scale_and_north(fig, x_range, y_range, wind)
+    add_land(fig, x_range, y_range)
 
 
 def page_layout(

@@ -196,8 +196,13 @@ class MissionPage(MapPage):
     def _figure(self) -> None:
         lat, lon = np.array(self.state.lat), np.array(self.state.lon)
         pad = 0.15 * max(float(np.ptp(lat)), float(np.ptp(lon)) * self.k, 1e-3)
-        self.x_range = Range1d(lon.min() - pad / self.k, lon.max() + pad / self.k)
-        self.y_range = Range1d(lat.min() - pad, lat.max() + pad)
+        from glideplan.explore.land import view_with_coast
+
+        w, s, e, n = view_with_coast(  # the nearest coast in view
+            lon.min() - pad / self.k, lat.min() - pad, lon.max() + pad / self.k, lat.max() + pad
+        )
+        self.x_range = Range1d(start=w, end=e)
+        self.y_range = Range1d(start=s, end=n)
         fig = map_figure(self.x_range, self.y_range)
         fig.background_fill_color = "#eef5fb"
         fig.grid.grid_line_color = "#d9e3ee"

@@ -85,7 +85,23 @@ class SessionWorker:
             with self._lock:
                 latest = self._pending is None
             if latest:
-                self._schedule(lambda a=answer: self._deliver(a))  # type: ignore[misc]
+                self._undelivered = answer
+                self._schedule(lambda a=answer: self._deliver_once(a))  # type: ignore[misc]
+
+    def _deliver_once(self, answer: Any) -> None:
+        """Show `answer` unless it was shown already or a newer one is on its way."""
+        if getattr(self, "_undelivered", None) is answer:
+            self._undelivered = None
+            self._deliver(answer)
+
+    def deliver_pending(self) -> None:
+        """Show the last answer if its scheduled delivery has not run (call on page load, via
+        `_held`: one patch, local style sheets): a next-tick callback added from the worker
+        while the server builds the session can be lost (the strip said "computing" forever
+        in 2 of 4 fresh mission loads on a loaded machine)."""
+        answer = getattr(self, "_undelivered", None)
+        if answer is not None:
+            self._deliver_once(answer)
 
     def _superseded(self) -> bool:
         """The computation running is no longer wanted: a newer state waits, or the tab
