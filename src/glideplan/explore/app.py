@@ -732,6 +732,9 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
         k: v[0].decode() if isinstance(v[0], bytes) else str(v[0]) for k, v in args.items() if v
     }
     catalog = catalog or build_catalog()
+    from glideplan.explore.worker import local_dist
+
+    local_dist(pn.state.curdoc)  # before any model is made: every style sheet local
     root = pn.Column(sizing_mode="stretch_width", margin=0, stylesheets=[ROOT_CSS])
     pages: dict[str, Any] = {}
 
