@@ -40,6 +40,7 @@ from glideplan.explore.figures import (
     empty_candidates,
     empty_points,
 )
+from glideplan.explore.inputs import InputControl, build_input
 from glideplan.explore.solve import View, partition_image, solve_view, with_candidates
 from glideplan.explore.state import (
     ExploreState,
@@ -57,7 +58,8 @@ __all__ = ["Explorer", "create_page"]
 # The page's frame: a viewport tag for phones and the layout's media rules. Wide screens
 # put the controls (320 px) left of the result strip and the plot, whose height is the
 # window's less the header and the strip (so the x axis stays above the fold); below
-# 760 px the controls stack above the plot, which is then about as tall as wide.
+# 760 px (a phone) the strip and the plot come first, about as tall as wide, the controls
+# below them (flex `order`).
 VIEWPORT_TEMPLATE = """{% extends base %}
 {% block preamble %}{{ super() }}
 <meta name="viewport" content="width=device-width, initial-scale=1">
@@ -72,7 +74,8 @@ SIDEBAR_CSS = f"""
 """
 MAIN_CSS = """
 :host { flex: 1 1 600px; min-width: 0; }
-@media (max-width: 760px) { :host { width: calc(100vw - 16px) !important; flex: 1 1 100%; } }
+@media (max-width: 760px) { :host { width: calc(100vw - 16px) !important; flex: 1 1 100%;
+  order: -1; } }
 """
 BODY_CSS = """
 :host { width: 100%; }
@@ -239,27 +242,31 @@ class Explorer(SessionWorker):
 
     def _set_planner_inputs(self) -> None:
         entry = self.entry
+        # the planner's one line, not the vehicle's docstring (radians and "towards" inside)
         self.planner_help.object = (
             f'<div class="gp-help">{html.escape(entry.spec.description.replace("`", ""))}<br>'
-            f"<i>{html.escape(entry.help)}</i></div>"
+            "<i>Angles in degrees; a wind is the compass direction it blows FROM.</i></div>"
         )
         for name, w in self.pose_inputs.items():
             w.label = self._pose_label(name)
         self.figs.set_units(entry.length_unit, "nondim." if entry.nondimensional else "m/s")
-        self.param_inputs: dict[str, pn.widgets.TextInput] = {}
+        self.param_inputs: dict[str, InputControl] = {}
         vehicle: list[Any] = []
         option: list[Any] = []
         for p in entry.parameters:
-            w = _TextInput(
-                label=p.caption(entry.nondimensional),
-                value=self.state.values.get(p.name, p.default),
-                sizing_mode="stretch_width",
-                css_classes=[f"gp-input-{p.name}"],
+            control = build_input(
+                p,
+                self.state.values.get(p.name, p.default),
+                entry.nondimensional,
+                self._make_value_watcher(p.name),
+                wind_unit=self.state.wind_unit,
+                on_unit=self._on_wind_unit,
             )
-            w.param.watch(self._make_value_watcher(p.name), "value")
-            self.param_inputs[p.name] = w
+            self.param_inputs[p.name] = control
             self.error_panes[p.name] = html_pane(sizing_mode="stretch_width")
-            (vehicle if p.target == "vehicle" else option).extend([w, self.error_panes[p.name]])
+            (vehicle if p.target == "vehicle" else option).extend(
+                [*control.widgets, self.error_panes[p.name]]
+            )
         self.vehicle_box.objects = vehicle
         self.option_box.objects = option or [html_pane('<span class="gp-help">none</span>')]
         self.partition_toggle.visible = hasattr(
@@ -379,12 +386,21 @@ class Explorer(SessionWorker):
 
         return watch
 
-    def _make_value_watcher(self, name: str) -> Callable[[Any], None]:
-        def watch(event: Any) -> None:
+    def _make_value_watcher(self, name: str) -> Callable[[str], None]:
+        def watch(text: str) -> None:
             if not self._syncing:
-                self._locked(lambda: self.set_state(self.state.with_values(**{name: event.new})))
+                self._locked(lambda: self.set_state(self.state.with_values(**{name: text})))
 
         return watch
+
+    def _on_wind_unit(self, unit: str) -> None:
+        """Another unit for the wind's speed: the same wind, the URL remembers the unit."""
+        if not self._syncing:
+            self._locked(lambda: self._set_wind_unit(unit))
+
+    def _set_wind_unit(self, unit: str) -> None:
+        self.state = replace(self.state, wind_unit=unit)
+        self._push_url()
 
     def _on_flags(self, event: Any) -> None:
         self._locked(

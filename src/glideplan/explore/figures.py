@@ -418,5 +418,6 @@ class PlanFigures:
         self.wind_label.data = {
             "x": [x0],
             "y": [y0 + 0.03 * span],
-            "text": [f"wind {w:.3g} m/s towards {direction:.0f} deg"],
+            # compass FROM, as the input and every --wind (the arrow points where it blows)
+            "text": [f"wind {w:.3g} m/s from {(270.0 - direction) % 360.0:.0f} deg"],
         }
