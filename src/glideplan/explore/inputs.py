@@ -140,7 +140,7 @@ def _spinner(
     """A spinner showing `si * factor` rounded, clamped in the browser to [low, high] * factor."""
     shown = None if si is None else si * factor
     return pn.widgets.FloatInput(
-        name=label,
+        label=label,
         value=shown,
         start=None if low is None else low * factor,
         end=None if high is None else high * factor,
@@ -170,7 +170,7 @@ def build_input(
     css = [f"gp-input-{p.name}"]
     if p.kind == "bool":
         box = pn.widgets.Checkbox(
-            name=p.caption(nondimensional).replace(" (true/false)", ""),
+            label=p.caption(nondimensional).replace(" (true/false)", ""),
             value=str(text).strip().lower() in ("true", "1", "yes"),
             css_classes=css,
             margin=(6, 5),
@@ -180,19 +180,19 @@ def build_input(
     if p.kind == "str" and choices:
         options = list(choices) if text in choices else [text, *choices]
         sel = pn.widgets.Select(
-            name=p.caption(nondimensional), options=options, value=text,
+            label=p.caption(nondimensional), options=options, value=text,
             sizing_mode="stretch_width", css_classes=css, margin=(2, 5),
         )
         return _wire(p.name, [sel], lambda: str(sel.value), _select_setter(sel), on_text)
     if p.kind == "str":
         entry = pn.widgets.TextInput(
-            name=p.caption(nondimensional), value=text, sizing_mode="stretch_width",
+            label=p.caption(nondimensional), value=text, sizing_mode="stretch_width",
             css_classes=css, margin=(2, 5),
         )
         return _wire(p.name, [entry], lambda: str(entry.value), _text_setter(entry), on_text)
     if p.kind == "int":
         spin = pn.widgets.IntInput(
-            name=p.caption(nondimensional), value=_int(text), start=1, step=1,
+            label=p.caption(nondimensional), value=_int(text), start=1, step=1,
             sizing_mode="stretch_width", css_classes=css, margin=(2, 5),
         )
         return _wire(p.name, [spin], lambda: _num_text(spin.value, 1.0), _int_setter(spin),
@@ -382,11 +382,11 @@ def _wind_input(
     )
     speed.format = "0,0.[00]"
     units = pn.widgets.Select(
-        name="unit", options=list(WIND_UNITS), value=unit, width=78, margin=(2, 5),
+        label="unit", options=list(WIND_UNITS), value=unit, width=78, margin=(2, 5),
         css_classes=[f"gp-input-{name}-unit"],
     )
     direction = pn.widgets.FloatInput(
-        name="from (deg)", value=frm, start=0.0, end=360.0, step=5.0,
+        label="from (deg)", value=frm, start=0.0, end=360.0, step=5.0,
         format="0,0.[0]", sizing_mode="stretch_width", margin=(2, 5),
         css_classes=[f"gp-input-{name}-from"],
         description="the compass direction the wind blows FROM (deg): 0 north, 90 east",
