@@ -67,6 +67,24 @@ NUMBER_BOUNDS: Mapping[str, tuple[float | None, float | None]] = {
 TURN_RATES = frozenset({"u_max", "turn_rate_max"})
 
 
+class _FloatInput(pn.widgets.FloatInput):
+    """A spinner whose change reaches the server at once (Panel waits 50 ms by default)."""
+
+    _debounce = 0
+
+
+class _IntInput(pn.widgets.IntInput):
+    _debounce = 0
+
+
+class _Select(pn.widgets.Select):
+    _debounce = 0
+
+
+class _Checkbox(pn.widgets.Checkbox):
+    _debounce = 0
+
+
 def _choices() -> Mapping[str, tuple[str, ...]]:
     """The names a text option may take: the planners' own tables."""
     from glideplan.planners.direct.collocation import SCHEMES
@@ -136,10 +154,10 @@ def _float(text: str) -> float | None:
 
 def _spinner(
     label: str, si: float | None, factor: float, low: float | None, high: float | None, **kw: Any
-) -> pn.widgets.FloatInput:
+) -> _FloatInput:
     """A spinner showing `si * factor` rounded, clamped in the browser to [low, high] * factor."""
     shown = None if si is None else si * factor
-    return pn.widgets.FloatInput(
+    return _FloatInput(
         label=label,
         value=shown,
         start=None if low is None else low * factor,
@@ -169,7 +187,7 @@ def build_input(
         return _group_input(p, text, on_text)
     css = [f"gp-input-{p.name}"]
     if p.kind == "bool":
-        box = pn.widgets.Checkbox(
+        box = _Checkbox(
             label=p.caption(nondimensional).replace(" (true/false)", ""),
             value=str(text).strip().lower() in ("true", "1", "yes"),
             css_classes=css,
@@ -179,7 +197,7 @@ def build_input(
     choices = _choices().get(last[0])
     if p.kind == "str" and choices:
         options = list(choices) if text in choices else [text, *choices]
-        sel = pn.widgets.Select(
+        sel = _Select(
             label=p.caption(nondimensional), options=options, value=text,
             sizing_mode="stretch_width", css_classes=css, margin=(2, 5),
         )
@@ -191,7 +209,7 @@ def build_input(
         )
         return _wire(p.name, [entry], lambda: str(entry.value), _text_setter(entry), on_text)
     if p.kind == "int":
-        spin = pn.widgets.IntInput(
+        spin = _IntInput(
             label=p.caption(nondimensional), value=_int(text), start=1, step=1,
             sizing_mode="stretch_width", css_classes=css, margin=(2, 5),
         )
@@ -381,11 +399,11 @@ def _wind_input(
         description=f"wind speed: {wr.rule().removeprefix('must lie in ')}",
     )
     speed.format = "0,0.[00]"
-    units = pn.widgets.Select(
+    units = _Select(
         label="unit", options=list(WIND_UNITS), value=unit, width=78, margin=(2, 5),
         css_classes=[f"gp-input-{name}-unit"],
     )
-    direction = pn.widgets.FloatInput(
+    direction = _FloatInput(
         label="from (deg)", value=frm, start=0.0, end=360.0, step=5.0,
         format="0,0.[0]", sizing_mode="stretch_width", margin=(2, 5),
         css_classes=[f"gp-input-{name}-from"],

@@ -46,8 +46,7 @@ class SessionWorker:
         if self._closed or self._doc is None:
             return
         with set_curdoc(self._doc), hold(self._doc):
-            fn()
-            local_styles(self._doc)
+            fn()  # new models link local style sheets (`local_dist`): no walk over them here
 
     def _compute(self, state: Any) -> Any:
         raise NotImplementedError
