@@ -157,6 +157,8 @@ def test_fresh_loads_draw_what_the_strip_says(server: str, context: Any):
             lengths = page.evaluate(ANSWER_JS)
             if status.startswith("solved") and (not lengths or min(lengths) == 0):
                 empty.append((url, lengths))
+            if status.startswith("solved") and page.locator(".pn-loading").count():
+                empty.append((url, "solved under the busy veil"))
     finally:
         for p in pages:
             p.close()

@@ -343,6 +343,12 @@ class Explorer(SessionWorker):
         self.strip.sync()
         self.table.sync()
         self._push_url()
+        if self.entry.slow and hasattr(self, "plot_pane"):
+            # the busy veil's last change can be lost like the answer's data (a slow planner
+            # answered while the browser built the page: "solved" under a spinner): send it
+            busy = self.view is None or self.view.state != self.state
+            self.plot_pane.loading = not busy
+            self.plot_pane.loading = busy
 
     def _push_url(self) -> None:
         """Put the state's query in the browser's address (history.replaceState, no reload)."""
