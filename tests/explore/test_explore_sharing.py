@@ -31,6 +31,8 @@ MODES = {
     "route": ROUTE,
     "mission": "planner=mission",
     "reach": REACH,
+    # a direct (worker-thread) planner: its busy veil must be lifted on a fresh load too
+    "time-optimal-direct": "planner=time-optimal-direct&goal=2,1.5,90&synthesis_starts=1",
 }
 # The lengths of the answer's data sources (named `gp-answer`) in the browser's document.
 ANSWER_JS = """() => { const out = [];
