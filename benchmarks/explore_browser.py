@@ -1,6 +1,7 @@
 """Benchmark: `glideplan explore` in a browser, an input change to the new cost on the screen.
 
-The issue's budget: <= 80 ms median for Dubins and wind. Measured in Debian's Chromium driven
+The issue's budget: a 90th percentile <= 80 ms for Dubins and wind (the verdict; the
+median is printed beside it). Measured in Debian's Chromium driven
 by Playwright against the page served in this process (the real server, websocket included):
 in the page, the goal's text box gets a new value and its `change` event (what Enter does)
 at performance.now() = t0; the page then polls every animation frame for the `gp-cost`
@@ -161,7 +162,7 @@ def main() -> None:
                 goals = goal_texts(x, y, h, spread, args.changes + 3)
                 ms = np.array(measure(page, goals))
                 med, p90 = float(np.median(ms)), float(np.percentile(ms, 90))
-                ok = med <= BUDGET_MS
+                ok = p90 <= BUDGET_MS
                 failed |= not ok
                 print(
                     f"{name:<8} {med:>11.1f} {p90:>9.1f} {planner_ms(query, goals):>12.1f} "
@@ -172,7 +173,8 @@ def main() -> None:
         srv.stop()
     print(
         f"\n{args.changes} changes per planner in Chromium (one process serves and "
-        "measures; machine load affects every number)"
+        "measures; machine load affects every number: load average "
+        f"{' '.join(f'{x:.2f}' for x in os.getloadavg())} on {os.cpu_count()} cores)"
     )
     if failed:
         sys.exit(1)

@@ -171,8 +171,11 @@ def _reference(q: dict[str, str]) -> float:
         v: Any = DubinsCar(float(q["speed"]), float(q["radius"]))
         return plan(start, goal, v, "length").cost
     if planner == "wind":
-        w, d = _floats(q["wind"])
-        v = DubinsCarInWind(float(q["speed"]), float(q["radius"]), w, math.radians(d))
+        # the link's wind is the CLI's: speed (m/s) and the compass direction it blows FROM;
+        # the vehicle's is the direction it blows towards, counter-clockwise from +x (east):
+        # towards = FROM + 180 deg (compass) = 90 - (FROM + 180) = 270 - FROM (math)
+        w, frm = _floats(q["wind"])
+        v = DubinsCarInWind(float(q["speed"]), float(q["radius"]), w, math.radians(270 - frm))
         return plan(start, goal, v).cost
     if planner == "time-optimal":
         v = VariableSpeedCar(float(q["v_min"]), float(q["v_max"]), float(q["u_max"]))
@@ -287,19 +290,32 @@ def test_drag_goal_updates_cost_and_url(dubins_page: Any, shots: pathlib.Path):
     page.screenshot(path=str(shots / "explore_dubins_dragged.png"), full_page=True)
 
 
-def test_bad_value_shows_cli_message(dubins_page: Any, cli_error: Any):
-    """A bad radius shows the CLI's one-line message in `gp-error`, and no result."""
+def test_bad_value_shows_cli_message(dubins_page: Any, server: str, browser_context: Any,
+                                     cli_error: Any):
+    """A radius typed outside its physical range (PHYSICAL_RANGES["turn_radius"]: (0,
+    100 km]) never reaches the state: the spinner keeps its last value and shows it again
+    when left. A link with a bad radius shows the CLI's one-line message for it in
+    `gp-error`, and no result."""
     page = dubins_page
+    _enter(page, "radius", "1")
     _wait_result(page)
     box = page.locator(".gp-input-radius input")
-    box.fill("-1")
-    box.press("Enter")
-    page.wait_for_selector(".gp-error", timeout=20_000)
-    shown = page.locator(".gp-error").first.inner_text().strip()
-    line = cli_error("plan", "dubins", "--goal", "4", "3", "90", "--radius", "-1")
-    assert line == f"glideplan: error: {shown}"
-    assert page.locator(".gp-cost").first.inner_text() == "n/a"
-    assert _query(page)["radius"] == "-1"
+    for typed in ("-1", "200000"):
+        box.fill(typed)
+        box.press("Enter")
+        box.press("Tab")
+        page.wait_for_timeout(500)
+        assert _query(page)["radius"] == "1" and box.input_value() == "1"
+    bad = _open(browser_context, f"{server}/?planner=dubins&goal=4,3,90&radius=-1")
+    try:
+        bad.wait_for_selector(".gp-error", timeout=20_000)
+        shown = bad.locator(".gp-error").first.inner_text().strip()
+        line = cli_error("plan", "dubins", "--goal", "4", "3", "90", "--radius", "-1")
+        assert line == f"glideplan: error: {shown}"
+        assert bad.locator(".gp-cost").first.inner_text() == "n/a"
+        assert _query(bad)["radius"] == "-1"
+    finally:
+        bad.close()
 
 
 def test_slow_planner_shows_busy(server: str, browser_context: Any):
@@ -373,8 +389,8 @@ def test_equal_scales_and_fold_on_every_screen(dubins_page: Any, shots: pathlib.
 
 
 def test_phone_layout(server: str, browser_context: Any, shots: pathlib.Path):
-    """At 390 x 844: a viewport meta tag, no sideways scrolling, the controls above the plot,
-    the plot inside the screen with equal scales."""
+    """At 390 x 844: a viewport meta tag, no sideways scrolling, the plot first (within the
+    first screen, above the controls), inside the screen with equal scales."""
     page = browser_context.new_page()
     page.set_viewport_size({"width": 390, "height": 844})
     try:
@@ -387,7 +403,8 @@ def test_phone_layout(server: str, browser_context: Any, shots: pathlib.Path):
         assert page.evaluate("() => document.scrollingElement.scrollWidth <= innerWidth")
         f = _frame(page)
         goal_box = page.locator(".gp-input-goal").first.bounding_box()
-        assert goal_box is not None and goal_box["y"] + goal_box["height"] <= f["top"]
+        assert goal_box is not None and f["top"] + f["h"] <= goal_box["y"]
+        assert f["top"] + f["h"] <= 844  # the whole plot on the first screen
         assert f["left"] >= 0 and f["left"] + f["w"] <= 390
         sx, sy = f["w"] / (f["x1"] - f["x0"]), f["h"] / (f["y1"] - f["y0"])
         assert sx == pytest.approx(sy, rel=1.0 / min(f["w"], f["h"]))
@@ -409,14 +426,47 @@ def test_units_in_labels_and_header(dubins_page: Any):
     assert helps and not any("`" in t for t in helps)  # no raw code quotes
     header = page.locator(".gp-k").first.inner_text().lower()
     assert header == "cost (length, m)"
-    box = page.locator(".gp-input-radius input")
-    box.fill("-2")
+    box = page.locator(".gp-input-speed input")
+    box.fill("0")  # inside PHYSICAL_RANGES["speed"]'s closed end, refused by the vehicle
     box.press("Enter")
     page.wait_for_selector(".gp-error", timeout=20_000)
     assert page.locator(".gp-k").first.inner_text().lower() == header
     box.fill("1")
     box.press("Enter")
     _wait_result(page)
+
+
+def test_wind_in_knots_and_wheel_zoom_in_the_link(server: str, browser_context: Any):
+    """The wind's speed shown in kt while the link keeps m/s: 3 m/s shows 5.83 kt; typing
+    10 kt puts 10 * 1852 / 3600 = 5.144444444 m/s in the link, and the cost is plan()'s for
+    it. The mouse wheel zooms without picking a tool, and the zoom goes into the link."""
+    page = _open(browser_context, f"{server}/?planner=wind&goal=4,3,90&speed=10&radius=1"
+                 "&wind=3,40&wind_unit=kt")
+    try:
+        _wait_result(page)
+        box = page.locator(".gp-input-wind-speed input")
+        assert box.input_value() == "5.83"  # 3 m/s = 5.8315 kt, 4 digits
+        before = page.locator(".gp-cost").first.inner_text()
+        box.fill("10")
+        box.press("Enter")
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline and _query(page).get("wind") != "5.144444444,40":
+            time.sleep(0.1)
+        q = _query(page)
+        assert q["wind"] == "5.144444444,40" and q["wind_unit"] == "kt"
+        cost = float(_wait_result(page, previous=before))
+        assert cost == pytest.approx(_reference(q), rel=1e-9)
+        f = _frame(page)
+        page.mouse.move(f["left"] + f["w"] / 2, f["top"] + f["h"] / 2)
+        page.mouse.wheel(0, -400)  # zoom in
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline and _floats(_query(page)["view"]) == _floats(q["view"]):
+            time.sleep(0.1)
+        x0, y0, x1, y1 = _floats(_query(page)["view"])
+        ox0, oy0, ox1, oy1 = _floats(q["view"])
+        assert x1 - x0 < 0.95 * (ox1 - ox0) and y1 - y0 < 0.95 * (oy1 - oy0)
+    finally:
+        page.close()
 
 
 def test_planner_switch_keeps_poses(server: str, browser_context: Any):

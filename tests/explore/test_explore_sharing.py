@@ -31,6 +31,8 @@ MODES = {
     "route": ROUTE,
     "mission": "planner=mission",
     "reach": REACH,
+    # a direct (worker-thread) planner: its busy veil must be lifted on a fresh load too
+    "time-optimal-direct": "planner=time-optimal-direct&goal=2,1.5,90&synthesis_starts=1",
 }
 # The lengths of the answer's data sources (named `gp-answer`) in the browser's document.
 ANSWER_JS = """() => { const out = [];
@@ -77,10 +79,19 @@ def _open_all(context: Any, urls: list[str], errors: list[str]) -> list[Any]:
         page.on("pageerror", lambda exc: errors.append(str(exc)))
         page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
         page.on("requestfailed", lambda r: errors.append(f"request failed: {r.url}"))
+        page.on("request", lambda r: _local(r.url) or errors.append(f"not local: {r.url}"))
         pages.append(page)
     for page, url in zip(pages, urls, strict=True):
         page.goto(url, wait_until="commit")
     return pages
+
+
+def _local(url: str) -> bool:
+    """A request the page's own server answers (data: and blob: URLs are in the page)."""
+    from urllib.parse import urlparse
+
+    parsed = urlparse(url.removeprefix("blob:"))
+    return parsed.scheme == "data" or parsed.hostname == "127.0.0.1"
 
 
 def _settled(page: Any, timeout: float = 120.0) -> tuple[str, str]:
@@ -127,6 +138,9 @@ def test_tabs_open_route_and_reach_at_once(tabs: int, server: str, context: Any)
     assert float(r_cost) > 0 and " of " in g_cost
     assert _alive(server)
     assert not [e for e in errors if "Bokeh" in e or "Error" in e], errors
+    # tabs loading at once once linked Panel's style sheets from cdn.holoviz.org (a session
+    # rebuilt after an unused-session drop: `explore.worker.local_dist`)
+    assert not [e for e in errors if e.startswith("not local")], errors
 
 
 @pytest.mark.heavy  # make validate: the suite's 5-minute budget
@@ -145,14 +159,14 @@ def test_fresh_loads_draw_what_the_strip_says(server: str, context: Any):
             lengths = page.evaluate(ANSWER_JS)
             if status.startswith("solved") and (not lengths or min(lengths) == 0):
                 empty.append((url, lengths))
+            if status.startswith("solved") and page.locator(".pn-loading").count():
+                empty.append((url, "solved under the busy veil"))
     finally:
         for p in pages:
             p.close()
     assert not empty
-    # Panel's CDN style sheets (cdn.holoviz.org) requested by tabs loaded at the same moment
-    # are a known, separate problem (offline: unstyled spinners); no script error is allowed
-    assert not [e for e in errors if "Failed to load resource" not in e
-                and "cdn.holoviz.org" not in e], errors
+    # no script error, and every style sheet from this server (no cdn.holoviz.org)
+    assert not errors, errors
 
 
 def test_slow_route_replaced_by_fast_shows_fast_answer(server: str, context: Any):

@@ -40,6 +40,7 @@ from glideplan.explore.figures import (
     empty_candidates,
     empty_points,
 )
+from glideplan.explore.inputs import InputControl, build_input
 from glideplan.explore.solve import View, partition_image, solve_view, with_candidates
 from glideplan.explore.state import (
     ExploreState,
@@ -57,12 +58,17 @@ __all__ = ["Explorer", "create_page"]
 # The page's frame: a viewport tag for phones and the layout's media rules. Wide screens
 # put the controls (320 px) left of the result strip and the plot, whose height is the
 # window's less the header and the strip (so the x axis stays above the fold); below
-# 760 px the controls stack above the plot, which is then about as tall as wide.
+# 760 px (a phone) the strip and the plot come first, about as tall as wide, the controls
+# below them (flex `order`).
 VIEWPORT_TEMPLATE = """{% extends base %}
 {% block preamble %}{{ super() }}
 <meta name="viewport" content="width=device-width, initial-scale=1">
 {% endblock %}"""
 SIDE_WIDTH = 320
+# The candidates' lines and table follow an answer after this pause (ms) unless a newer
+# change came meanwhile: 30 ms let a change typed or dragged 40-60 ms after the last wait
+# for the last one's candidates (server 5 ms, browser lines and table), p90 +40-100 ms.
+CANDIDATES_DELAY_MS = 120
 LAYOUT_CSS = """
 :host { width: 100%; max-width: 100vw; }
 """
@@ -72,7 +78,8 @@ SIDEBAR_CSS = f"""
 """
 MAIN_CSS = """
 :host { flex: 1 1 600px; min-width: 0; }
-@media (max-width: 760px) { :host { width: calc(100vw - 16px) !important; flex: 1 1 100%; } }
+@media (max-width: 760px) { :host { width: calc(100vw - 16px) !important; flex: 1 1 100%;
+  order: -1; } }
 """
 BODY_CSS = """
 :host { width: 100%; }
@@ -239,27 +246,31 @@ class Explorer(SessionWorker):
 
     def _set_planner_inputs(self) -> None:
         entry = self.entry
+        # the planner's one line, not the vehicle's docstring (radians and "towards" inside)
         self.planner_help.object = (
             f'<div class="gp-help">{html.escape(entry.spec.description.replace("`", ""))}<br>'
-            f"<i>{html.escape(entry.help)}</i></div>"
+            "<i>Angles in degrees; a wind is the compass direction it blows FROM.</i></div>"
         )
         for name, w in self.pose_inputs.items():
             w.label = self._pose_label(name)
         self.figs.set_units(entry.length_unit, "nondim." if entry.nondimensional else "m/s")
-        self.param_inputs: dict[str, pn.widgets.TextInput] = {}
+        self.param_inputs: dict[str, InputControl] = {}
         vehicle: list[Any] = []
         option: list[Any] = []
         for p in entry.parameters:
-            w = _TextInput(
-                label=p.caption(entry.nondimensional),
-                value=self.state.values.get(p.name, p.default),
-                sizing_mode="stretch_width",
-                css_classes=[f"gp-input-{p.name}"],
+            control = build_input(
+                p,
+                self.state.values.get(p.name, p.default),
+                entry.nondimensional,
+                self._make_value_watcher(p.name),
+                wind_unit=self.state.wind_unit,
+                on_unit=self._on_wind_unit,
             )
-            w.param.watch(self._make_value_watcher(p.name), "value")
-            self.param_inputs[p.name] = w
+            self.param_inputs[p.name] = control
             self.error_panes[p.name] = html_pane(sizing_mode="stretch_width")
-            (vehicle if p.target == "vehicle" else option).extend([w, self.error_panes[p.name]])
+            (vehicle if p.target == "vehicle" else option).extend(
+                [*control.widgets, self.error_panes[p.name]]
+            )
         self.vehicle_box.objects = vehicle
         self.option_box.objects = option or [html_pane('<span class="gp-help">none</span>')]
         self.partition_toggle.visible = hasattr(
@@ -332,6 +343,12 @@ class Explorer(SessionWorker):
         self.strip.sync()
         self.table.sync()
         self._push_url()
+        if self.entry.slow and hasattr(self, "plot_pane"):
+            # the busy veil's last change can be lost like the answer's data (a slow planner
+            # answered while the browser built the page: "solved" under a spinner): send it
+            busy = self.view is None or self.view.state != self.state
+            self.plot_pane.loading = not busy
+            self.plot_pane.loading = busy
 
     def _push_url(self) -> None:
         """Put the state's query in the browser's address (history.replaceState, no reload)."""
@@ -379,12 +396,21 @@ class Explorer(SessionWorker):
 
         return watch
 
-    def _make_value_watcher(self, name: str) -> Callable[[Any], None]:
-        def watch(event: Any) -> None:
+    def _make_value_watcher(self, name: str) -> Callable[[str], None]:
+        def watch(text: str) -> None:
             if not self._syncing:
-                self._locked(lambda: self.set_state(self.state.with_values(**{name: event.new})))
+                self._locked(lambda: self.set_state(self.state.with_values(**{name: text})))
 
         return watch
+
+    def _on_wind_unit(self, unit: str) -> None:
+        """Another unit for the wind's speed: the same wind, the URL remembers the unit."""
+        if not self._syncing:
+            self._locked(lambda: self._set_wind_unit(unit))
+
+    def _set_wind_unit(self, unit: str) -> None:
+        self.state = replace(self.state, wind_unit=unit)
+        self._push_url()
 
     def _on_flags(self, event: Any) -> None:
         self._locked(
@@ -533,9 +559,12 @@ class Explorer(SessionWorker):
             if self._doc is not None and not view.candidates_pending:
                 self._push_url()
             if view.candidates_pending and self._doc is not None:
-                # the answer goes out now; its candidates in the next message
-                # (30 ms later: the browser paints the answer before it parses the rest)
-                self._doc.add_timeout_callback(lambda: self._held(self._add_candidates), 30)
+                # the answer goes out now; its candidates in a later message, once the
+                # input rests for CANDIDATES_DELAY_MS (while a goal is dragged or typed, each
+                # change's answer is painted without waiting for the previous candidates)
+                self._doc.add_timeout_callback(
+                    lambda: self._held(self._add_candidates), CANDIDATES_DELAY_MS
+                )
             return
         self._show_busy(True)
         self._submit("glideplan-explore")
@@ -732,6 +761,9 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
         k: v[0].decode() if isinstance(v[0], bytes) else str(v[0]) for k, v in args.items() if v
     }
     catalog = catalog or build_catalog()
+    from glideplan.explore.worker import local_dist
+
+    local_dist(pn.state.curdoc)  # before any model is made: every style sheet local
     root = pn.Column(sizing_mode="stretch_width", margin=0, stylesheets=[ROOT_CSS])
     pages: dict[str, Any] = {}
 

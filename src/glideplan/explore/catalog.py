@@ -39,8 +39,10 @@ CLI_NAMES: Mapping[str, str] = {
 }
 # Groups of fields entered as one comma-separated option, with per-item converters to SI.
 _GROUPS: tuple[tuple[str, tuple[str, ...], tuple[str, ...]], ...] = (
-    # (option, fields, units of the entered items: "" as is, "deg" converted to radians)
-    ("wind", ("wind_speed", "wind_direction"), ("", "deg")),
+    # (option, fields, units of the entered items: "" as is, "deg" converted to radians,
+    # "from": the compass direction a wind blows FROM (deg), as every `--wind` of the CLI,
+    # to the vehicle's direction it blows towards (rad, counter-clockwise from +x))
+    ("wind", ("wind_speed", "wind_direction"), ("", "from")),
     ("polar", ("a", "b", "c"), ("", "", "")),
 )
 # Readable labels for the built-in planners (key -> label); others use their description.
@@ -168,7 +170,7 @@ class Parameter:
             out: dict[str, Any] = {}
             for field, item, unit in zip(self.fields, items, self.units, strict=True):
                 value = parse_number(self.flag, item)
-                out[field] = math.radians(value) if unit == "deg" else value
+                out[field] = _to_si(value, unit)
             return out
         field = self.fields[0]
         if self.kind == "float":
@@ -275,11 +277,30 @@ def _group_caption(p: Parameter, nondimensional: bool) -> str:
     """'wind (m/s, towards deg)' and 'polar a, b, c of w = a v² + b v + c (SI)'."""
     last = tuple(f.rpartition(".")[2] for f in p.fields)
     if last == ("wind_speed", "wind_direction"):
-        return "wind: speed (m/s), towards (deg CCW from +x)"
+        return "wind: speed (m/s), from (deg compass)"
     if last == ("a", "b", "c"):
         return "polar: sink w = a v² + b v + c; a (s/m), b, c (m/s)"
     items = [n + (" (deg)" if u == "deg" else "") for n, u in zip(last, p.units, strict=True)]
     return f"{p.name.replace('_', ' ')}: {', '.join(items)}"
+
+
+def _to_si(value: float, unit: str) -> float:
+    """An entered item in the vehicle's units: degrees to radians; a compass FROM (deg)
+    to the direction it blows towards (rad, counter-clockwise from +x): 270 deg - FROM."""
+    if unit == "deg":
+        return math.radians(value)
+    if unit == "from":
+        return math.radians(270.0 - value)
+    return value
+
+
+def _from_si(value: float, unit: str) -> float:
+    """The inverse of `_to_si` (a compass FROM in [0, 360))."""
+    if unit == "deg":
+        return math.degrees(value)
+    if unit == "from":
+        return round((270.0 - math.degrees(value)) % 360.0, 9) % 360.0
+    return value
 
 
 def _fmt(value: Any) -> str:
@@ -361,7 +382,7 @@ def _vehicle_parameters(cls: type, obj: Any, prefix: str = "") -> list[Parameter
             values = []
             for m, u in zip(members, units, strict=True):
                 v = getattr(obj, m) if obj is not None else None
-                values.append("" if v is None else _fmt(math.degrees(v) if u == "deg" else v))
+                values.append("" if v is None else _fmt(_from_si(v, u)))
             default = ",".join(values) if obj is not None else ""
             paths = tuple(f"{dotted}.{m}" if dotted else m for m in members)
             out.append(

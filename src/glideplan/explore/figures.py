@@ -273,7 +273,7 @@ class PlanFigures:
         self.prof_src = ColumnDataSource({"t": [], "speed": [], "second": [], "third": []})
         self.speed_fig = self._profile_figure("speed", "speed (m/s)", BLUE)
         x_range = self.speed_fig.x_range
-        self.second_fig = self._profile_figure("second", "turn rate (rad/s)", "#8e44ad", x_range)
+        self.second_fig = self._profile_figure("second", "turn rate (deg/s)", "#8e44ad", x_range)
         self.third_fig = self._profile_figure("third", "load factor n (g)", "#d35400", x_range)
         for f in (self.speed_fig, self.second_fig, self.third_fig):
             f.background_fill_color = "#fbfcfe"
@@ -418,5 +418,6 @@ class PlanFigures:
         self.wind_label.data = {
             "x": [x0],
             "y": [y0 + 0.03 * span],
-            "text": [f"wind {w:.3g} m/s towards {direction:.0f} deg"],
+            # compass FROM, as the input and every --wind (the arrow points where it blows)
+            "text": [f"wind {w:.3g} m/s from {(270.0 - direction) % 360.0:.0f} deg"],
         }

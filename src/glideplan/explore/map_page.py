@@ -158,15 +158,36 @@ class MapPage(SessionWorker):
 
 
 def text_inputs(
-    state: Any, labels: Mapping[str, tuple[str, str]], watcher: Callable[[str], Any]
+    state: Any,
+    labels: Mapping[str, tuple[str, str]],
+    watcher: Callable[[str], Any],
+    numbers: Mapping[str, str] | None = None,
 ) -> tuple[dict[str, Any], dict[str, Any]]:
     """A text input (class `gp-input-NAME`, value the state's `attr`) and an error pane for
-    each `name: (attr, label)`; `watcher(attr)` watches the input's value."""
+    each `name: (attr, label)`; `watcher(attr)` watches the input's value. A name in
+    `numbers` gets a spinner limited to `PHYSICAL_RANGES[numbers[name]]` instead ("wind":
+    the wind's speed with its unit and compass FROM, text `SPEED_MS,FROM_DEG`)."""
+    from types import SimpleNamespace
+
     from glideplan.explore.app import _TextInput
+    from glideplan.explore.inputs import number_input, wind_input
 
     inputs: dict[str, Any] = {}
     panes: dict[str, Any] = {}
     for name, (attr, label) in labels.items():
+        kind = (numbers or {}).get(name)
+        if kind is not None:
+            watch = watcher(attr)
+            on_text = lambda text, w=watch: w(SimpleNamespace(new=text))  # noqa: E731
+            text = getattr(state, attr)
+            control = (
+                wind_input(name, text, on_text)
+                if kind == "wind"
+                else number_input(name, label, text, kind, on_text)
+            )
+            inputs[name] = pn.Column(*control.widgets, margin=0, sizing_mode="stretch_width")
+            panes[name] = html_pane(sizing_mode="stretch_width")
+            continue
         w = _TextInput(
             label=label,
             value=getattr(state, attr),

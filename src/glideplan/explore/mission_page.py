@@ -161,7 +161,10 @@ class MissionPage(MapPage):
             "(headings chosen at each waypoint) follow.</div>" + error_html(self.file_error)
         )
         labels = {"speed": ("speed", "speed (m/s)"), "radius": ("radius", "turn radius (m)")}
-        self.inputs, self.error_panes = text_inputs(self.state, labels, self._make_watcher)
+        numbers = {"speed": "speed", "radius": "turn_radius"}
+        self.inputs, self.error_panes = text_inputs(
+            self.state, labels, self._make_watcher, numbers
+        )
         self.general_error = html_pane(sizing_mode="stretch_width")
         self.strip = FastHtml()
         self.table = FastHtml()

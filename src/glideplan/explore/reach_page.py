@@ -164,7 +164,10 @@ class ReachPage(MapPage):
             "mc": ("mc", "MacCready setting (m/s)"),
             "safety": ("safety", "safety height above terrain (m)"),
         }
-        self.inputs, self.error_panes = text_inputs(self.state, labels, self._make_watcher)
+        numbers = {"wind": "wind", "mc": "mc", "safety": "height"}
+        self.inputs, self.error_panes = text_inputs(
+            self.state, labels, self._make_watcher, numbers
+        )
         self.general_error = html_pane(sizing_mode="stretch_width")
         self.strip = FastHtml()
         self._figure()

@@ -261,7 +261,10 @@ class RoutePage(MapPage):
             "depart": ("depart", "depart (ISO 8601 UTC; empty: the field's first time)"),
             "resolution": ("resolution", "grid spacing (m; empty: ~200 cells across)"),
         }
-        self.inputs, self.error_panes = text_inputs(self.state, labels, self._make_watcher)
+        numbers = {"speed": "speed"}
+        self.inputs, self.error_panes = text_inputs(
+            self.state, labels, self._make_watcher, numbers
+        )
         self.general_error = html_pane(sizing_mode="stretch_width")
         self.slider = pn.widgets.FloatSlider(
             label="currents at (h after departure)",

@@ -46,7 +46,7 @@ class View:
     air_path: dict[str, np.ndarray] | None = None
     candidates: dict[str, list[Any]] = field(default_factory=dict)
     profile: dict[str, np.ndarray] | None = None
-    profile_labels: tuple[str, str] = ("speed (m/s)", "turn rate (rad/s)")
+    profile_labels: tuple[str, str] = ("speed (m/s)", "turn rate (deg/s)")
     wind: tuple[float, float] | None = None
     units: str = ""
     candidates_pending: bool = False  # solved, its candidates not yet sampled
@@ -83,7 +83,7 @@ class View:
         if err is None:
             return "n/a"
         unit = self.entry.length_unit if self.entry is not None else "m"
-        return f"{err.position:.1e} {unit}, {err.heading:.1e} rad"
+        return f"{err.position:.1e} {unit}, {math.degrees(err.heading):.1e} deg"
 
     @property
     def time_text(self) -> str:
@@ -120,8 +120,8 @@ def _profile(path: Any, vehicle: Any) -> tuple[dict[str, np.ndarray], tuple[str,
         out["second"] = np.degrees(vehicle.bank_angle(s.speed, s.turn_rate))
         out["third"] = vehicle.load_factor(s.speed, s.turn_rate)
         return out, ("speed", "bank angle (deg)")
-    out["second"] = s.turn_rate
-    return out, ("speed", "turn rate (rad/s)")
+    out["second"] = np.degrees(s.turn_rate)  # degrees at the page's edge, as the inputs
+    return out, ("speed", "turn rate (deg/s)")
 
 
 def cost_unit(entry: PlannerEntry | None) -> str:

@@ -31,6 +31,9 @@ __all__ = [
 ]
 
 POSE_NAMES = ("start", "goal")
+# The wind speed's display unit in the URL (`wind_unit=kt`); the wind itself stays in m/s.
+_WIND_UNIT_KEYS = {"m/s": "ms", "km/h": "kmh", "kt": "kt"}
+_WIND_UNIT_NAMES = {v: k for k, v in _WIND_UNIT_KEYS.items()}
 
 
 def _num(value: float) -> str:
@@ -62,6 +65,7 @@ class ExploreState:
     values: Mapping[str, str] = field(default_factory=dict)
     candidates: bool = True
     partition: bool = False
+    wind_unit: str = "m/s"  # how the wind's speed is shown (m/s, km/h, kt); the URL keeps m/s
 
     def with_values(self, **values: str) -> ExploreState:
         return replace(self, values={**self.values, **values})
@@ -122,6 +126,7 @@ def state_from_query(catalog: Catalog, query: Mapping[str, str] | str) -> Explor
         values=values,
         candidates=flag("candidates", state.candidates),
         partition=flag("partition", state.partition),
+        wind_unit=_WIND_UNIT_NAMES.get(str(query.get("wind_unit", "")).lower(), "m/s"),
     )
 
 
@@ -143,6 +148,8 @@ def state_to_query(catalog: Catalog, state: ExploreState) -> str:
         items.append(("candidates", "0"))
     if state.partition:
         items.append(("partition", "1"))
+    if state.wind_unit != "m/s" and entry.parameter("wind") is not None:
+        items.append(("wind_unit", _WIND_UNIT_KEYS.get(state.wind_unit, "ms")))
     return urlencode(items, safe=",/", quote_via=quote)
 
 

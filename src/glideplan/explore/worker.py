@@ -18,7 +18,7 @@ from panel.io.state import set_curdoc
 
 from glideplan.compute import ComputationCancelled, cancel_scope
 
-__all__ = ["SessionWorker", "local_styles", "resend_data"]
+__all__ = ["SessionWorker", "local_dist", "local_styles", "resend_data"]
 
 
 class SessionWorker:
@@ -46,8 +46,7 @@ class SessionWorker:
         if self._closed or self._doc is None:
             return
         with set_curdoc(self._doc), hold(self._doc):
-            fn()
-            local_styles(self._doc)
+            fn()  # new models link local style sheets (`local_dist`): no walk over them here
 
     def _compute(self, state: Any) -> Any:
         raise NotImplementedError
@@ -144,6 +143,30 @@ def resend_data(doc: Any) -> None:
             if cols:
                 doc.callbacks.trigger_on_change(ColumnDataChangedEvent(doc, src, "data",
                                                                        cols=cols))
+
+
+def local_dist(doc: Any) -> None:
+    """Make every Panel style sheet of `doc` point at this server from the start.
+
+    Panel writes `dist_url` (where its CSS lives) into a session's document only when it
+    serves the page's HTML, and patches the CDN links of the models present then. A session
+    can also be built without that step: when a tab's websocket connects after the session
+    was dropped as unused (3 s, `server.serve`; several tabs loading at once on a busy
+    machine take longer), Bokeh builds a new session for its id without serving HTML, and
+    every model of that page linked loading.css, default.css, listpanel.css, ... from
+    cdn.holoviz.org (reproduced: 23-35 of 77 requests with 6 tabs opened at once). Set
+    here before the page is built, `dist_url` makes Panel patch each style sheet as its
+    model is made (`Reactive._get_properties`).
+    """
+    from panel.io.resources import LOCAL_DIST
+    from panel.io.state import state
+
+    if doc is None:
+        return
+    variables = doc._template_variables
+    if "dist_url" not in variables:
+        rel = state.rel_path
+        variables["dist_url"] = f"{rel}/{LOCAL_DIST}" if rel else LOCAL_DIST
 
 
 def local_styles(doc: Any) -> None:
