@@ -3,7 +3,8 @@
 Inside glideplan positions are metres in a local plane (x east, y north) and headings are
 radians counter-clockwise from +x (east). Outside, positions are WGS84 latitude/longitude in
 decimal degrees and headings are compass bearings (degrees clockwise from true north); a wind
-is given by the compass direction it blows FROM. This module is the one place that converts.
+is given by the compass direction it blows FROM (converted by `glideplan.units.wind_from_compass`
+and `wind_to_compass`). This module is the one place that converts positions and bearings.
 
 The local plane is an azimuthal equidistant projection about an origin (pyproj/PROJ `aeqd`
 on the WGS84 ellipsoid): distances and bearings from the origin are exact, and the scale
@@ -30,7 +31,6 @@ __all__ = [
     "compass_to_heading",
     "geodesic_distance_bearing",
     "heading_to_compass",
-    "wind_from_to_vector",
 ]
 
 #: Largest relative scale error of the local projection accepted over a mission's extent.
@@ -55,19 +55,6 @@ def heading_to_compass(heading_rad: ArrayLike) -> NDArray[np.float64] | float:
     b = np.mod(np.degrees(np.pi / 2 - np.asarray(heading_rad, dtype=float)), 360.0)
     b = np.where(b >= 360.0, 0.0, b)  # -0 and round-off at 360
     return float(b) if b.ndim == 0 else b
-
-
-def wind_from_to_vector(speed: float, from_deg: float) -> tuple[float, float]:
-    """(east, north) velocity (m/s) of a wind of `speed` (m/s) blowing FROM compass `from_deg`.
-
-    A wind from the north (0 deg) blows toward the south: (u, v) = -speed (sin b, cos b).
-    """
-    if not math.isfinite(speed) or speed < 0:
-        raise InvalidParameterError("wind speed", speed, "must be finite and >= 0 (m/s)")
-    if not math.isfinite(from_deg):
-        raise InvalidParameterError("wind direction", from_deg, "must be finite (degrees)")
-    b = math.radians(from_deg)
-    return -speed * math.sin(b), -speed * math.cos(b)
 
 
 def check_latlon(lat: ArrayLike, lon: ArrayLike, name: str = "position") -> tuple[

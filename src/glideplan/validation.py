@@ -206,11 +206,23 @@ PHYSICAL_RANGES: Mapping[str, PhysicalRange] = {
         low_open=True,
     ),
     "wind_speed": PhysicalRange(0.0, 150.0, "m/s", "no wind or current on Earth is faster"),
+    "water_speed": PhysicalRange(
+        0.0, 20.0, "m/s",
+        "a vehicle through the water or an ocean current: the fastest currents are about 3 m/s",
+        low_open=True,
+    ),
     "mc": PhysicalRange(
         0.0, 10.0, "m/s", "MacCready setting: the expected climb rate, no thermal climbs faster"
     ),
     "turn_radius": PhysicalRange(
-        0.0, 100_000.0, "m", "a turn wider than 100 km is not a turn", low_open=True
+        1e-6, 100_000.0, "m",
+        "a turn wider than 100 km is not a turn; below a micrometre it is round-off",
+    ),
+    "turn_rate": PhysicalRange(
+        1e-6, 1e6, "rad/s", "the planners' closed forms hold to 1e-6 of the length scale here"
+    ),
+    "speed_ratio": PhysicalRange(
+        1.0, 1e6, "", "a top speed at most a million times the lowest (else round-off)"
     ),
     "distance": PhysicalRange(
         0.0, 100_000.0, "m", "a distance or tolerance up to 100 km",

@@ -102,12 +102,12 @@ DEFAULT_SAFETY_M = 300.0
 
 def _wind(wind: tuple[float, float] | None) -> tuple[float, float]:
     from glideplan.cli.common import flag_names
-    from glideplan.geodesy import wind_from_to_vector
+    from glideplan.units import wind_from_compass
 
     if wind is None:
         return (0.0, 0.0)
     with flag_names(**_FLAGS):
-        return wind_from_to_vector(float(wind[0]), float(wind[1]))
+        return wind_from_compass(float(wind[0]), float(wind[1]))
 
 
 def _terrain(files: list[pathlib.Path] | None, voids: str | None, required: bool) -> Any:

@@ -79,8 +79,8 @@ def _numbers(text: str, n: int, flag: str, what: str) -> list[float]:
 def reach_view(example: Any, polar: Any, state: ReachState) -> ReachView:
     """`glide_reach` of the example's terrain and landables for the state (the call of
     `glideplan glide reach --example ridge` with the same values)."""
-    from glideplan.geodesy import wind_from_to_vector
     from glideplan.reach import glide_reach
+    from glideplan.units import wind_from_compass
 
     errors: dict[str, str] = {}
     values: dict[str, list[float]] = {}
@@ -97,7 +97,7 @@ def reach_view(example: Any, polar: Any, state: ReachState) -> ReachView:
     if errors:
         return ReachView(state, None, errors)
     try:
-        wind = wind_from_to_vector(*values["wind"])
+        wind = wind_from_compass(*values["wind"])
         la, lo, alt = values["from"]
         result = glide_reach(
             example.terrain,

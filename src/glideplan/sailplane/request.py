@@ -27,20 +27,21 @@ from glideplan.errors import InvalidParameterError
 from glideplan.sailplane.straight import straight_final_glide
 from glideplan.solution import Status
 from glideplan.track import Track
+from glideplan.units import WindEN, wind_to_compass
 from glideplan.validation import check_finite, check_nonnegative
 from glideplan.vehicles.sailplane_polar import SailplanePolar
 
 if TYPE_CHECKING:
     from glideplan.solution import Solution
 
-__all__ = ["FinalGlide", "FinalGlideDrawing", "final_glide", "run_final"]
+__all__ = ["FinalGlide", "FinalGlideDrawing", "final_glide"]
 
 
 @dataclass(frozen=True, eq=False)
 class FinalGlideDrawing:
     """What a figure needs: local track (m; x east, y north), distance along it (m), altitude
-    (m), levels (m), the problem in words (`title`), and the wind: speed (m/s) and the compass
-    direction it blows FROM (deg, a label at the figure's edge; None when no wind was given)."""
+    (m), levels (m), the problem in words (`title`), and the wind (east, north) m/s blowing
+    TOWARDS (None when no wind was given; the figure labels it in compass degrees)."""
 
     x: np.ndarray
     y: np.ndarray
@@ -50,8 +51,7 @@ class FinalGlideDrawing:
     safety_height: float
     title: str
     straight: dict[str, np.ndarray] = field(default_factory=dict)
-    wind_speed: float = 0.0
-    wind_from_deg: float | None = None
+    wind: WindEN | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -107,14 +107,6 @@ class FinalGlide:
 
 def _finite(v: float | None) -> float | None:
     return float(v) if v is not None and math.isfinite(v) else None
-
-
-def _wind_from_deg(wind: tuple[float, float]) -> float:
-    """The compass direction (deg, [0, 360)) a wind of velocity (east, north) blows FROM."""
-    from glideplan.geodesy import heading_to_compass
-
-    b = float(heading_to_compass(math.atan2(-wind[1], -wind[0])))
-    return round(b, 9) % 360.0  # round-off of the vector's components, not the data
 
 
 def final_glide(
@@ -189,7 +181,7 @@ def final_glide(
         "crab_angle_deg": _finite(math.degrees(row["crab"])),
         "duration_s": _finite(row["duration"]),
     }
-    wind_from = None if wind is None else _wind_from_deg((wx, wy))
+    wind_from = None if wind is None else wind_to_compass(wx, wy)[1]
     data: dict[str, Any] = {
         "polar": polar.name,
         "mass_kg": polar.mass_kg,
@@ -280,7 +272,7 @@ def final_glide(
     else:
         message = (f"arrives {margin:.0f} m " + ("above" if margin >= 0.0 else "below")
                    + f" the goal elevation + safety height ({floor:.0f} m)")
-    drawing = replace(drawing, wind_speed=wind_speed, wind_from_deg=wind_from)
+    drawing = replace(drawing, wind=None if wind is None else (wx, wy))
     lat_t, lon_t = proj.to_geographic(drawing.x, drawing.y)
     if sol is not None:  # the planned path: its sample times and air headings
         times = np.asarray(data.pop("_times"), dtype=float)
@@ -311,24 +303,6 @@ def final_glide(
     )
 
 
-def run_final(
-    polar: SailplanePolar,
-    start: tuple[float, float, float],
-    goal: tuple[float, float, float],
-    *,
-    wind: tuple[float, float] | None = None,
-    **options: Any,
-) -> tuple[dict[str, Any], FinalGlideDrawing]:
-    """Compatibility: `final_glide()` (same `options`) with the wind as (speed m/s, compass
-    direction it blows FROM, deg), returning (the JSON object, the figure's data). New code:
-    `final_glide()`, the wind as its (east, north) vector."""
-    from glideplan.geodesy import wind_from_to_vector
-
-    vec = None if wind is None else wind_from_to_vector(float(wind[0]), float(wind[1]))
-    res = final_glide(polar, start, goal, wind=vec, **options)
-    return res.to_dict(), res.drawing
-
-
 def _status(loss: float, margin: float) -> Status:
     """UNREACHABLE (no airspeed makes progress: the loss is infinite), else SOLVED when the
     arrival margin is >= 0 m, BELOW_GLIDE when it is negative."""
@@ -342,7 +316,7 @@ def _unreachable_why(polar: SailplanePolar, wind: tuple[float, float], row: dict
     """Why no airspeed makes progress: the wind ((east, north) m/s; said as speed and the
     compass direction it blows from) against the polar's top speed, with its headwind and
     crosswind components on the track (m/s)."""
-    speed, from_deg = math.hypot(*wind), _wind_from_deg(wind)
+    speed, from_deg = wind_to_compass(*wind)
     along = row["tailwind"]
     part = f"headwind {-along:.1f}" if along <= 0.0 else f"tailwind {along:.1f}"
     return (
@@ -379,13 +353,7 @@ def _arrival(
     bank = check_finite("bank_max", bank_max)
     if not 0.0 < bank <= 80.0:
         raise InvalidParameterError("bank_max", bank_max, "must be in (0, 80] degrees")
-    speed = math.hypot(*wind)
-    vehicle = Sailplane(
-        polar,
-        bank_max=math.radians(bank),
-        wind_speed=speed,
-        wind_direction=math.atan2(wind[1], wind[0]) if speed > 0.0 else 0.0,
-    )
+    vehicle = Sailplane(polar, bank_max=math.radians(bank), wind=wind)
     goal_pose = Pose(gx, gy, float(compass_to_heading(arrival_heading)))
     if start_heading is None:
         psi0 = best_start_heading((0.0, 0.0), goal_pose, vehicle, mc=mc)
