@@ -88,7 +88,7 @@ PlotOpt = Annotated[pathlib.Path | None, typer.Option(
     "--plot", metavar="FILE", help="Draw the figure to FILE (.png, .pdf, .svg).")]
 
 _FLAGS = {
-    "start": "--from", "start altitude": "--from ALT_M", "mc": "--mc",
+    "start": "--from", "start altitude": "--from altitude", "mc": "--mc",
     "safety_height": "--safety-height", "terrain_clearance": "--terrain-clearance",
     "arrival_height": "--arrival-height", "safety_glide_ratio": "--safety-glide-ratio",
     "resolution": "--resolution", "wind": "--wind", "wind east": "--wind",

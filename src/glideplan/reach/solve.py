@@ -387,16 +387,16 @@ def two_heights(safety_height: float | None, terrain_clearance: float | None,
                 arrival_height: float | None) -> tuple[float, float]:
     """(en-route terrain clearance, arrival height) m: explicit values, else the former
     single `safety_height` for both, else XCSoar's defaults (150, 300)."""
-    from glideplan.validation import check_nonnegative
+    from glideplan.validation import check_physical
 
-    if safety_height is not None:
-        check_nonnegative("safety_height", safety_height)
+    if safety_height is not None:  # validation.PHYSICAL_RANGES["height"], as final_glide
+        check_physical("safety_height", safety_height, "height")
     clear_h = terrain_clearance if terrain_clearance is not None else (
         safety_height if safety_height is not None else DEFAULT_TERRAIN_CLEARANCE_M)
     arrive_h = arrival_height if arrival_height is not None else (
         safety_height if safety_height is not None else DEFAULT_ARRIVAL_HEIGHT_M)
-    return (float(check_nonnegative("terrain_clearance", clear_h)),
-            float(check_nonnegative("arrival_height", arrive_h)))
+    return (check_physical("terrain_clearance", clear_h, "height"),
+            check_physical("arrival_height", arrive_h, "height"))
 
 
 def wrap_lon(terrain: Terrain, lon: float) -> float:

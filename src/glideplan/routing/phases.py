@@ -190,6 +190,8 @@ def setup(field_: Any, start: Any, goal: Any, speed: float, depart: Any = None,
     settings = settings or RouteSettings()
     speed = check_physical("speed", speed, "speed")
     fld = _as_field(field_, depth_range)
+    if (getattr(fld, "info", None) or {}).get("medium") == "water":  # a current, not a wind
+        check_physical("speed", speed, "water_speed")
     if depart is None:
         t0 = fld.time_span[0] if fld.time_span is not None else 0.0
         if fld.time_span is None and fld.time_levels is not None:

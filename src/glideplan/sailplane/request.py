@@ -28,7 +28,7 @@ from glideplan.sailplane.straight import straight_final_glide
 from glideplan.solution import Status
 from glideplan.track import Track
 from glideplan.units import WindEN, wind_to_compass
-from glideplan.validation import check_finite, check_nonnegative
+from glideplan.validation import check_finite, check_physical
 from glideplan.vehicles.sailplane_polar import SailplanePolar
 
 if TYPE_CHECKING:
@@ -136,10 +136,10 @@ def final_glide(
     lat1, lon1, elev1 = goal
     check_latlon(lat0, lon0, "start")
     check_latlon(lat1, lon1, "goal")
-    alt0 = check_finite("start altitude", alt0)
-    elev1 = check_finite("goal elevation", elev1)
-    mc = check_nonnegative("mc", mc)
-    safety = check_nonnegative("safety_height", safety_height)
+    alt0 = check_physical("start altitude", alt0, "altitude")  # validation.PHYSICAL_RANGES
+    elev1 = check_physical("goal elevation", elev1, "elevation")
+    mc = check_physical("mc", mc, "mc")
+    safety = check_physical("safety_height", safety_height, "height")
     wx, wy = (0.0, 0.0) if wind is None else (
         check_finite("wind east", wind[0]), check_finite("wind north", wind[1]))
     wind_speed = math.hypot(wx, wy)

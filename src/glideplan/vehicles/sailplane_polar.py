@@ -202,6 +202,20 @@ class SailplanePolar:
         }
 
 
+def _check_mass_ratio(shown: float, total: float, reference: float) -> None:
+    """The all-up mass `total` (kg) within `PHYSICAL_RANGES["mass_ratio"]` times the polar's
+    reference mass, else refuse `mass` = `shown` naming the range in kg."""
+    from glideplan.validation import PHYSICAL_RANGES
+
+    r = PHYSICAL_RANGES["mass_ratio"]
+    if not r.low <= total / reference <= r.high:
+        raise InvalidParameterError(
+            "mass", shown,
+            f"with the ballast must lie in [{r.low * reference:g}, {r.high * reference:g}] kg, "
+            f"{r.low:g} to {r.high:g} times the polar's reference mass {reference:g} kg "
+            f"({r.reason})")
+
+
 def polar_from_file(
     pf: PolarFile,
     *,
@@ -260,5 +274,7 @@ def polar_from_file(
             "ballast", ballast_l, f"must be <= the glider's maximum {pf.max_ballast_l:g} L"
         )
     mass = pf.mass_kg if mass_kg is None else check_positive("mass", mass_kg)
+    _check_mass_ratio(mass_kg if mass_kg is not None else mass + ballast, mass + ballast,
+                      pf.mass_kg)
     polar = base.at_mass(mass + ballast) if mass + ballast != pf.mass_kg else base
     return polar.with_bugs(bugs_pct) if bugs_pct else polar
