@@ -25,16 +25,57 @@ from numpy.typing import ArrayLike, NDArray
 from glideplan.errors import InvalidParameterError
 
 __all__ = [
+    "EARTH_RADIUS_M",
     "MAX_SCALE_DISTORTION",
     "LocalProjection",
     "check_latlon",
     "compass_to_heading",
+    "destination",
     "geodesic_distance_bearing",
     "heading_to_compass",
+    "rhumb_destination",
 ]
 
 #: Largest relative scale error of the local projection accepted over a mission's extent.
 MAX_SCALE_DISTORTION = 1e-3
+
+#: The one Earth radius of every spherical computation (m): the IUGG mean radius
+#: R1 = (2a + b) / 3 of WGS84 (Moritz 2000), used by the router, the fronts, the terrain
+#: grids, glide reach and the synthetic fields alike. (Ellipsoidal work uses pyproj.)
+EARTH_RADIUS_M = 6_371_008.8
+
+
+def destination(lat: ArrayLike, lon: ArrayLike, bearing: ArrayLike, dist: ArrayLike) -> tuple[
+    NDArray[np.float64], NDArray[np.float64]
+]:
+    """The point `dist` m from (lat, lon) deg along the GREAT CIRCLE of initial compass
+    `bearing` (rad, clockwise from north) on the sphere of radius `EARTH_RADIUS_M`:
+    phi2 = asin(sin phi1 cos d + cos phi1 sin d cos b),
+    lam2 = lam1 + atan2(sin b sin d cos phi1, cos d - sin phi1 sin phi2), d = dist / R;
+    (lat, lon) deg, lon continuous with the input's (not wrapped). Vectorised."""
+    p1, l1 = np.radians(lat), np.radians(lon)
+    d = np.asarray(dist, dtype=float) / EARTH_RADIUS_M
+    b = np.asarray(bearing, dtype=float)
+    p2 = np.arcsin(np.clip(np.sin(p1) * np.cos(d) + np.cos(p1) * np.sin(d) * np.cos(b), -1, 1))
+    l2 = l1 + np.arctan2(np.sin(b) * np.sin(d) * np.cos(p1), np.cos(d) - np.sin(p1) * np.sin(p2))
+    return np.degrees(p2), np.degrees(l2)
+
+
+def rhumb_destination(lat: float, lon: float, chi: float, s: ArrayLike) -> tuple[
+    NDArray[np.float64], NDArray[np.float64]
+]:
+    """Points `s` m from (lat, lon) deg along the RHUMB LINE (constant compass course, as a
+    pilot holds one) of direction `chi` (rad, counter-clockwise from east): phi = phi0 +
+    s sin(chi) / R, lam = lam0 + s cos(chi) / (R q) with q = dphi / dpsi from the isometric
+    latitude psi = ln tan(pi/4 + phi/2) (q = cos phi0 on a parallel). Vectorised over `s`."""
+    s = np.asarray(s, dtype=float)
+    p0 = math.radians(lat)
+    p = p0 + s * math.sin(chi) / EARTH_RADIUS_M
+    dpsi = np.log(np.tan(0.25 * np.pi + 0.5 * p)) - math.log(math.tan(0.25 * math.pi + 0.5 * p0))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        q = np.where(np.abs(dpsi) > 1e-12, (p - p0) / np.where(dpsi == 0, 1, dpsi), math.cos(p0))
+    dl = s * math.cos(chi) / (EARTH_RADIUS_M * q)
+    return np.degrees(p), lon + np.degrees(dl)
 
 
 def compass_to_heading(bearing_deg: ArrayLike) -> NDArray[np.float64] | float:
@@ -170,4 +211,4 @@ class LocalProjection:
 
 def _extent_km(max_distortion: float) -> float:
     # aeqd on a sphere: k = c / sin c ~ 1 + c^2 / 6, so c = sqrt(6 * distortion).
-    return math.sqrt(6.0 * max_distortion) * 6371.0
+    return math.sqrt(6.0 * max_distortion) * EARTH_RADIUS_M / 1000.0

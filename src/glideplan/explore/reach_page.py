@@ -196,7 +196,7 @@ class ReachPage(MapPage):
         la, lo = lat[::step], lon[::step]
         if la[0] > la[-1]:  # rows north to south: the image's rows go up
             z, la = z[::-1], la[::-1]
-        r = 6_371_000.0
+        from glideplan.geodesy import EARTH_RADIUS_M as r
         dy = math.radians(abs(la[1] - la[0])) * r
         dx = math.radians(abs(lo[1] - lo[0])) * r * self.k
         shade = hillshade(np.nan_to_num(z), dx, dy)

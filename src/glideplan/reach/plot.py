@@ -256,12 +256,12 @@ def plot_turnback(result: TurnbackResult, ax: Any = None) -> Any:
             s0 = float(s[-1])
         # the altitude a straight glide home needs from each point of the course (terrain
         # ignored): the outbound line meets it at the turn-back point when no terrain binds
-        from glideplan.reach.turnback import destination
+        from glideplan.geodesy import rhumb_destination
 
         lat0_, lon0_, _ = result.start
         chi = math.radians(90.0 - result.course_deg)
         ss = np.linspace(0.0, 1.3 * max(result.distance_m, 1.0), 200)
-        pla, plo = destination(lat0_, lon0_, chi, ss)
+        pla, plo = rhumb_destination(lat0_, lon0_, chi, ss)
         n = ss.size
         dd, cc = rhumb(pla, plo, np.full(n, home.lat), np.full(n, home.lon))
         need = home.elevation_m + result.safety_height + dd / result.glide.ratio(cc)

@@ -41,14 +41,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
-from glideplan.geodesy import check_latlon
+from glideplan.geodesy import EARTH_RADIUS_M, check_latlon, rhumb_destination
 from glideplan.reach.flight import FlownPath, fly, front_candidates, rhumb
 from glideplan.reach.grid import ReachGrid, cell_nodes, reach_grid
 from glideplan.reach.model import Glide
 from glideplan.reach.problem import Landable, ReachProblem
 from glideplan.sailplane.polar import SailplanePolar
 from glideplan.solution import Status
-from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
+from glideplan.terrain.grid import Terrain
 from glideplan.validation import check_finite
 
 __all__ = ["TurnbackResult", "turnback"]
@@ -56,19 +56,6 @@ __all__ = ["TurnbackResult", "turnback"]
 FloatArray = NDArray[np.float64]
 _REFINE_TOL_M = 1.0
 _MAX_PROBES = 60
-
-
-def destination(lat: float, lon: float, chi: float, s: FloatArray) -> tuple[FloatArray, ...]:
-    """Points s metres from (lat, lon) along the rhumb line of direction chi (rad CCW from
-    east): lat = lat0 + s sin(chi) / R, lon from the isometric latitude (as `flight`)."""
-    s = np.asarray(s, dtype=float)
-    p0 = math.radians(lat)
-    p = p0 + s * math.sin(chi) / EARTH_RADIUS_M
-    dpsi = np.log(np.tan(0.25 * np.pi + 0.5 * p)) - math.log(math.tan(0.25 * math.pi + 0.5 * p0))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        q = np.where(np.abs(dpsi) > 1e-12, (p - p0) / np.where(dpsi == 0, 1, dpsi), math.cos(p0))
-    dl = s * math.cos(chi) / (EARTH_RADIUS_M * q)
-    return np.degrees(p), lon + np.degrees(dl)
 
 
 @dataclass(frozen=True, eq=False)
@@ -223,7 +210,7 @@ def turnback(
     fine = problem.terrain
 
     def P(s: float) -> tuple[float, float, float]:
-        la, lo = destination(lat0, lon0, chi, np.array(s))
+        la, lo = rhumb_destination(lat0, lon0, chi, np.array(s))
         return float(la), float(lo), alt - s / r_out
 
     # outbound limit: where the outbound glide loses the clearance (or leaves the data),
@@ -233,7 +220,7 @@ def turnback(
         s_max = 0.0
     step = min(fine.spacing_m) / 3.0
     ss = np.linspace(0.0, s_max, max(2, math.ceil(s_max / step) + 1))
-    la_s, lo_s = destination(lat0, lon0, chi, ss)
+    la_s, lo_s = rhumb_destination(lat0, lon0, chi, ss)
     ground = fine.elevation(la_s, lo_s)
     inside = np.isfinite(ground) & np.asarray(grid_contains(grid, la_s, lo_s))
     clear = np.where(inside, alt - ss / r_out - np.where(inside, ground, 0.0), -np.inf)

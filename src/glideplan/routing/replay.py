@@ -46,13 +46,13 @@ from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import FlowField
+from glideplan.geodesy import EARTH_RADIUS_M as R_EARTH  # the one Earth radius
 from glideplan.routing.forecasts import Forecast, mean_current, newest, planning_field
 from glideplan.routing.steering import _follow, _naive, _tracker
 
 __all__ = ["REASONS", "Flight", "Mission", "Plan", "ReplayResult", "ReplaySettings", "replay"]
 
 FloatArray = NDArray[np.float64]
-R_EARTH = 6_371_000.0
 REASONS = ("max_duration", "field_extent", "aground")
 
 
