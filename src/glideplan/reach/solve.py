@@ -430,30 +430,19 @@ def _voids_touched(loss: FloatArray, z: FloatArray) -> tuple[str, ...]:
 
 
 class _SearchProgress:
-    """Rich progress on stderr for the native search, shown once it has run ~2 s: the
-    fraction (loss reached / largest loss)^2 and Rich's estimate of the time remaining."""
+    """The native search's bar (`glideplan.progress.DelayedBar`, shown once it has run
+    ~2 s): the fraction (loss reached / largest loss)^2 and the time remaining."""
 
     def __init__(self, enabled: bool) -> None:
-        self.enabled = enabled
-        self.started = time.perf_counter()
-        self.bar: Any = None
-        self.task: Any = None
+        from glideplan.progress import DelayedBar
+
+        self.bar = DelayedBar("glide reach: search", 1000.0, enabled=enabled, delay=2.0)
 
     def __call__(self, fraction: float) -> None:
-        if not self.enabled:
-            return
-        if self.bar is None:
-            if time.perf_counter() - self.started < 2.0:
-                return
-            from glideplan.progress import start_progress_bar
-
-            self.bar, self.task = start_progress_bar("glide reach: search", 1000.0)
-        self.bar.update(self.task, completed=round(1000 * fraction))
+        self.bar.update(completed=round(1000 * fraction))
 
     def close(self) -> None:
-        if self.bar is not None:
-            self.bar.stop()
-            self.bar = None
+        self.bar.close()
 
 
 def _clipped(margin: FloatArray, grid: ReachGrid, terrain: Terrain) -> tuple[str, ...]:
