@@ -17,24 +17,11 @@ _RUN_ARGS = ("from_", "to", "speed", "field", "example", "depart", "depth_range"
 
 
 def parse_depart(text: str | None) -> Any:
-    """ISO 8601 (UTC if no offset; 'Z' accepted) -> numpy.datetime64[ms] in UTC, or None."""
-    if text is None:
-        return None
-    import datetime as dt
+    """`--depart`: ISO 8601 (UTC if no offset; 'Z' accepted) -> numpy.datetime64[ms] in UTC,
+    or None (`glideplan.fields.parse_utc`, which the explorer calls too)."""
+    from glideplan.fields.field import parse_utc
 
-    import numpy as np
-
-    from glideplan.errors import InvalidParameterError
-
-    try:
-        when = dt.datetime.fromisoformat(text.strip())
-    except ValueError:
-        raise InvalidParameterError(
-            "--depart", text, "must be ISO 8601 (2026-01-01T06:00Z)"
-        ) from None
-    if when.tzinfo is not None:
-        when = when.astimezone(dt.UTC).replace(tzinfo=None)
-    return np.datetime64(when, "ms")
+    return parse_utc(text, "--depart")
 
 
 def check_route_inputs(*, speed: float, from_: tuple[float, float], to: tuple[float, float],

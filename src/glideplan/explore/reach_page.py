@@ -134,14 +134,14 @@ class ReachPage(MapPage):
     MODE = "reach"
 
     def __init__(self, query: Mapping[str, str] | None = None) -> None:
-        from glideplan.cli.glide import _polar
         from glideplan.reach.examples import example
+        from glideplan.sailplane import load_polar
 
         query = dict(query or {})
         self._start_session()
         self.view: ReachView | None = None
         self.example = example("ridge")
-        self.polar = _polar(self.example.polar_file, None, 0.0, 0.0, "--polar")
+        self.polar = load_polar(self.example.polar_file)
         ex = self.example
         self.state = ReachState(
             start=query.get("from", ",".join(f"{v:g}" for v in ex.start)),

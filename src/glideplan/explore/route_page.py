@@ -120,7 +120,7 @@ class RouteView:
 def route_view(flow: Any, state: RouteState) -> RouteView:
     """`glideplan.routing.route` for the state's points, speed and departure (the call of
     `glideplan route`), or the one-line message of each bad input."""
-    from glideplan.cli.route import parse_depart
+    from glideplan.fields import parse_utc
     from glideplan.routing import route
 
     errors: dict[str, str] = {}
@@ -140,7 +140,7 @@ def route_view(flow: Any, state: RouteState) -> RouteView:
         )
     when = None
     try:
-        when = parse_depart(state.depart or None)
+        when = parse_utc(state.depart or None, "--depart")
     except InvalidParameterError as err:
         errors["depart"] = one_line(err)
     resolution = None
@@ -411,11 +411,10 @@ class RoutePage(MapPage):
     # ----- drawing ----------------------------------------------------------------------------
     def _t0(self) -> float:
         """The departure (s since the field's epoch), as `route` takes it."""
-        from glideplan.cli.route import parse_depart
-        from glideplan.fields import to_seconds
+        from glideplan.fields import parse_utc, to_seconds
 
         try:
-            when = parse_depart(self.state.depart or None)
+            when = parse_utc(self.state.depart or None, "--depart")
         except InvalidParameterError:
             when = None
         if when is None:

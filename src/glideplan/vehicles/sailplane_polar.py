@@ -49,6 +49,7 @@ __all__ = [
     "STALL_FRACTION",
     "SailplanePolar",
     "fit_three_points",
+    "load_polar",
     "polar_from_file",
 ]
 
@@ -278,3 +279,17 @@ def polar_from_file(
                       pf.mass_kg)
     polar = base.at_mass(mass + ballast) if mass + ballast != pf.mass_kg else base
     return polar.with_bugs(bugs_pct) if bugs_pct else polar
+
+
+def load_polar(path: Any, *, mass_kg: float | None = None, ballast_l: float = 0.0,
+               bugs_pct: float = 0.0) -> SailplanePolar:
+    """The SI polar of the `.plr` file at `path` (`read_plr`, then `polar_from_file` with the
+    same mass, ballast and bugs): what `glideplan glide ... --polar FILE` and the explorer
+    read. The mass is checked against `PHYSICAL_RANGES["mass"]` and `["mass_ratio"]`."""
+    from glideplan.sailplane.plr import read_plr
+    from glideplan.validation import check_physical
+
+    if mass_kg is not None:
+        check_physical("mass", mass_kg, "mass")
+    return polar_from_file(read_plr(path), mass_kg=mass_kg, ballast_l=ballast_l,
+                           bugs_pct=bugs_pct)
