@@ -84,9 +84,9 @@ def check_straight(polar) -> bool:
     import glide_reach as bench
     from matplotlib.path import Path
 
+    from glideplan.geodesy import rhumb_destination as destination
     from glideplan.reach import Glide, glide_reach
     from glideplan.reach.flight import fly
-    from glideplan.reach.turnback import destination
     from glideplan.terrain.grid import Terrain
     from glideplan.units import wind_from_compass
 

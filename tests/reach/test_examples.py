@@ -307,7 +307,7 @@ def test_turnback_example_and_its_files(run_cli, turnback_json, ex, glide, tmp_p
     """The course runs up the valley and the return stays over the floor, so the turn-back
     distance s solves the closed form ALT - s / r(course) - loss(P(s) -> home) = FLOOR_M +
     safety (bisection here; the solver refines to 1 m); the written files give the same."""
-    from glideplan.reach.turnback import destination
+    from glideplan.geodesy import rhumb_destination as destination
 
     d = turnback_json
     assert d["status"] == "solved" and d["limited_by"] == "glide home"
