@@ -130,14 +130,13 @@ def route_view(flow: Any, state: RouteState) -> RouteView:
             pts[name] = _latlon(text, f"--{name}")
         except InvalidParameterError as err:
             errors[name] = one_line(err)
-    try:
-        speed = float(state.speed)
-        if not (math.isfinite(speed) and speed > 0):
-            raise ValueError
-    except ValueError:
-        errors["speed"] = one_line(
-            InvalidParameterError("--speed", state.speed, "must be finite and > 0 (m/s)")
-        )
+    from glideplan.explore.catalog import parse_number
+    from glideplan.validation import check_physical
+
+    try:  # the rows of validation.PHYSICAL_RANGES that `glideplan route` checks
+        speed = check_physical("--speed", parse_number("--speed", state.speed), "speed")
+    except InvalidParameterError as err:
+        errors["speed"] = one_line(err)
     when = None
     try:
         when = parse_utc(state.depart or None, "--depart")
@@ -146,15 +145,10 @@ def route_view(flow: Any, state: RouteState) -> RouteView:
     resolution = None
     if state.resolution.strip():
         try:
-            resolution = float(state.resolution)
-            if not (math.isfinite(resolution) and resolution > 0):
-                raise ValueError
-        except ValueError:
-            errors["resolution"] = one_line(
-                InvalidParameterError(
-                    "--resolution", state.resolution, "must be finite and > 0 (m)"
-                )
-            )
+            resolution = check_physical(
+                "--resolution", parse_number("--resolution", state.resolution), "distance")
+        except InvalidParameterError as err:
+            errors["resolution"] = one_line(err)
     if errors:
         return RouteView(state, None, errors)
     try:
