@@ -80,7 +80,8 @@ def arrival(k: int) -> None:
         heading = rng.uniform(-math.pi, math.pi)
         wind_speed = rng.uniform(0.0, 10.0)
         wind_dir = rng.uniform(-math.pi, math.pi)
-        v = Sailplane(polar, wind_speed=wind_speed, wind_direction=wind_dir)
+        v = Sailplane(polar, wind=(wind_speed * math.cos(wind_dir),
+                                   wind_speed * math.sin(wind_dir)))
         goal = Pose(dist * math.cos(bearing), dist * math.sin(bearing), heading)
         t0, c0 = time.perf_counter(), time.process_time()
         psi0 = best_start_heading((0.0, 0.0), goal, v)
@@ -138,8 +139,7 @@ def check(k: int) -> None:
             bank_max=math.radians(60.0),
             turn_rate_max=g.u_max,
             turning_polar=False,
-            wind_speed=ws,
-            wind_direction=wd,
+            wind=(ws * math.cos(wd), ws * math.sin(wd)),
         )
         syn = bsb_with_drift(goal, g, wind)
         if not syn:

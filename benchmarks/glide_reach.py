@@ -120,9 +120,9 @@ def run(path: pathlib.Path, n: int, polar, resolution: float | None = None) -> o
     c0 = time.process_time()
     t = read_terrain([path])
     t_read = time.perf_counter() - t0
-    from glideplan.geodesy import wind_from_to_vector
+    from glideplan.units import wind_from_compass
 
-    wind = wind_from_to_vector(*WIND)
+    wind = wind_from_compass(*WIND)
     res = glide_reach(t, START, polar, landables=landables(t), wind=wind,
                       safety_height=SAFETY, resolution_m=resolution)
     total = time.perf_counter() - t0
@@ -169,9 +169,9 @@ def main() -> None:
             print(f"    budget 20 s: {'PASS' if t1 <= 20 else 'FAIL'}")
     # the straight glide per bearing against the exact reach
     t = Terrain(res3.terrain.lat, res3.terrain.lon, res3.terrain.z)
-    from glideplan.geodesy import wind_from_to_vector
+    from glideplan.units import wind_from_compass
 
-    glide = Glide(polar, wind=wind_from_to_vector(*WIND))
+    glide = Glide(polar, wind=wind_from_compass(*WIND))
     bearings = np.arange(0.0, 360.0, 0.5)
     t0 = time.perf_counter()
     straight = straight_glide_reach(glide, t, bearings, 30.0)

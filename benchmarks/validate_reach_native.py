@@ -84,17 +84,17 @@ def check_straight(polar) -> bool:
     import glide_reach as bench
     from matplotlib.path import Path
 
-    from glideplan.geodesy import wind_from_to_vector
+    from glideplan.geodesy import rhumb_destination as destination
     from glideplan.reach import Glide, glide_reach
     from glideplan.reach.flight import fly
-    from glideplan.reach.turnback import destination
     from glideplan.terrain.grid import Terrain
+    from glideplan.units import wind_from_compass
 
     n = 1201
     lat = 46.0 + np.arange(n) / (n - 1)
     lon = 7.0 + np.arange(n) / (n - 1)
     t = Terrain(lat, lon, bench.relief(n).astype(np.float32))
-    wind = wind_from_to_vector(*bench.WIND)
+    wind = wind_from_compass(*bench.WIND)
     r = glide_reach(t, bench.START, polar, wind=wind, terrain_clearance=150,
                     arrival_height=300)
     g = Glide(polar, wind=wind)

@@ -36,7 +36,8 @@ def main() -> None:
         for dt in STEPS:
             res = follow_paths(
                 PathArrays.dubins(goals, r_plan * R0),
-                SteadyDisturbance(eps * SPEED, dirs).stream(40, dt),
+                SteadyDisturbance(
+                    eps * SPEED * np.column_stack([np.cos(dirs), np.sin(dirs)])).stream(40, dt),
                 settings=FollowerSettings(dt=dt),
                 disturbance_bound=eps * SPEED,
             )

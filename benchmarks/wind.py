@@ -44,7 +44,7 @@ def main() -> None:
     rng = np.random.default_rng(0)
     n = args.queries
     goals = np.column_stack([rng.uniform(-4, 4, (n, 2)), rng.uniform(-math.pi, math.pi, n)])
-    vehicle = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=0.0)
+    vehicle = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind=(0.3, 0.0))
     start = Pose(0.0, 0.0, 0.0)
     sol = plan(start, Pose(3.0, 3.0, math.pi / 2), vehicle)
     print(

@@ -7,8 +7,8 @@ for planner X": add a vehicle and a simple goal for it below.
 
 For each planner, on a simple goal: the solution is solved and verified; its controls,
 integrated here with SciPy (DOP853, piecewise between the segments' breakpoints, through
-the vehicle's steady wind where it has one, computed from the vehicle's own `wind_speed` and
-`wind_direction`, not from the path or `glideplan.verify`), end within 1e-6 * max(1, L) of
+the vehicle's steady wind where it has one, computed from the vehicle's own `wind` (east, north)
+vector, not from the path or `glideplan.verify`), end within 1e-6 * max(1, L) of
 the goal (L the vehicle's length scale: `plan()`'s documented tolerance) and cost what the
 solution says; the best candidate is the cheapest feasible one; moving start and goal together
 by a rigid motion changes nothing (translation only where the vehicle carries a world-fixed
@@ -52,7 +52,8 @@ def _sailplane() -> Any:
     """A DG-1001M-like sailplane (the chapter 5 polar in SI) in a 3 m/s wind to 30 deg."""
     from glideplan.vehicles.sailplane import dg1001m_sailplane
 
-    return dg1001m_sailplane(wind_speed=3.0, wind_direction=math.radians(30.0))
+    return dg1001m_sailplane(wind=(3.0 * math.cos(math.radians(30.0)),
+                                   3.0 * math.sin(math.radians(30.0))))
 
 
 _R_STF = dg1001m().radius_stf
@@ -61,7 +62,8 @@ _R_STF = dg1001m().radius_stf
 CASES: dict[str, Case] = {
     "dubins": Case(lambda: DubinsCar(speed=2.0, turn_radius=1.5), (2.0, 3.0, 2.5)),
     "wind": Case(
-        lambda: DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=0.5),
+        lambda: DubinsCarInWind(speed=1.0, turn_radius=1.0,
+                                wind=(0.3 * math.cos(0.5), 0.3 * math.sin(0.5))),
         (3.0, 3.0, math.pi / 2),
     ),
     "time-optimal": Case(lambda: VariableSpeedCar(0.3, 1.0, 1.0), (0.0, 2.0, 2 * math.pi / 3)),
@@ -100,9 +102,8 @@ def test_every_registered_planner_has_a_case():
 
 def _wind(vehicle) -> tuple[float, float]:
     """The vehicle's world-fixed steady wind (m/s), from its own parameters."""
-    speed = float(getattr(vehicle, "wind_speed", 0.0))
-    direction = float(getattr(vehicle, "wind_direction", 0.0))
-    return speed * math.cos(direction), speed * math.sin(direction)
+    wx, wy = getattr(vehicle, "wind", (0.0, 0.0))
+    return float(wx), float(wy)
 
 
 def _rate(objective: str, vehicle) -> Callable[[float, float], float]:

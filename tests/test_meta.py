@@ -35,7 +35,7 @@ CLI_CASES: dict[tuple[str, str], tuple[str, ...]] = {
     ("dubins", "time"): ("plan", "dubins", "--goal", "4", "3", "90", "--radius", "1", "--time"),
     ("wind", "time"): (
         "plan", "wind", "--goal", "4", "3", "90", "--speed", "1", "--radius", "1",
-        "--wind", "0.5", "0",
+        "--wind", "0.5", "270",
     ),
     ("min_altitude", "altitude"): ("plan", "min-altitude", "--goal", "400", "300", "90"),
     ("min_altitude_direct", "altitude"): (

@@ -13,14 +13,13 @@ note and a `batch_index` attribute naming the item.
 from __future__ import annotations
 
 import os
-import time
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any, TypeVar
 
 import numpy as np
 
 from glideplan.errors import InvalidParameterError
-from glideplan.progress import start_progress_bar
+from glideplan.progress import DelayedBar
 
 __all__ = ["chunk_slices", "default_processes", "map_chunks", "run_batch"]
 
@@ -39,33 +38,20 @@ def default_processes() -> int:
         return max(1, os.cpu_count() or 1)
 
 
-class _Progress:
-    """A Rich progress bar on stderr, started only after the job has run for a second."""
+class _Progress(DelayedBar):
+    """The batch's bar (`glideplan.progress.DelayedBar`): it appears after a second."""
 
     def __init__(self, total: int, enabled: bool, description: str) -> None:
-        self.total = total
-        self.enabled = enabled and total > 0
-        self.description = description or "batch"
-        self.t0 = time.perf_counter()
-        self.bar: Any = None
-        self.task: Any = None
+        super().__init__(description or "batch", total, enabled=enabled and total > 0,
+                         delay=_PROGRESS_DELAY_S)
         self.done = 0
 
-    def update(self, done: int) -> None:
+    def update(self, done: int) -> None:  # type: ignore[override]
         self.done = done
-        if not self.enabled:
-            return
-        if self.bar is None:
-            if time.perf_counter() - self.t0 <= _PROGRESS_DELAY_S or done >= self.total:
-                return
-            self.bar, self.task = start_progress_bar(self.description, self.total)
-        self.bar.update(self.task, completed=done)
+        super().update(completed=done)
 
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.update(self.task, completed=self.done)
-            self.bar.stop()
-            self.bar = None
+    def close(self) -> None:  # type: ignore[override]
+        super().close(completed=self.done)
 
 
 def _tag(exc: BaseException, index: int) -> BaseException:

@@ -3,7 +3,8 @@
 Inside glideplan positions are metres in a local plane (x east, y north) and headings are
 radians counter-clockwise from +x (east). Outside, positions are WGS84 latitude/longitude in
 decimal degrees and headings are compass bearings (degrees clockwise from true north); a wind
-is given by the compass direction it blows FROM. This module is the one place that converts.
+is given by the compass direction it blows FROM (converted by `glideplan.units.wind_from_compass`
+and `wind_to_compass`). This module is the one place that converts positions and bearings.
 
 The local plane is an azimuthal equidistant projection about an origin (pyproj/PROJ `aeqd`
 on the WGS84 ellipsoid): distances and bearings from the origin are exact, and the scale
@@ -24,17 +25,57 @@ from numpy.typing import ArrayLike, NDArray
 from glideplan.errors import InvalidParameterError
 
 __all__ = [
+    "EARTH_RADIUS_M",
     "MAX_SCALE_DISTORTION",
     "LocalProjection",
     "check_latlon",
     "compass_to_heading",
+    "destination",
     "geodesic_distance_bearing",
     "heading_to_compass",
-    "wind_from_to_vector",
+    "rhumb_destination",
 ]
 
 #: Largest relative scale error of the local projection accepted over a mission's extent.
 MAX_SCALE_DISTORTION = 1e-3
+
+#: The one Earth radius of every spherical computation (m): the IUGG mean radius
+#: R1 = (2a + b) / 3 of WGS84 (Moritz 2000), used by the router, the fronts, the terrain
+#: grids, glide reach and the synthetic fields alike. (Ellipsoidal work uses pyproj.)
+EARTH_RADIUS_M = 6_371_008.8
+
+
+def destination(lat: ArrayLike, lon: ArrayLike, bearing: ArrayLike, dist: ArrayLike) -> tuple[
+    NDArray[np.float64], NDArray[np.float64]
+]:
+    """The point `dist` m from (lat, lon) deg along the GREAT CIRCLE of initial compass
+    `bearing` (rad, clockwise from north) on the sphere of radius `EARTH_RADIUS_M`:
+    phi2 = asin(sin phi1 cos d + cos phi1 sin d cos b),
+    lam2 = lam1 + atan2(sin b sin d cos phi1, cos d - sin phi1 sin phi2), d = dist / R;
+    (lat, lon) deg, lon continuous with the input's (not wrapped). Vectorised."""
+    p1, l1 = np.radians(lat), np.radians(lon)
+    d = np.asarray(dist, dtype=float) / EARTH_RADIUS_M
+    b = np.asarray(bearing, dtype=float)
+    p2 = np.arcsin(np.clip(np.sin(p1) * np.cos(d) + np.cos(p1) * np.sin(d) * np.cos(b), -1, 1))
+    l2 = l1 + np.arctan2(np.sin(b) * np.sin(d) * np.cos(p1), np.cos(d) - np.sin(p1) * np.sin(p2))
+    return np.degrees(p2), np.degrees(l2)
+
+
+def rhumb_destination(lat: float, lon: float, chi: float, s: ArrayLike) -> tuple[
+    NDArray[np.float64], NDArray[np.float64]
+]:
+    """Points `s` m from (lat, lon) deg along the RHUMB LINE (constant compass course, as a
+    pilot holds one) of direction `chi` (rad, counter-clockwise from east): phi = phi0 +
+    s sin(chi) / R, lam = lam0 + s cos(chi) / (R q) with q = dphi / dpsi from the isometric
+    latitude psi = ln tan(pi/4 + phi/2) (q = cos phi0 on a parallel). Vectorised over `s`."""
+    s = np.asarray(s, dtype=float)
+    p0 = math.radians(lat)
+    p = p0 + s * math.sin(chi) / EARTH_RADIUS_M
+    dpsi = np.log(np.tan(0.25 * np.pi + 0.5 * p)) - math.log(math.tan(0.25 * math.pi + 0.5 * p0))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        q = np.where(np.abs(dpsi) > 1e-12, (p - p0) / np.where(dpsi == 0, 1, dpsi), math.cos(p0))
+    dl = s * math.cos(chi) / (EARTH_RADIUS_M * q)
+    return np.degrees(p), lon + np.degrees(dl)
 
 
 def compass_to_heading(bearing_deg: ArrayLike) -> NDArray[np.float64] | float:
@@ -55,19 +96,6 @@ def heading_to_compass(heading_rad: ArrayLike) -> NDArray[np.float64] | float:
     b = np.mod(np.degrees(np.pi / 2 - np.asarray(heading_rad, dtype=float)), 360.0)
     b = np.where(b >= 360.0, 0.0, b)  # -0 and round-off at 360
     return float(b) if b.ndim == 0 else b
-
-
-def wind_from_to_vector(speed: float, from_deg: float) -> tuple[float, float]:
-    """(east, north) velocity (m/s) of a wind of `speed` (m/s) blowing FROM compass `from_deg`.
-
-    A wind from the north (0 deg) blows toward the south: (u, v) = -speed (sin b, cos b).
-    """
-    if not math.isfinite(speed) or speed < 0:
-        raise InvalidParameterError("wind speed", speed, "must be finite and >= 0 (m/s)")
-    if not math.isfinite(from_deg):
-        raise InvalidParameterError("wind direction", from_deg, "must be finite (degrees)")
-    b = math.radians(from_deg)
-    return -speed * math.sin(b), -speed * math.cos(b)
 
 
 def check_latlon(lat: ArrayLike, lon: ArrayLike, name: str = "position") -> tuple[
@@ -183,4 +211,4 @@ class LocalProjection:
 
 def _extent_km(max_distortion: float) -> float:
     # aeqd on a sphere: k = c / sin c ~ 1 + c^2 / 6, so c = sqrt(6 * distortion).
-    return math.sqrt(6.0 * max_distortion) * 6371.0
+    return math.sqrt(6.0 * max_distortion) * EARTH_RADIUS_M / 1000.0

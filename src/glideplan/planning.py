@@ -20,6 +20,7 @@ from glideplan.objectives import get_objective
 from glideplan.pose import Pose, wrap_to_pi
 from glideplan.results import Reason
 from glideplan.solution import Candidate, Solution, Status
+from glideplan.validation import check_physical
 from glideplan.vehicles.base import Vehicle
 from glideplan.verify import EndpointError, endpoint_error
 
@@ -27,7 +28,6 @@ if TYPE_CHECKING:
     from glideplan.path import Path
 
 __all__ = [
-    "POSITION_LIMIT_M",
     "PlannerOutput",
     "PlannerSpec",
     "Problem",
@@ -87,9 +87,6 @@ class PlannerSpec:
 
 _REGISTRY: list[PlannerSpec] = []
 
-# Start and goal coordinates must lie within this distance of the origin (m): beyond it the
-# planners' squared distances overflow or lose all precision (and the Earth is not flat).
-POSITION_LIMIT_M = 1e9
 # Two poses closer than this (times the vehicle's length scale, and in rad) are the same pose.
 _SAME_POSE_TOL = 1e-12
 
@@ -184,10 +181,7 @@ def _as_pose(name: str, value: Pose | tuple[float, float, float] | Any) -> Pose:
             rule = getattr(err, "rule", "must be a Pose or three numbers (x, y, heading)")
             raise InvalidParameterError(name, value, rule) from None
     for axis, coord in (("x", pose.x), ("y", pose.y)):
-        if abs(coord) > POSITION_LIMIT_M:
-            raise InvalidParameterError(
-                f"{name} {axis}", coord, f"must lie within +-{POSITION_LIMIT_M:g} m of the origin"
-            )
+        check_physical(f"{name} {axis}", coord, "position")  # validation.PHYSICAL_RANGES
     return pose
 
 
@@ -197,9 +191,9 @@ def _verification_scale(vehicle: Vehicle) -> float:
     The cap is the largest supported turn radius, so that no parameter, however absurd,
     can loosen the check beyond tolerance * 1e7 m.
     """
-    from glideplan.vehicles.base import LENGTH_LIMITS_M
+    from glideplan.validation import PHYSICAL_RANGES
 
-    return min(max(1.0, vehicle.length_scale), LENGTH_LIMITS_M[1])
+    return min(max(1.0, vehicle.length_scale), PHYSICAL_RANGES["turn_radius"].high)
 
 
 def _path_word(best: Candidate) -> str:
@@ -258,9 +252,9 @@ def plan(
     The vehicle model and objective select the planner (see `planners()`); `method` chooses
     among several (e.g. "synthesis" or "direct"). `options` go to the planner; an unknown
     option is an error. The best candidate is verified by integrating its controls; its
-    endpoint error must be below `tolerance * min(max(1, vehicle.length_scale), 1e7 m)` in
+    endpoint error must be below `tolerance * min(max(1, vehicle.length_scale), 1e5 m)` in
     position and `tolerance` in heading (rad). Start and goal coordinates must lie within
-    `POSITION_LIMIT_M` (1e9 m); vehicles refuse parameters outside their supported ranges.
+    `PHYSICAL_RANGES["position"]` (1e7 m); vehicles refuse parameters outside the same table.
 
     Start equal to goal (positions within 1e-12 times that scale, headings within 1e-12 rad
     modulo 2 pi): every planner gives the same answer without being called, a solved

@@ -20,6 +20,7 @@ if TYPE_CHECKING:
     from glideplan.path import Path
     from glideplan.pose import Pose
     from glideplan.solution import Solution
+    from glideplan.units import WindEN
     from glideplan.vehicles.base import Vehicle
 
 __all__ = [
@@ -38,6 +39,8 @@ __all__ = [
     "plot_track",
     "pose_text",
     "save_figure",
+    "wind_arrow",
+    "wind_label",
 ]
 
 # One look for every figure glideplan writes: this resolution (dots per inch) and saver.
@@ -83,7 +86,7 @@ def describe_vehicle(vehicle: Vehicle) -> str:
     if m == "dubins_car_in_wind":
         return (
             f"Dubins car in wind, v = {d['speed']:g} m/s, R0 = {d['turn_radius']:g} m, "
-            f"wind {d['wind_speed']:g} m/s towards {math.degrees(d['wind_direction']):g} deg"
+            f"{wind_label(tuple(d['wind']))}"
         )
     if m == "variable_speed_car":
         return (
@@ -198,31 +201,6 @@ def plot_path(
     ax.set_aspect("equal", adjustable="datalim")
     _label_axes(ax, unit or length_unit(path.vehicle))
     return ax
-
-
-def _wind_arrow(ax: Any, vehicle: Vehicle) -> None:
-    """An arrow in the top-left corner pointing where a steady wind blows, labelled."""
-    speed = float(getattr(vehicle, "wind_speed", 0.0) or 0.0)
-    if speed <= 0.0:
-        return
-    to = float(getattr(vehicle, "wind_direction", 0.0))
-    x0, y0, r = 0.1, 0.88, 0.06
-    ax.annotate(
-        "",
-        xy=(x0 + r * math.cos(to), y0 + r * math.sin(to)),
-        xytext=(x0 - r * math.cos(to), y0 - r * math.sin(to)),
-        xycoords="axes fraction",
-        arrowprops={"arrowstyle": "-|>", "color": "tab:blue", "lw": 1.8},
-    )
-    ax.text(
-        x0,
-        y0 - 0.1,
-        f"wind {speed:g} m/s",
-        transform=ax.transAxes,
-        ha="center",
-        fontsize=8,
-        color="tab:blue",
-    )
 
 
 def _title(solution: Solution, unit: str, heading: str = "") -> str:
@@ -341,7 +319,9 @@ def plot_solution(
         lim(mid - half_k, mid + half_k)
     ax.set_aspect("equal", adjustable="box")
     _label_axes(ax, unit)
-    _wind_arrow(ax, solution.vehicle)
+    wind = getattr(solution.vehicle, "wind", None)
+    if wind is not None:
+        wind_arrow(ax, wind, (0.1, 0.88), colour="tab:blue", lw=1.8, label="below")
     ax.grid(True, lw=0.4, alpha=0.5)
     ax.set_title(_title(solution, unit, heading), fontsize=9, loc="left")
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=8)
@@ -485,6 +465,49 @@ def add_north_arrow(ax: Any, loc: tuple[float, float] = (0.95, 0.95)) -> Any:
                        fontweight="bold", zorder=20, gid="north_arrow",
                        arrowprops={"arrowstyle": "-|>", "color": "k", "lw": 1.5},
                        path_effects=[pe.withStroke(linewidth=3, foreground="white")])
+
+
+def wind_label(wind: WindEN | None, sep: str = " ") -> str:
+    """`wind 8 m/s from 270°` (the compass direction it blows FROM) of an (east, north) wind,
+    or `no wind`; `sep` goes between the speed and "from" (a newline under an arrow)."""
+    from glideplan.units import wind_to_compass
+
+    speed, frm = (0.0, 0.0) if wind is None else wind_to_compass(*wind)
+    if speed <= 0.0:
+        return "no wind"
+    return f"wind {speed:.3g} m/s{sep}from {frm:.0f}°"
+
+
+def wind_arrow(ax: Any, wind: WindEN, at: tuple[float, float] = (0.1, 0.83), *,
+               half: float = 11.0, colour: str = "navy", lw: float = 2.0,
+               label: str | None = None, **arrowprops: Any) -> Any:
+    """The one wind arrow of every figure: `half`-point half-length arrow centred on `at` (axes
+    fraction) pointing where the (east, north) wind blows TOWARDS, in display space (so its
+    direction is true on equal-aspect east/north axes); gid "wind_arrow". With `label`
+    ("below" or "above") `wind_label(wind, "\n")` is written under or over it. Nothing is
+    drawn in a calm. Returns the arrow's annotation (or None)."""
+    from matplotlib.transforms import offset_copy
+
+    speed = math.hypot(*wind)
+    if not speed > 0.0:
+        return None
+    ux, uy = wind[0] / speed, wind[1] / speed
+    tip = offset_copy(ax.transAxes, fig=ax.get_figure(), x=half * ux, y=half * uy,
+                      units="points")
+    props = {"arrowstyle": "-|>", "color": colour, "lw": lw, **arrowprops}
+    arrow = ax.annotate("", xy=at, xycoords=tip, xytext=(-2 * half * ux, -2 * half * uy),
+                        textcoords="offset points", gid="wind_arrow", zorder=20,
+                        arrowprops=props)
+    if label is not None:
+        up = label == "above"
+        ax.annotate(
+            wind_label(wind, "\n"), xy=at, xycoords="axes fraction",
+            xytext=(0.0, (half * abs(uy) + 6.0) * (1.0 if up else -1.0)),
+            textcoords="offset points", ha="center", va="bottom" if up else "top",
+            fontsize=8, color=colour, gid="wind_label", zorder=20,
+            bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.8},
+        )
+    return arrow
 
 
 #: The 8 places a label may take round its point, in the order tried: (dx, dy, ha, va).

@@ -36,7 +36,14 @@ __all__ = [
     "pa_to_psi",
     "psi_to_pa",
     "rad_to_deg",
+    "wind_from_compass",
+    "wind_to_compass",
 ]
+
+#: A steady wind or current inside the library: (east, north) velocity in m/s, the direction
+#: it blows TOWARDS. Compass "from" degrees appear only at the edges (CLI, files, explorer,
+#: labels), converted by `wind_from_compass` / `wind_to_compass` and nothing else.
+WindEN = tuple[float, float]
 
 G0 = 9.80665  # standard gravity, m/s^2
 LB_KG = 0.45359237  # kg per pound (mass)
@@ -46,6 +53,38 @@ FT_M = 12.0 * INCH_M  # m per foot
 PSI_PA = LBF_N / INCH_M**2  # Pa per psi
 ZERO_CELSIUS_K = 273.15  # K at 0 degC
 _KMH_MS = 1.0 / 3.6  # m/s per km/h
+
+
+def wind_from_compass(speed_ms: float, from_deg: float, *, param: str = "wind") -> WindEN:
+    """(east, north) m/s, blowing TOWARDS, of a wind of `speed_ms` blowing FROM compass `from_deg`.
+
+    A wind from bearing b blows towards b + 180 deg: (u, v) = -speed (sin b, cos b); e.g. from
+    270 deg (west) at 10 m/s is (+10, 0). `param` names the input in a refusal (`--wind` on the
+    command line); the speed must lie in `PHYSICAL_RANGES["wind_speed"]`, the direction in
+    `PHYSICAL_RANGES["heading"]`.
+    """
+    from glideplan.validation import check_physical
+
+    speed = check_physical(f"{param} speed", speed_ms, "wind_speed")
+    b = math.radians(check_physical(f"{param} direction", from_deg, "heading"))
+    if speed == 0.0:
+        return 0.0, 0.0
+    return -speed * math.sin(b), -speed * math.cos(b)
+
+
+def wind_to_compass(east_ms: float, north_ms: float) -> tuple[float, float]:
+    """(speed m/s, compass direction it blows FROM in [0, 360) deg) of an (east, north) wind.
+
+    The inverse of `wind_from_compass`: speed = hypot(u, v), from = atan2(-u, -v) mod 360; a
+    calm has direction 0. Both are rounded (speed to 1e-12 m/s, direction to 1e-9 deg) so that
+    a compass wind given at an edge reads back as given.
+    """
+    u, v = float(east_ms), float(north_ms)
+    speed = math.hypot(u, v)
+    if speed == 0.0:
+        return 0.0, 0.0
+    b = round(math.degrees(math.atan2(-u, -v)) % 360.0, 9) % 360.0
+    return round(speed, 12), b
 
 
 def _scaled(x: ArrayLike, factor: float, offset: float = 0.0) -> np.ndarray | float:

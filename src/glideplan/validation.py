@@ -206,15 +206,38 @@ PHYSICAL_RANGES: Mapping[str, PhysicalRange] = {
         low_open=True,
     ),
     "wind_speed": PhysicalRange(0.0, 150.0, "m/s", "no wind or current on Earth is faster"),
+    "water_speed": PhysicalRange(
+        0.0, 20.0, "m/s",
+        "a vehicle's speed through water: 40 knots; faster (up to 343 m/s) is an air vehicle",
+        low_open=True,
+    ),
+    "current_speed": PhysicalRange(
+        0.0, 10.0, "m/s",
+        "an ocean current: the fastest tidal races reach about 10 m/s, the Gulf Stream 2.5",
+    ),
     "mc": PhysicalRange(
         0.0, 10.0, "m/s", "MacCready setting: the expected climb rate, no thermal climbs faster"
     ),
     "turn_radius": PhysicalRange(
-        0.0, 100_000.0, "m", "a turn wider than 100 km is not a turn", low_open=True
+        1e-6, 100_000.0, "m",
+        "a turn wider than 100 km is not a turn; below a micrometre it is round-off",
+    ),
+    "turn_rate": PhysicalRange(
+        1e-6, 1e6, "rad/s", "the planners' closed forms hold to 1e-6 of the length scale here"
+    ),
+    "speed_ratio": PhysicalRange(
+        1.0, 1e6, "", "a top speed at most a million times the lowest (else round-off)"
     ),
     "distance": PhysicalRange(
         0.0, 100_000.0, "m", "a distance or tolerance up to 100 km",
         low_open=True,
+    ),
+    "clearance": PhysicalRange(
+        0.0, 100_000.0, "m",
+        "a clearance wider than 100 km leaves no coastal water to route through",
+    ),
+    "duration": PhysicalRange(
+        0.0, 366 * 86_400.0, "s", "a route or mission of up to a year", low_open=True
     ),
     "bank": PhysicalRange(0.0, 80.0, "deg", "a bank angle a sailplane can hold", low_open=True),
     # ---- the environment and the vehicle (chapter 7 design parameters, SI) ---------------
@@ -236,6 +259,11 @@ PHYSICAL_RANGES: Mapping[str, PhysicalRange] = {
     ),
     "volume": PhysicalRange(0.0, 100.0, "m^3", "a tank, bladder or hull volume", low_open=True),
     "mass": PhysicalRange(0.0, 100_000.0, "kg", "a vehicle or part up to 100 t", low_open=True),
+    "mass_ratio": PhysicalRange(
+        0.5, 2.0, "",
+        "a polar scales by sqrt(m / m_ref) only near the wing loading it was measured at; "
+        "water ballast at most doubles it",
+    ),
     "length": PhysicalRange(0.0, 1_000.0, "m", "a vehicle dimension", low_open=True),
     "station": PhysicalRange(-1_000.0, 1_000.0, "m", "a position along the vehicle"),
     "area": PhysicalRange(0.0, 10_000.0, "m^2", "a wing or reference area", low_open=True),

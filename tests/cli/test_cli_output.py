@@ -23,12 +23,14 @@ from glideplan.vehicles import (
 def _sailplane() -> Any:
     from glideplan.vehicles.sailplane import dg1001m_sailplane
 
-    return dg1001m_sailplane(wind_speed=3.0, wind_direction=math.radians(30.0))
+    return dg1001m_sailplane(wind=(3.0 * math.cos(math.radians(30.0)),
+                                   3.0 * math.sin(math.radians(30.0))))
 
 
 EXAMPLES: dict[str, Any] = {
     DubinsCar.__name__: DubinsCar,
-    DubinsCarInWind.__name__: lambda: DubinsCarInWind(1.0, 1.0, 0.3, 0.5),
+    DubinsCarInWind.__name__: lambda: DubinsCarInWind(
+        1.0, 1.0, (0.3 * math.cos(0.5), 0.3 * math.sin(0.5))),
     VariableSpeedCar.__name__: VariableSpeedCar,
     QuadraticPolarGlider.__name__: dg1001m,
     LoadFactorGlider.__name__: LoadFactorGlider,

@@ -36,6 +36,7 @@ from glideplan import (  # noqa: E402
     VariableSpeedCar,
     plan,
 )
+from glideplan.units import wind_from_compass  # noqa: E402
 from glideplan.vehicles import QuadraticPolarGlider  # noqa: E402
 
 ARGS = [
@@ -171,11 +172,8 @@ def _reference(q: dict[str, str]) -> float:
         v: Any = DubinsCar(float(q["speed"]), float(q["radius"]))
         return plan(start, goal, v, "length").cost
     if planner == "wind":
-        # the link's wind is the CLI's: speed (m/s) and the compass direction it blows FROM;
-        # the vehicle's is the direction it blows towards, counter-clockwise from +x (east):
-        # towards = FROM + 180 deg (compass) = 90 - (FROM + 180) = 270 - FROM (math)
-        w, frm = _floats(q["wind"])
-        v = DubinsCarInWind(float(q["speed"]), float(q["radius"]), w, math.radians(270 - frm))
+        w, d = _floats(q["wind"])
+        v = DubinsCarInWind(float(q["speed"]), float(q["radius"]), wind_from_compass(w, d))
         return plan(start, goal, v).cost
     if planner == "time-optimal":
         v = VariableSpeedCar(float(q["v_min"]), float(q["v_max"]), float(q["u_max"]))
@@ -610,9 +608,9 @@ def test_reach_map_counts_reachable_landables(server: str, browser_context: Any)
     `glide_reach` (the call of `glide reach --example ridge`) finds reachable for the URL's
     start, wind, MC and safety height."""
     from glideplan.cli.glide import _polar
-    from glideplan.geodesy import wind_from_to_vector
     from glideplan.reach import glide_reach
     from glideplan.reach.examples import example
+    from glideplan.units import wind_from_compass
 
     page = _open(
         browser_context,
@@ -627,7 +625,7 @@ def test_reach_map_counts_reachable_landables(server: str, browser_context: Any)
         polar,
         landables=ex.landables,
         mc=0.0,
-        wind=wind_from_to_vector(4.0, 250.0),
+        wind=wind_from_compass(4.0, 250.0),
         safety_height=300.0,
         resolution_m=None,  # the CLI's: the terrain's own grid
     )

@@ -249,7 +249,7 @@ def test_candidates_that_draw_the_optimal_curve_are_drawn_once():
     from glideplan.plotting import plot_solution
     from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
 
-    car = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=0.0)
+    car = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind=(0.3, 0.0))
     sol = plan(Pose(), Pose(10.0, 0.0, 0.0), car)
     assert sol.cost == pytest.approx(10.0 / 1.3, rel=1e-9) and sol.word == "S"
     same = [c for c in sol.candidates if c.feasible and c.path is not None]

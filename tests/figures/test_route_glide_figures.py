@@ -175,11 +175,14 @@ def test_unreachable_route_title_says_so(tmp_path):
 
 def _glide(arrival: float | None, wind: tuple[float, float] | None):
     from glideplan.sailplane import polar_from_file, read_plr
-    from glideplan.sailplane.request import run_final
+    from glideplan.sailplane.request import final_glide
+    from glideplan.units import wind_from_compass
 
     polar = polar_from_file(read_plr("tests/data/polars/DG-1001M_ch5.plr"))
-    return run_final(polar, (47.0, 8.0, 1500.0), (47.2, 8.1, 450.0), mc=1.0, wind=wind,
-                     arrival_heading=arrival)
+    res = final_glide(polar, (47.0, 8.0, 1500.0), (47.2, 8.1, 450.0), mc=1.0,
+                      wind=None if wind is None else wind_from_compass(*wind),
+                      arrival_heading=arrival)
+    return res.to_dict(), res.drawing
 
 
 def _wind_annotations(ax):
@@ -203,7 +206,7 @@ def test_glide_figure_shows_the_wind(arrival):
     from glideplan.sailplane.plot import final_glide_figure
 
     data, d = _glide(arrival, (8.0, 270.0))
-    assert (d.wind_speed, d.wind_from_deg) == (pytest.approx(8.0, rel=1e-12), 270.0)
+    assert d.wind == pytest.approx((8.0, 0.0), abs=1e-12)  # from 270 deg: towards the east
     fig = final_glide_figure(d)
     title = fig.get_suptitle()
     assert "wind 8 m/s from 270°" in title
@@ -236,12 +239,13 @@ def test_glide_wind_arrow_direction_and_calm():
 
     from glideplan.sailplane.plot import final_glide_figure
     from glideplan.sailplane.request import FinalGlideDrawing
+    from glideplan.units import wind_from_compass
 
     x = np.linspace(0.0, 8000.0, 20)
     base = {"x": x, "y": 0.5 * x, "distance": np.hypot(x, 0.5 * x),
             "altitude": np.linspace(1500.0, 900.0, 20), "goal_elevation": 450.0,
             "safety_height": 300.0, "title": "test glide"}
-    fig = final_glide_figure(FinalGlideDrawing(**base, wind_speed=5.0, wind_from_deg=45.0))
+    fig = final_glide_figure(FinalGlideDrawing(**base, wind=wind_from_compass(5.0, 45.0)))
     texts, arrows = _wind_annotations(fig.axes[0])
     assert texts == ["wind 5 m/s\nfrom 45°"] and "wind 5 m/s from 45°" in fig.get_suptitle()
     assert arrows[0] / np.linalg.norm(arrows[0]) == pytest.approx(

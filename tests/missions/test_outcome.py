@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from glideplan.errors import InvalidParameterError
-from glideplan.geodesy import wind_from_to_vector
 from glideplan.missions import Route, plan_mission
+from glideplan.units import wind_from_compass
 
 TIMINGS = ("dp_seconds", "refine_seconds", "legs_seconds")  # wall-clock: differ run to run
 
@@ -39,10 +39,10 @@ def test_to_dict_is_the_cli_json(run_cli, tmp_path):
                                 "--wind", "0.2", "270", "--headings", "8", "--json")
     assert code == 0, err
     cli = json.loads(stdout)
-    vector = wind_from_to_vector(0.2, 270.0)  # the CLI's conversion at its edge ...
+    vector = wind_from_compass(0.2, 270.0)  # the CLI's conversion at its edge ...
     assert vector == pytest.approx((0.2, 0.0), abs=1e-15)  # ... (0.2, 0) up to rounding
     plan = plan_mission(read_route(p), speed=1.0, radius=100.0, objective="time",
-                        wind_vector=vector, headings=8)
+                        wind=vector, headings=8)
     lib = json.loads(to_json(plan.to_dict()))
     assert set(cli) - set(lib) == {"files"} and cli["files"] == {}
     # the same computation in one process: equal, not merely close
@@ -66,26 +66,26 @@ def test_to_dict_carries_the_track_and_straight_legs():
 
 def test_wind_vector_is_the_compass_wind_it_stands_for():
     """Hand derivation: a wind of 0.2 m/s FROM the north (compass 0) moves the air south,
-    (east, north) = (0, -0.2). Both forms plan the same mission; the JSON (the edge) reads
-    the wind back in compass form as given."""
+    (east, north) = (0, -0.2). `wind=` and its older name `wind_vector=` take the same vector
+    and plan the same mission; the JSON (the edge) reads the wind back in compass form."""
     r = Route.from_local(["a", "b", "c"], [0.0, 600.0, 1200.0], [0.0, 400.0, 0.0],
                          [0.0, math.nan, math.nan])
     by_vector = plan_mission(r, speed=1.0, radius=150.0, objective="time",
                              wind_vector=(0.0, -0.2), headings=8)
-    by_compass = plan_mission(r, speed=1.0, radius=150.0, objective="time", wind=(0.2, 0.0),
-                              headings=8)
+    by_compass = plan_mission(r, speed=1.0, radius=150.0, objective="time",
+                              wind=wind_from_compass(0.2, 0.0), headings=8)
     assert by_vector.ok and by_compass.ok
     assert by_vector.total_duration_s == pytest.approx(by_compass.total_duration_s, rel=1e-12)
     np.testing.assert_allclose(by_vector.headings, by_compass.headings, atol=1e-12)
     assert by_compass.wind_vector == pytest.approx((0.0, -0.2), abs=1e-15)
     assert by_vector.to_dict()["wind"] == {"speed": 0.2, "from_deg": 0.0}
     with pytest.raises(InvalidParameterError, match="wind"):
-        plan_mission(r, speed=1.0, radius=150.0, objective="time", wind=(0.2, 0.0),
+        plan_mission(r, speed=1.0, radius=150.0, objective="time", wind=(0.0, -0.2),
                      wind_vector=(0.0, -0.2))
     with pytest.raises(InvalidParameterError, match="wind_vector"):
         plan_mission(r, speed=1.0, radius=150.0, objective="time",
                      wind_vector=(math.nan, 0.0))
-    u, v = wind_from_to_vector(0.2, 0.0)
+    u, v = wind_from_compass(0.2, 0.0)
     assert (u, v) == pytest.approx((0.0, -0.2), abs=1e-15)
 
 

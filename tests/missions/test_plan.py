@@ -11,6 +11,7 @@ import pytest
 from glideplan.missions import Route, plan_mission, straight_leg_list
 from glideplan.missions.straight_legs import segment_distances
 from glideplan.planners.wind import convected_dubins
+from glideplan.units import wind_from_compass
 
 
 def _route():
@@ -64,8 +65,8 @@ def test_wind_mission_times_match_the_wind_planner():
     path (plan() with DubinsCarInWind, verified by integration through the wind) and its
     duration equals the scalar planner's arrival time for the chosen headings."""
     r = Route.from_local(["a", "b", "c"], [0.0, 800.0, 900.0], [0.0, 300.0, -500.0])
-    plan = plan_mission(r, speed=1.0, radius=150.0, objective="time", wind=(0.2, 0.0),
-                        headings=12)
+    plan = plan_mission(r, speed=1.0, radius=150.0, objective="time", wind=(0.0, -0.2),
+                        headings=12)  # (east, north) towards: 0.2 m/s from the north
     assert plan.ok
     for leg in plan.legs:
         assert leg.solution.endpoint_error.max < 1e-6
@@ -87,6 +88,6 @@ def test_wind_mission_planned_cost_is_the_flown_time():
 
     data = pathlib.Path(__file__).parents[2] / "src/glideplan/missions/data/buzzards_bay.gpx"
     plan = plan_mission(read_route(data), speed=0.5, radius=300.0, objective="time",
-                        wind=(0.15, 200.0), headings=8)
+                        wind=wind_from_compass(0.15, 200.0), headings=8)
     assert plan.ok
     assert plan.total_duration_s == pytest.approx(plan.heading_plan.total, rel=1e-6)

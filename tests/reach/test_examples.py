@@ -34,10 +34,10 @@ import shlex
 import numpy as np
 import pytest
 
-from glideplan.geodesy import wind_from_to_vector
 from glideplan.reach import Glide
 from glideplan.reach import examples as E
 from glideplan.sailplane import polar_from_file, read_plr
+from glideplan.units import wind_from_compass
 
 from .test_reach import R_EARTH, bearing, haversine
 
@@ -79,7 +79,7 @@ def turnback_json():
 @pytest.fixture(scope="module")
 def glide(ex):
     polar = polar_from_file(read_plr(ex.polar_file))
-    return Glide(polar, mc=ex.mc, wind=wind_from_to_vector(ex.wind_speed_ms, ex.wind_from_deg))
+    return Glide(polar, mc=ex.mc, wind=wind_from_compass(ex.wind_speed_ms, ex.wind_from_deg))
 
 
 def _loss(glide, a, b):
@@ -147,7 +147,7 @@ def test_example_runs_with_no_files(reach_json, ex):
     assert d["status"] == "solved"
     assert d["start"]["altitude_m"] == ex.start[2]
     assert d["glide"]["wind_ms"] == pytest.approx(
-        list(wind_from_to_vector(ex.wind_speed_ms, ex.wind_from_deg)), abs=1e-12)
+        list(wind_from_compass(ex.wind_speed_ms, ex.wind_from_deg)), abs=1e-12)
     keys = {"name", "lat", "lon", "elevation_m", "reachable", "arrival_altitude_m",
             "arrival_margin_m", "distance_m", "detour", "track"}
     assert [p["name"] for p in d["points"]] == [f[0] for f in E.FIELDS]
@@ -258,7 +258,7 @@ def test_behind_the_ridge_in_a_stronger_wind_at_mc_1(ex):
     from glideplan.reach import glide_reach
 
     polar = polar_from_file(read_plr(ex.polar_file))
-    wind = wind_from_to_vector(10.0, 250.0)
+    wind = wind_from_compass(10.0, 250.0)
     glide = Glide(polar, mc=1.0, wind=wind)
     r = glide_reach(ex.terrain, ex.start, polar, landables=ex.landables, mc=1.0, wind=wind,
                     safety_height=ex.safety_height, resolution_m=ex.resolution_m)
@@ -307,7 +307,7 @@ def test_turnback_example_and_its_files(run_cli, turnback_json, ex, glide, tmp_p
     """The course runs up the valley and the return stays over the floor, so the turn-back
     distance s solves the closed form ALT - s / r(course) - loss(P(s) -> home) = FLOOR_M +
     safety (bisection here; the solver refines to 1 m); the written files give the same."""
-    from glideplan.reach.turnback import destination
+    from glideplan.geodesy import rhumb_destination as destination
 
     d = turnback_json
     assert d["status"] == "solved" and d["limited_by"] == "glide home"
@@ -347,7 +347,7 @@ def test_explicit_options_override_the_example(run_cli):
                              "--mc", "1", "--json")
     assert code == 0, err
     g = json.loads(out)["glide"]
-    assert g["wind_ms"] == pytest.approx(list(wind_from_to_vector(10.0, 250.0)), abs=1e-12)
+    assert g["wind_ms"] == pytest.approx(list(wind_from_compass(10.0, 250.0)), abs=1e-12)
     assert g["mc_ms"] == pytest.approx(1.0)
 
 

@@ -207,8 +207,8 @@ def test_turnback_at_the_dem_resolution_matches_an_independent_bisection(polar):
     flights) against an independent search: bisection on the distance out with, at each
     probe, the forward glide reach from that point (`glide_reach`, home as its landable) --
     within one DEM cell (92.6 m)."""
+    from glideplan.geodesy import rhumb_destination as destination
     from glideplan.reach import Glide, turnback
-    from glideplan.reach.turnback import destination
 
     t = ridge_terrain()
     la_h, lo_h = _xy_to_latlon(0.0, -5.0)

@@ -90,9 +90,9 @@ def test_scale_bar_length_is_the_geodesic_within_1_percent(lat0):
 def test_wind_arrow_points_downwind():
     """Wind FROM 240 deg blows towards 60 deg: the arrow (tail -> tip, display space) points
     60 deg east of north, i.e. 30 deg above the +x axis on the equal-metre map."""
-    from glideplan.geodesy import wind_from_to_vector
+    from glideplan.units import wind_from_compass
 
-    ax, _ = _plot(_result(wind=wind_from_to_vector(8.0, 240.0)))
+    ax, _ = _plot(_result(wind=wind_from_compass(8.0, 240.0)))
     (arrow,) = [t for t in ax.texts if t.get_gid() == "wind_arrow"]
     dx, dy = -np.asarray(arrow.xyann, dtype=float)  # tail at xytext (offset points), tip at xy
     assert math.degrees(math.atan2(dy, dx)) == pytest.approx(30.0, abs=0.5)

@@ -29,8 +29,7 @@ def test_far_goal_on_the_bearing_is_the_straight_final_glide(dg_polar, wind):
     straight final glide (MacCready speed with wind) within 0.1 %. Headwind and crosswind
     included (in a crosswind the heading differs from the track by the crab angle, so the
     glider ends with a small turn to the arrival heading: still within 0.1 %)."""
-    speed = math.hypot(*wind)
-    v = Sailplane(dg_polar, wind_speed=speed, wind_direction=math.atan2(wind[1], wind[0]))
+    v = Sailplane(dg_polar, wind=wind)
     bearing = math.radians(30.0)
     D = 20_000.0
     goal = Pose(D * math.cos(bearing), D * math.sin(bearing), bearing)

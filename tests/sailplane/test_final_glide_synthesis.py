@@ -26,8 +26,7 @@ def _vehicle(wind=(0.0, 0.0)) -> Sailplane:
         bank_max=math.radians(60.0),
         turn_rate_max=G.u_max,
         turning_polar=False,
-        wind_speed=math.hypot(*wind),
-        wind_direction=math.atan2(wind[1], wind[0]),
+        wind=wind,
     )
 
 

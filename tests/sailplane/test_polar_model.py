@@ -14,7 +14,7 @@ def test_mass_scales_speeds_and_sinks_by_sqrt_weight_ratio(dg_file):
     glide ratio is unchanged and the best-glide speed grows by k."""
     pf = read_plr(dg_file)
     p0 = polar_from_file(pf)
-    p1 = polar_from_file(pf, mass_kg=0.2 * pf.mass_kg, ballast_l=0.0)  # lighter
+    p1 = polar_from_file(pf, mass_kg=0.6 * pf.mass_kg, ballast_l=0.0)  # lighter (>= 0.5 W0)
     p2 = polar_from_file(pf, mass_kg=pf.mass_kg + 40.0, ballast_l=0.0)
     for p in (p1, p2):
         k = math.sqrt(p.mass_kg / p0.mass_kg)

@@ -44,9 +44,9 @@ def test_seeded_and_independent_of_time_step_statistics():
 
 
 def test_steady_and_saturate():
-    s = SteadyDisturbance([1.0, 2.0], [0.0, math.pi / 2]).stream(2, 0.1)
+    s = SteadyDisturbance([[1.0, 0.0], [0.0, 2.0]]).stream(2, 0.1)
     np.testing.assert_allclose(s.next(), [[1.0, 0.0], [0.0, 2.0]], atol=1e-15)
-    np.testing.assert_allclose(SteadyDisturbance(3.0, math.pi).velocity(4)[:, 0], -3.0)
+    np.testing.assert_allclose(SteadyDisturbance((-3.0, 0.0)).velocity(4)[:, 0], -3.0)
     v = saturate(np.array([[3.0, 4.0], [0.3, 0.4], [0.0, 0.0]]), 1.0)
     np.testing.assert_allclose(v, [[0.6, 0.8], [0.3, 0.4], [0.0, 0.0]])
 
@@ -76,4 +76,4 @@ def test_bad_stream_input():
         DrydenTurbulence(1.0).sample(5, 2, 0.1, np.random.default_rng(42)),
     )
     with pytest.raises(InvalidParameterError):
-        SteadyDisturbance([1.0, 2.0], 0.0).velocity(3)
+        SteadyDisturbance([[1.0, 0.0], [2.0, 0.0]]).velocity(3)

@@ -1,5 +1,7 @@
 """The simulator with a disturbance that depends on position and time (`FieldDisturbance`)."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -28,7 +30,7 @@ def test_uniform_field_equals_steady_disturbance_exactly():
     n = paths.count
     speed, direction = 5.0, 0.7
     ux, uy = speed * np.cos(direction), speed * np.sin(direction)
-    steady = follow_paths(paths, SteadyDisturbance(speed, direction).stream(n, 0.05),
+    steady = follow_paths(paths, SteadyDisturbance((ux, uy)).stream(n, 0.05),
                           disturbance_bound=speed, record=True)
     field = FieldDisturbance(lambda t, x, y: (np.full(x.shape, ux), np.full(x.shape, uy)))
     moved = follow_paths(paths, field.stream(n, 0.05), disturbance_bound=speed, record=True)
@@ -90,7 +92,7 @@ def test_walked_segment_index_equals_the_scan(monkeypatch):
     lens = rng.uniform(0.0, 2.0 * R0, size=(n, k))
     lens[:, 3] = 0.0
     paths = PathArrays.from_segments(np.zeros((n, 3)), dirs, lens, 2.0 * R0)
-    stream = SteadyDisturbance(4.0, 1.0)
+    stream = SteadyDisturbance((4.0 * math.cos(1.0), 4.0 * math.sin(1.0)))
     walked = follow_paths(paths, stream.stream(n, 0.05), disturbance_bound=4.0)
     monkeypatch.setattr(closed_loop, "_SCAN_BREAKS", 10**6)
     scanned = follow_paths(paths, stream.stream(n, 0.05), disturbance_bound=4.0)

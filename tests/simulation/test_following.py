@@ -83,7 +83,7 @@ def _goals(n, seed):
 def test_tracks_paths_without_disturbance():
     goals = _goals(40, 1)
     paths = PathArrays.dubins(goals, 1.5 * R0)
-    res = follow_paths(paths, SteadyDisturbance(0.0, 0.0).stream(40, 0.05))
+    res = follow_paths(paths, SteadyDisturbance((0.0, 0.0)).stream(40, 0.05))
     assert res.failures == 0
     assert np.max(res.error) / R0 < 0.02
     assert np.mean(res.error) / R0 < 0.005
@@ -121,15 +121,20 @@ def _reference_follow(paths, wind, settings, steps):
     return x, y
 
 
+def _towards(speed, direction):
+    """(rows, 2) (east, north) velocities of `speed` towards `direction` (rad, CCW from +x)."""
+    return np.column_stack([speed * np.cos(direction), speed * np.sin(direction)])
+
+
 def test_fast_kernel_matches_reference_loop():
     goals = _goals(6, 2)
     paths = PathArrays.dubins(goals, np.array([1.0, 1.2, 1.5, 2.0, 2.5, 3.0]) * R0)
-    wind = SteadyDisturbance(8.0, np.linspace(0, 5, 6)).velocity(6)
+    wind = SteadyDisturbance(_towards(8.0, np.linspace(0, 5, 6))).velocity(6)
     settings = FollowerSettings()
     steps = 300
     res = follow_paths(
         paths,
-        SteadyDisturbance(8.0, np.linspace(0, 5, 6)).stream(6, settings.dt),
+        SteadyDisturbance(_towards(8.0, np.linspace(0, 5, 6))).stream(6, settings.dt),
         settings=settings,
         disturbance_bound=8.0,
         record=True,
@@ -156,7 +161,7 @@ def test_time_step_converged():
     for dt in (0.05, 0.0125):
         res = follow_paths(
             PathArrays.dubins(goals, r_plan * R0),
-            SteadyDisturbance(eps * 20.0, dirs).stream(40, dt),
+            SteadyDisturbance(_towards(eps * 20.0, dirs)).stream(40, dt),
             settings=FollowerSettings(dt=dt),
             disturbance_bound=eps * 20.0,
         )
@@ -173,7 +178,7 @@ def test_bad_input():
     with pytest.raises(InvalidParameterError):
         FollowerSettings(dt=0.0)
     with pytest.raises(InvalidParameterError):
-        SteadyDisturbance(-1.0, 0.0)
+        SteadyDisturbance((math.nan, 0.0))
     paths = PathArrays.dubins([[100.0, 0.0, 0.0]], R0)
     with pytest.raises(InvalidParameterError):  # disturbance as fast as the vehicle
-        follow_paths(paths, SteadyDisturbance(20.0, 0.0).stream(1, 0.05), disturbance_bound=20.0)
+        follow_paths(paths, SteadyDisturbance((20.0, 0.0)).stream(1, 0.05), disturbance_bound=20.0)

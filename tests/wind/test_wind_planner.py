@@ -41,7 +41,7 @@ def _virtual_target_time(start, goal, speed, radius, wind, t_hi):
 
 
 def test_issue_example_time_and_endpoint():
-    vehicle = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=0.0)
+    vehicle = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind=(0.3, 0.0))
     sol = plan(Pose(0, 0, 0), Pose(3, 3, math.pi / 2), vehicle).raise_for_status()
     assert sol.cost == pytest.approx(3.75342, abs=5e-6)
     assert sol.word == "LSL" and sol.family == "BSB"
@@ -59,7 +59,7 @@ def test_zero_wind_equals_dubins():
         totals = np.where(np.isnan(table[:, 0]), np.inf, table.sum(axis=1))
         np.testing.assert_allclose(ws.times * 2.0, totals, atol=1e-9)
     goal = Pose(2.0, -3.0, 1.0)
-    w = plan(Pose(1, 1, 0.3), goal, DubinsCarInWind(2.0, 1.5, 0.0, 0.7)).raise_for_status()
+    w = plan(Pose(1, 1, 0.3), goal, DubinsCarInWind(2.0, 1.5, (0.0, 0.0))).raise_for_status()
     d = plan(Pose(1, 1, 0.3), goal, DubinsCar(2.0, 1.5), "time").raise_for_status()
     assert w.cost == pytest.approx(d.cost, abs=1e-9) and w.word == d.word
     a, b = w.path.sample(n=50), d.path.sample(n=50)
@@ -73,9 +73,9 @@ def test_times_equal_independent_virtual_target_solve():
         v, r = rng.uniform(0.5, 3.0), rng.uniform(0.5, 3.0)
         w, wd = rng.uniform(0.0, 0.85) * v, rng.uniform(-math.pi, math.pi)
         start, goal = rng.uniform(-5, 5, 3), rng.uniform(-8, 8, 3)
-        sol = plan(start, goal, DubinsCarInWind(v, r, w, wd)).raise_for_status()
-        assert sol.endpoint_error.position < 1e-6 * r and sol.endpoint_error.heading < 1e-6
         wind = (w * math.cos(wd), w * math.sin(wd))
+        sol = plan(start, goal, DubinsCarInWind(v, r, wind)).raise_for_status()
+        assert sol.endpoint_error.position < 1e-6 * r and sol.endpoint_error.heading < 1e-6
         t_ref = _virtual_target_time(start, goal, v, r, wind, 1.5 * sol.cost + 1.0)
         if t_ref is None:  # L* jumps across vT (an arc wrapping): no continuous crossing
             continue
@@ -85,7 +85,8 @@ def test_times_equal_independent_virtual_target_solve():
 
 
 def test_endpoint_by_integrating_every_candidate():
-    vehicle = DubinsCarInWind(speed=1.3, turn_radius=0.8, wind_speed=0.9, wind_direction=2.0)
+    vehicle = DubinsCarInWind(speed=1.3, turn_radius=0.8,
+                              wind=(0.9 * math.cos(2.0), 0.9 * math.sin(2.0)))
     goal = Pose(-2.0, 1.5, -2.5)
     sol = plan(Pose(0.5, -1.0, 1.0), goal, vehicle).raise_for_status()
     feasible = [c for c in sol.candidates if c.feasible]
@@ -97,7 +98,7 @@ def test_endpoint_by_integrating_every_candidate():
 
 
 def test_eps_plans_with_feasible_radius():
-    vehicle = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=0.0)
+    vehicle = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind=(0.3, 0.0))
     sol = plan(Pose(0, 0, 0), Pose(6, 2, 0), vehicle, disturbance_ratio=0.25).raise_for_status()
     assert sol.extras["radius"] == pytest.approx(1.5625)
     arcs = [s for s in sol.path.segments if isinstance(s, TrochoidArc)]
@@ -134,21 +135,23 @@ def test_segments_transform_and_integrate():
 @pytest.mark.parametrize(
     ("kwargs", "name"),
     [
-        ({"wind_speed": 1.0}, "wind_speed"),
-        ({"wind_speed": -0.1}, "wind_speed"),
-        ({"wind_direction": math.nan}, "wind_direction"),
+        ({"wind": (1.0, 0.0)}, "wind"),
+        ({"wind": (0.0, -1.0)}, "wind"),
+        ({"wind": (math.nan, 0.0)}, "wind east"),
+        ({"wind": (0.1, math.inf)}, "wind north"),
+        ({"wind": 0.3}, "wind"),
         ({"speed": 0.0}, "speed"),
     ],
 )
 def test_bad_vehicle(kwargs, name):
-    args = {"speed": 1.0, "turn_radius": 1.0, "wind_speed": 0.3, "wind_direction": 0.0} | kwargs
+    args = {"speed": 1.0, "turn_radius": 1.0, "wind": (0.3, 0.0)} | kwargs
     with pytest.raises(InvalidParameterError) as err:
         DubinsCarInWind(**args)
     assert err.value.name == name
 
 
 def test_bad_planning_input():
-    vehicle = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.8, wind_direction=0.0)
+    vehicle = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind=(0.8, 0.0))
     with pytest.raises(InvalidParameterError, match="wind"):
         plan(Pose(0, 0, 0), Pose(3, 3, 0), vehicle, disturbance_ratio=0.25)  # w + delta_max >= v
     with pytest.raises(InvalidParameterError, match="eps"):
@@ -159,24 +162,25 @@ def test_bad_planning_input():
 
 def test_cli_json_and_errors(capsys, cli_error, tmp_path):
     args = ["plan", "wind", "--goal", "3", "3", "90", "--speed", "1", "--radius", "1"]
-    assert main([*args, "--wind", "0.3", "0", "--json"]) == 0
+    assert main([*args, "--wind", "0.3", "270", "--json"]) == 0  # from the west: towards +x
     data = json.loads(capsys.readouterr().out)
     assert data["cost"] == pytest.approx(3.75342, abs=5e-6)
     assert data["objective"] == "time" and data["word"] == "LSL"
     assert data["endpoint_error"]["max"] < 1e-6
     for bad in (
-        ["--wind", "1.0", "0"],
-        ["--wind", "0.8", "0", "--eps", "0.25"],
+        ["--wind", "1.0", "270"],
+        ["--wind", "0.8", "270", "--eps", "0.25"],
         ["--wind", "0.3", "nan"],
-        ["--wind", "0.3", "0", "--eps", "1"],
+        ["--wind", "0.3", "270", "--eps", "1"],
     ):
         cli_error(*args, *bad)
-    assert main([*args, "--wind", "0.3", "45", "--plot", str(tmp_path / "w.png")]) == 0
+    assert main([*args, "--wind", "0.3", "225", "--plot", str(tmp_path / "w.png")]) == 0
     assert (tmp_path / "w.png").stat().st_size > 0
 
 
 def test_goal_at_start_takes_no_time():
-    vehicle = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=0.2)
+    vehicle = DubinsCarInWind(speed=1.0, turn_radius=1.0,
+                              wind=(0.3 * math.cos(0.2), 0.3 * math.sin(0.2)))
     sol = plan(Pose(1, 2, 0.5), Pose(1, 2, 0.5), vehicle).raise_for_status()
     assert sol.cost == 0.0
 
@@ -191,7 +195,7 @@ def test_far_upwind_goal_is_solved_in_bounded_memory(distance):
     only such a window (peak memory measured with tracemalloc)."""
     import tracemalloc
 
-    car = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.99, wind_direction=0.0)
+    car = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind=(0.99, 0.0))
     tracemalloc.start()
     sol = plan(Pose(), Pose(-distance, 0.0, math.pi), car)
     peak = tracemalloc.get_traced_memory()[1]
@@ -205,9 +209,9 @@ def test_far_upwind_goal_is_solved_in_bounded_memory(distance):
 def test_goals_beyond_the_verifiable_range_are_refused():
     """Arrival times beyond 1e9 R / v are refused up front, naming the goal and the rule; so
     is a wind so close to the airspeed that the bracketing scan would exceed its limit."""
-    car = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.99, wind_direction=0.0)
+    car = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind=(0.99, 0.0))
     with pytest.raises(InvalidParameterError, match=r"goal.*too far"):
         plan(Pose(), Pose(-1e7, 0.0, math.pi), car)
-    gale = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.999999, wind_direction=0.0)
+    gale = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind=(0.999999, 0.0))
     with pytest.raises(InvalidParameterError, match=r"wind.*too close to 1"):
         plan(Pose(), Pose(-10.0, 3.0, math.pi), gale)

@@ -291,8 +291,8 @@ def glide_final(
         flag_names,
     )
     from glideplan.cli.emit import emit
-    from glideplan.geodesy import wind_from_to_vector
     from glideplan.sailplane.request import final_glide
+    from glideplan.units import wind_from_compass
 
     plot = check_figure_file(plot)
     check_output_file(cup, "--cup")
@@ -319,7 +319,7 @@ def glide_final(
             start,
             goal,
             mc=mc,
-            wind=None if wind is None else wind_from_to_vector(*wind),
+            wind=None if wind is None else wind_from_compass(*wind),
             safety_height=safety_height,
             arrival_heading=arrival_heading,
             start_heading=start_heading,

@@ -165,8 +165,8 @@ def mission_plan(
     from glideplan.cli.route import check_depth_range, parse_depart
     from glideplan.formats import ExportOptions, export_mission, parse_formats, read_route
     from glideplan.formats.export import skipped_formats, skipped_warning
-    from glideplan.geodesy import wind_from_to_vector
     from glideplan.missions import plan_mission, straight_leg_list
+    from glideplan.units import wind_from_compass
 
     plot = check_figure_file(plot)
     if plot is not None:
@@ -212,10 +212,10 @@ def mission_plan(
             mission = _plan_in_field(r, field, speed, radius, when, depth_range)
         else:
             # the compass --wind (speed, FROM deg) becomes the library's (east, north) vector
-            vector = None if wind is None else wind_from_to_vector(wind[0], wind[1])
+            vector = None if wind is None else wind_from_compass(wind[0], wind[1], param="--wind")
             with phase_progress(PHASES) as progress:
                 mission = plan_mission(r, speed=speed, radius=radius, objective=obj,
-                                       wind_vector=vector, headings=headings,
+                                       wind=vector, headings=headings,
                                        progress=progress)
     if when is not None and field is None:  # the ETAs as UTC times
         mission = replace(mission, depart=when)

@@ -26,8 +26,9 @@ def plan_wind_command(
         tuple[float, float],
         typer.Option(
             "--wind",
-            metavar="SPEED DIRECTION_DEG",
-            help="Wind SPEED (m/s) and DIRECTION_DEG it blows towards (counter-clockwise from +x).",
+            metavar="SPEED FROM_DEG",
+            help="Wind SPEED (m/s) and the compass direction FROM_DEG it blows FROM (degrees "
+            "clockwise from +y, north), as every --wind; e.g. 0.3 270 blows towards +x.",
             show_default=False,
         ),
     ],
@@ -53,13 +54,15 @@ def plan_wind_command(
     """
     from glideplan.errors import InvalidParameterError
     from glideplan.planning import plan
-    from glideplan.validation import check_finite, check_in_range, check_nonnegative, check_positive
+    from glideplan.units import wind_from_compass
+    from glideplan.validation import check_in_range, check_physical
     from glideplan.vehicles import DubinsCarInWind
 
     plot = common.check_figure_file(plot)
-    speed = check_positive("--speed", speed)
-    w = check_nonnegative("--wind SPEED", wind[0])
-    direction = math.radians(check_finite("--wind DIRECTION_DEG", wind[1]))
+    speed = check_physical("--speed", speed, "speed")
+    check_physical("--radius", radius, "turn_radius")
+    vector = wind_from_compass(wind[0], wind[1], param="--wind")  # the compass edge
+    w = math.hypot(*vector)
     eps = check_in_range("--eps", eps, 0.0, 1.0, high_open=True)
     if w + eps * speed >= speed:
         raise InvalidParameterError(
@@ -67,8 +70,8 @@ def plan_wind_command(
         )
     start_pose, goal_pose = common.parse_start_goal(start, goal)
     names = {"turn_radius": "--radius", "speed": "--speed", "speed/turn_radius": "--speed/--radius"}
-    with common.flag_names(**names, wind_speed="--wind", start="--start", goal="--goal"):
-        vehicle = DubinsCarInWind(speed, radius, w, direction)
+    with common.flag_names(**names, wind="--wind", start="--start", goal="--goal"):
+        vehicle = DubinsCarInWind(speed, radius, wind=vector)
         solution = common.solving(
             "planning (wind)",
             lambda: plan(start_pose, goal_pose, vehicle, disturbance_ratio=eps),

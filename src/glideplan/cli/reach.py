@@ -87,7 +87,7 @@ PlotOpt = Annotated[pathlib.Path | None, typer.Option(
     "--plot", metavar="FILE", help="Draw the figure to FILE (.png, .pdf, .svg).")]
 
 _FLAGS = {
-    "start": "--from", "start altitude": "--from ALT_M", "mc": "--mc",
+    "start": "--from", "start altitude": "--from altitude", "mc": "--mc",
     "safety_height": "--safety-height", "terrain_clearance": "--terrain-clearance",
     "arrival_height": "--arrival-height", "safety_glide_ratio": "--safety-glide-ratio",
     "resolution": "--resolution", "wind": "--wind", "wind east": "--wind",
@@ -101,12 +101,12 @@ DEFAULT_SAFETY_M = 300.0
 
 def _wind(wind: tuple[float, float] | None) -> tuple[float, float]:
     from glideplan.cli.common import flag_names
-    from glideplan.geodesy import wind_from_to_vector
+    from glideplan.units import wind_from_compass
 
     if wind is None:
         return (0.0, 0.0)
     with flag_names(**_FLAGS):
-        return wind_from_to_vector(float(wind[0]), float(wind[1]))
+        return wind_from_compass(float(wind[0]), float(wind[1]))
 
 
 def _terrain(files: list[pathlib.Path] | None, voids: str | None, required: bool) -> Any:
@@ -240,14 +240,25 @@ def _example_files(ex: Any, directory: pathlib.Path) -> tuple[pathlib.Path, ...]
 def _shared(ex: Any, start: Any, wind: Any, mc: float | None, safety_height: float | None,
             resolution: float | None) -> tuple[float, float, float | None, Any, Any]:
     """The options both commands take, the example's values where not given: MC (m/s),
-    safety height (m), resolution (m), start (lat, lon, alt) and wind (speed, FROM deg)."""
-    return (
-        float(_or(mc, ex, "mc", DEFAULT_MC)),
-        float(_or(safety_height, ex, "safety_height", DEFAULT_SAFETY_M)),
+    safety height (m), resolution (m), start (lat, lon, alt) and wind (speed, FROM deg),
+    checked against `validation.PHYSICAL_RANGES` before any work (the rows `glide_reach`,
+    `turnback` and `glide final` check)."""
+    from glideplan.units import wind_from_compass
+    from glideplan.validation import check_physical
+
+    out = (
+        check_physical("--mc", float(_or(mc, ex, "mc", DEFAULT_MC)), "mc"),
+        check_physical("--safety-height",
+                       float(_or(safety_height, ex, "safety_height", DEFAULT_SAFETY_M)), "height"),
         _or(resolution, ex, "resolution_m", None),
         _or(start, ex, "start", None),
         wind if wind is not None or ex is None else (ex.wind_speed_ms, ex.wind_from_deg),
     )
+    if out[3] is not None:
+        check_physical("--from altitude", out[3][2], "altitude")
+    if out[4] is not None:
+        wind_from_compass(out[4][0], out[4][1], param="--wind")
+    return out
 
 
 @glide_app.command("reach")

@@ -17,24 +17,37 @@ _RUN_ARGS = ("from_", "to", "speed", "field", "example", "depart", "depth_range"
 
 
 def parse_depart(text: str | None) -> Any:
-    """ISO 8601 (UTC if no offset; 'Z' accepted) -> numpy.datetime64[ms] in UTC, or None."""
-    if text is None:
-        return None
-    import datetime as dt
+    """`--depart`: ISO 8601 (UTC if no offset; 'Z' accepted) -> numpy.datetime64[ms] in UTC,
+    or None (`glideplan.fields.parse_utc`, which the explorer calls too)."""
+    from glideplan.fields.field import parse_utc
 
-    import numpy as np
+    return parse_utc(text, "--depart")
 
+
+def check_route_inputs(*, speed: float, from_: tuple[float, float], to: tuple[float, float],
+                       resolution: float | None, radius: float | None,
+                       land_clearance: float | None, max_duration: float | None) -> None:
+    """Every number of `route` against `validation.PHYSICAL_RANGES` (the rows the library's
+    `route()`, `RouteSettings` and `follow_route` check), before any file is read."""
     from glideplan.errors import InvalidParameterError
+    from glideplan.geodesy import check_latlon
+    from glideplan.validation import check_finite, check_physical
 
-    try:
-        when = dt.datetime.fromisoformat(text.strip())
-    except ValueError:
-        raise InvalidParameterError(
-            "--depart", text, "must be ISO 8601 (2026-01-01T06:00Z)"
-        ) from None
-    if when.tzinfo is not None:
-        when = when.astimezone(dt.UTC).replace(tzinfo=None)
-    return np.datetime64(when, "ms")
+    check_physical("--speed", speed, "speed")
+    for name, val in (("--from", from_), ("--to", to)):
+        check_latlon(val[0], val[1], name)
+    for flag, value, kind in (("--resolution", resolution, "distance"),
+                              ("--radius", radius, "turn_radius"),
+                              ("--land-clearance", land_clearance, "clearance")):
+        if value is not None:
+            check_physical(flag, value, kind)
+    if max_duration is not None:  # hours at this edge, seconds in the table
+        hours = check_finite("--max-duration", max_duration)
+        try:
+            check_physical("--max-duration", hours * 3600.0, "duration")
+        except InvalidParameterError as exc:
+            raise InvalidParameterError("--max-duration", max_duration,
+                                        f"as {exc.value:.6g} s: {exc.rule}") from None
 
 
 def check_depth_range(depth_range: tuple[float, float] | None) -> tuple[float, float] | None:
@@ -200,29 +213,8 @@ def route_command(
     )
     from glideplan.errors import InvalidParameterError
 
-    if not (math.isfinite(speed) and speed > 0):
-        raise InvalidParameterError("--speed", speed, "must be finite and > 0 (m/s)")
-    for name, val in (("--from", from_), ("--to", to)):
-        if not all(math.isfinite(v) for v in val):
-            raise InvalidParameterError(name, val, "latitude/longitude must be finite")
-        if abs(val[0]) > 90 or not -180 <= val[1] <= 360:
-            raise InvalidParameterError(
-                name, val, "latitude in [-90, 90], longitude in [-180, 360]"
-            )
-    if resolution is not None and not (math.isfinite(resolution) and resolution > 0):
-        raise InvalidParameterError("--resolution", resolution, "must be finite and > 0 (m)")
-    if radius is not None and not (math.isfinite(radius) and radius > 0):
-        raise InvalidParameterError("--radius", radius, "must be finite and > 0 (m)")
-    if land_clearance is not None and not (math.isfinite(land_clearance)
-                                           and 0 <= land_clearance <= 100_000.0):
-        raise InvalidParameterError("--land-clearance", land_clearance,
-                                    "must be finite and in [0, 100000] m (a clearance wider "
-                                    "than 100 km leaves no coastal water to route through)")
-    if max_duration is not None and not (math.isfinite(max_duration) and max_duration > 0):
-        raise InvalidParameterError("--max-duration", max_duration, "must be finite and > 0 (h)")
-    from glideplan.validation import check_physical
-
-    check_physical("--speed", speed, "speed")
+    check_route_inputs(speed=speed, from_=from_, to=to, resolution=resolution, radius=radius,
+                       land_clearance=land_clearance, max_duration=max_duration)
     check_depth_range(depth_range)
     plot = check_figure_file(plot)
     exports = {fmt: p for fmt, p in (("geojson", geojson), ("kml", kml), ("gpx", gpx),

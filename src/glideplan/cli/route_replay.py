@@ -16,12 +16,11 @@ from glideplan.cli.app import app
 
 
 def check_latlon(name: str, val: tuple[float, float]) -> None:
-    """--from/--to: finite, latitude in [-90, 90], longitude in [-180, 360]."""
-    from glideplan.errors import InvalidParameterError
+    """--from/--to: finite, latitude in [-90, 90], longitude in [-180, 360] (as `route`:
+    `geodesy.check_latlon`)."""
+    from glideplan.geodesy import check_latlon as check
 
-    if not all(math.isfinite(v) for v in val) or abs(val[0]) > 90 or not -180 <= val[1] <= 360:
-        raise InvalidParameterError(name, val, "latitude in [-90, 90], longitude in "
-                                    "[-180, 360], finite")
+    check(val[0], val[1], name)
 
 
 def positive(name: str, val: float | None, unit: str) -> None:
@@ -88,14 +87,14 @@ def route_replay_command(
     from glideplan.routing.replay import Mission, ReplaySettings, replay
     from glideplan.validation import check_physical
 
-    positive("--speed", speed, "m/s")
-    check_physical("--speed", speed, "speed")
+    check_physical("--speed", speed, "speed")  # the rows `route` checks
     check_latlon("--from", from_)
     check_latlon("--to", to)
-    positive("--goal-radius", goal_radius, "m")
+    for flag, value in (("--goal-radius", goal_radius), ("--resolution", resolution)):
+        if value is not None:
+            check_physical(flag, value, "distance")
     positive("--max-duration", max_duration, "h")
     positive("--replan-every", replan_every, "h")
-    positive("--resolution", resolution, "m")
     plot = check_figure_file(plot)
     if geojson is not None and not geojson.parent.is_dir():
         raise InvalidParameterError("--geojson", str(geojson), "its folder does not exist")

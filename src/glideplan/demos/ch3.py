@@ -29,7 +29,8 @@ for name, source, goal, wind_direction, cost, word in (
     ("Wind: straight upwind", "section 3.2, hand derivation 10 / (v - w)",
      Pose(10.0, 0.0, 0.0), math.pi, 10.0 / 0.7, "S"),
 ):  # fmt: skip
-    car = DubinsCarInWind(speed=1.0, turn_radius=1.0, wind_speed=0.3, wind_direction=wind_direction)
+    car = DubinsCarInWind(speed=1.0, turn_radius=1.0,
+                          wind=(0.3 * math.cos(wind_direction), 0.3 * math.sin(wind_direction)))
     register_demo_case(
         DemoCase(name, source, Pose(), goal, car, reference_cost=cost, reference_word=word)
     )
@@ -40,8 +41,8 @@ register_demo_case(
         start=Pose(),
         goal=Pose(300.0, 200.0, math.pi),
         vehicle=DubinsCarInWind(
-            speed=20.0, turn_radius=20.0 / 0.3, wind_speed=5.0, wind_direction=math.pi / 4
-        ),
+            speed=20.0, turn_radius=20.0 / 0.3,
+            wind=(5.0 * math.cos(math.pi / 4), 5.0 * math.sin(math.pi / 4))),
         options={"disturbance_ratio": 0.25},
     )
 )

@@ -211,10 +211,10 @@ def _polar() -> Any:
 
 def _final(out: pathlib.Path) -> Any:
     from glideplan import final_glide
-    from glideplan.geodesy import wind_from_to_vector
+    from glideplan.units import wind_from_compass
 
     return final_glide(
-        _polar(), GLIDE_FROM, GLIDE_TO, wind=wind_from_to_vector(*GLIDE_WIND),
+        _polar(), GLIDE_FROM, GLIDE_TO, wind=wind_from_compass(*GLIDE_WIND),
         arrival_heading=GLIDE_ARRIVAL_HEADING,
     )  # fmt: skip
 

@@ -41,6 +41,18 @@ from glideplan.explore.figures import (
     empty_points,
 )
 from glideplan.explore.inputs import InputControl, build_input
+from glideplan.explore.layout import (  # the page's styles and shared pieces, one place
+    BODY_CSS,
+    LAYOUT_CSS,
+    MAIN_CSS,
+    MAP_MODES,
+    PLOT_CSS,
+    RIGHT_CSS,
+    ROOT_CSS,
+    SIDEBAR_CSS,
+    _parse_view,
+    _TextInput,
+)
 from glideplan.explore.solve import View, partition_image, solve_view, with_candidates
 from glideplan.explore.state import (
     ExploreState,
@@ -64,39 +76,10 @@ VIEWPORT_TEMPLATE = """{% extends base %}
 {% block preamble %}{{ super() }}
 <meta name="viewport" content="width=device-width, initial-scale=1">
 {% endblock %}"""
-SIDE_WIDTH = 320
 # The candidates' lines and table follow an answer after this pause (ms) unless a newer
 # change came meanwhile: 30 ms let a change typed or dragged 40-60 ms after the last wait
 # for the last one's candidates (server 5 ms, browser lines and table), p90 +40-100 ms.
 CANDIDATES_DELAY_MS = 120
-LAYOUT_CSS = """
-:host { width: 100%; max-width: 100vw; }
-"""
-SIDEBAR_CSS = f"""
-:host {{ flex: 0 0 {SIDE_WIDTH}px; width: {SIDE_WIDTH}px; }}
-@media (max-width: 760px) {{ :host {{ flex: 1 1 100%; width: calc(100vw - 16px) !important; }} }}
-"""
-MAIN_CSS = """
-:host { flex: 1 1 600px; min-width: 0; }
-@media (max-width: 760px) { :host { width: calc(100vw - 16px) !important; flex: 1 1 100%;
-  order: -1; } }
-"""
-BODY_CSS = """
-:host { width: 100%; }
-"""
-PLOT_CSS = """
-:host { flex: 1 1 420px; min-width: 260px; height: max(300px, calc(100vh - 160px)) !important; }
-@media (max-width: 760px) { :host { flex: 0 0 auto; width: calc(100vw - 24px) !important;
-  height: min(calc(100vw - 24px), 80vh) !important; } }
-"""
-RIGHT_CSS = """
-:host { flex: 0 1 420px; min-width: 280px; }
-@media (max-width: 760px) { :host { width: calc(100vw - 24px) !important; min-width: 0;
-  flex: 0 0 auto; } }
-"""
-ROOT_CSS = """
-:host { overflow-x: hidden; max-width: 100vw; }
-"""
 
 
 def _download_button(callback: Callable[[], Any], filename: str, label: str) -> Any:
@@ -104,25 +87,6 @@ def _download_button(callback: Callable[[], Any], filename: str, label: str) -> 
     return pn.widgets.FileDownload(
         callback=callback, filename=filename, label=label, color="primary", width=92, embed=False
     )
-
-
-class _TextInput(pn.widgets.TextInput):
-    """A text box whose entered value reaches the server at once (Panel waits 50 ms)."""
-
-    _debounce = 0
-
-
-def _parse_view(text: str | None) -> tuple[float, float, float, float] | None:
-    """`view=x0,y0,x1,y1` of a link (the zoom), or None when absent or not four finite
-    numbers with x0 < x1 and y0 < y1."""
-    if not text:
-        return None
-    try:
-        x0, y0, x1, y1 = (float(v) for v in text.split(","))
-    except ValueError:
-        return None
-    ok = all(math.isfinite(v) for v in (x0, y0, x1, y1)) and x0 < x1 and y0 < y1
-    return (x0, y0, x1, y1) if ok else None
 
 
 class Explorer(SessionWorker):
@@ -710,14 +674,6 @@ class Explorer(SessionWorker):
 
 def _with_pose(state: ExploreState, name: str, text: str) -> ExploreState:
     return replace(state, start=text) if name == "start" else replace(state, goal=text)
-
-
-# The map modes offered beside the planners (label -> key); `create_page` switches to them.
-MAP_MODES: dict[str, str] = {
-    "Route through currents or winds (lat/lon map)": "route",
-    "Mission: waypoints of a route file (lat/lon map)": "mission",
-    "Glide reach over terrain in wind (lat/lon map)": "reach",
-}
 
 
 _HISTORY_JS = """

@@ -3,9 +3,9 @@
 Every registered planner becomes an entry; its inputs are the vehicle's dataclass fields and the
 planner's keyword options, named like the `glideplan plan PLANNER` command-line options (the
 field `turn_radius` is `--radius`, the three polar coefficients are `--polar A B C`, the wind
-is `--wind SPEED DIRECTION_DEG`). Nothing here knows a planner by name except the readable
-labels, which fall back to the registry's description; a planner registered later appears
-with its fields as inputs.
+is `--wind SPEED FROM_DEG`, compass, converted by `glideplan.units.wind_from_compass`).
+Nothing here knows a planner by name except the readable labels, which fall back to the
+registry's description; a planner registered later appears with its fields as inputs.
 """
 
 from __future__ import annotations
@@ -39,10 +39,7 @@ CLI_NAMES: Mapping[str, str] = {
 }
 # Groups of fields entered as one comma-separated option, with per-item converters to SI.
 _GROUPS: tuple[tuple[str, tuple[str, ...], tuple[str, ...]], ...] = (
-    # (option, fields, units of the entered items: "" as is, "deg" converted to radians,
-    # "from": the compass direction a wind blows FROM (deg), as every `--wind` of the CLI,
-    # to the vehicle's direction it blows towards (rad, counter-clockwise from +x))
-    ("wind", ("wind_speed", "wind_direction"), ("", "from")),
+    # (option, fields, units of the entered items: "" as is, "deg" converted to radians)
     ("polar", ("a", "b", "c"), ("", "", "")),
 )
 # Readable labels for the built-in planners (key -> label); others use their description.
@@ -116,7 +113,8 @@ class Parameter:
     """One input of the page: its option name, the fields it sets, its default text and kind.
 
     `kind` is "float", "int", "str" or "bool" for one field, "group" for a comma-separated
-    group; `target` is "vehicle" or "option" (a keyword option of the planner function).
+    group, "wind" for a vehicle's (east, north) wind entered as "speed, compass FROM deg";
+    `target` is "vehicle" or "option" (a keyword option of the planner function).
     """
 
     name: str
@@ -137,6 +135,8 @@ class Parameter:
         Speeds and lengths of a nondimensional vehicle read '(nondim.)'; pure numbers
         (counts, names, switches) have no unit.
         """
+        if self.kind == "wind":
+            return "wind: speed (m/s), from (deg compass)"
         if self.kind == "group":
             return _group_caption(self, nondimensional)
         words = _CAPTION_NAMES.get(self.name, self.name.replace("_", " "))
@@ -160,6 +160,14 @@ class Parameter:
         raw = str(text).strip()
         if self.optional and raw.lower() in ("", "none"):
             return dict.fromkeys(self.fields)
+        if self.kind == "wind":  # the compass edge: speed, FROM deg -> (east, north) m/s
+            from glideplan.units import wind_from_compass
+
+            parts = raw.replace(",", " ").split()
+            if len(parts) != 2:
+                raise InvalidParameterError(self.flag, text, "needs 2 numbers: speed, from")
+            speed, frm = (parse_number(self.flag, t) for t in parts)
+            return {self.fields[0]: wind_from_compass(speed, frm, param=self.flag)}
         if self.kind == "group":
             items = [p for p in raw.replace(",", " ").split()]
             if len(items) != len(self.fields):
@@ -274,10 +282,8 @@ class Catalog:
 
 
 def _group_caption(p: Parameter, nondimensional: bool) -> str:
-    """'wind (m/s, towards deg)' and 'polar a, b, c of w = a v² + b v + c (SI)'."""
+    """'polar a, b, c of w = a v² + b v + c (SI)'."""
     last = tuple(f.rpartition(".")[2] for f in p.fields)
-    if last == ("wind_speed", "wind_direction"):
-        return "wind: speed (m/s), from (deg compass)"
     if last == ("a", "b", "c"):
         return "polar: sink w = a v² + b v + c; a (s/m), b, c (m/s)"
     items = [n + (" (deg)" if u == "deg" else "") for n, u in zip(last, p.units, strict=True)]
@@ -392,6 +398,15 @@ def _vehicle_parameters(cls: type, obj: Any, prefix: str = "") -> list[Parameter
                 )
             )
             grouped.update(members)
+    if "wind" in names:  # the library's (east, north) wind, entered as compass at this edge
+        from glideplan.units import wind_to_compass
+
+        w = getattr(obj, "wind", None) if obj is not None else None
+        default = "" if w is None else ",".join(_fmt(v) for v in wind_to_compass(*w))
+        path = f"{dotted}.wind" if dotted else "wind"
+        out.append((order["wind"], Parameter(opt_name("wind"), (path,), default, "wind",
+                                             "vehicle", ("m/s", "deg"))))
+        grouped.add("wind")
     for f in fields:
         if f.name in grouped:
             continue

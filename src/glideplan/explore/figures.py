@@ -15,6 +15,7 @@ from bokeh.models.widgets import Div
 from bokeh.plotting import figure
 
 from glideplan.explore.solve import View
+from glideplan.plotting import wind_label
 
 __all__ = ["ASPECT_JS", "PlanFigures", "columns", "equal_scales", "follow_url"]
 
@@ -410,7 +411,6 @@ class PlanFigures:
             x1, y1 = x0 + length * wx / w, y0 + length * wy / w
         else:
             x1, y1 = x0, y0
-        direction = math.degrees(math.atan2(wy, wx)) if w > 0 else 0.0
         arrow = {"x_start": [x0], "y_start": [y0], "x_end": [x1], "y_end": [y1]}
         if dict(self.wind_src.data) == arrow:
             return  # the same wind in the same view
@@ -418,6 +418,5 @@ class PlanFigures:
         self.wind_label.data = {
             "x": [x0],
             "y": [y0 + 0.03 * span],
-            # compass FROM, as the input and every --wind (the arrow points where it blows)
-            "text": [f"wind {w:.3g} m/s from {(270.0 - direction) % 360.0:.0f} deg"],
+            "text": [wind_label((wx, wy))],  # compass FROM: the page's edge
         }

@@ -181,7 +181,7 @@ def build_input(
     """The widgets of parameter `p` showing the URL text `text`; a user's change calls
     `on_text(new text)` (the unit dropdown of the wind calls `on_unit(unit)`)."""
     last = tuple(f.rpartition(".")[2] for f in p.fields)
-    if p.kind == "group" and last == ("wind_speed", "wind_direction"):
+    if p.kind == "wind":  # the (east, north) wind entered as speed, compass FROM
         return _wind_input(p.name, text, on_text, wind_unit, on_unit)
     if p.kind == "group":
         return _group_input(p, text, on_text)

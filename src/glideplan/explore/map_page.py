@@ -62,7 +62,7 @@ class MapPage(SessionWorker):
 
     def _finish_session(self, query: Mapping[str, str]) -> None:
         """A link's zoom (the browser grows a side to equal scales), then the first answer."""
-        from glideplan.explore.app import _parse_view
+        from glideplan.explore.layout import _parse_view
 
         linked = _parse_view(query.get("view"))
         if linked is not None:
@@ -77,8 +77,8 @@ class MapPage(SessionWorker):
 
     def _mode_select(self) -> Any:
         """The planner select (the catalog's planners and the map modes), this page chosen."""
-        from glideplan.explore.app import MAP_MODES
         from glideplan.explore.catalog import build_catalog
+        from glideplan.explore.layout import MAP_MODES
 
         options = {e.label: e.key for e in build_catalog().entries}
         options.update(MAP_MODES)
@@ -169,8 +169,8 @@ def text_inputs(
     the wind's speed with its unit and compass FROM, text `SPEED_MS,FROM_DEG`)."""
     from types import SimpleNamespace
 
-    from glideplan.explore.app import _TextInput
     from glideplan.explore.inputs import number_input, wind_input
+    from glideplan.explore.layout import _TextInput
 
     inputs: dict[str, Any] = {}
     panes: dict[str, Any] = {}
@@ -279,7 +279,7 @@ def page_layout(
 ) -> Any:
     """The page: header (title, subtitle html), the sidebar, the strip above the figure and
     what stands right of it."""
-    from glideplan.explore.app import (
+    from glideplan.explore.layout import (
         BODY_CSS,
         LAYOUT_CSS,
         MAIN_CSS,

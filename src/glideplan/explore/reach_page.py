@@ -82,8 +82,8 @@ def _numbers(text: str, n: int, flag: str, what: str) -> list[float]:
 def reach_view(example: Any, polar: Any, state: ReachState) -> ReachView:
     """`glide_reach` of the example's terrain and landables for the state (the call of
     `glideplan glide reach --example ridge` with the same values)."""
-    from glideplan.geodesy import wind_from_to_vector
     from glideplan.reach import glide_reach
+    from glideplan.units import wind_from_compass
 
     errors: dict[str, str] = {}
     values: dict[str, list[float]] = {}
@@ -100,7 +100,7 @@ def reach_view(example: Any, polar: Any, state: ReachState) -> ReachView:
     if errors:
         return ReachView(state, None, errors)
     try:
-        wind = wind_from_to_vector(*values["wind"])
+        wind = wind_from_compass(*values["wind"])
         la, lo, alt = values["from"]
         result = glide_reach(
             example.terrain,
@@ -137,14 +137,14 @@ class ReachPage(MapPage):
     MODE = "reach"
 
     def __init__(self, query: Mapping[str, str] | None = None) -> None:
-        from glideplan.cli.glide import _polar
         from glideplan.reach.examples import example
+        from glideplan.sailplane import load_polar
 
         query = dict(query or {})
         self._start_session()
         self.view: ReachView | None = None
         self.example = example("ridge")
-        self.polar = _polar(self.example.polar_file, None, 0.0, 0.0, "--polar")
+        self.polar = load_polar(self.example.polar_file)
         ex = self.example
         self.state = ReachState(
             start=query.get("from", ",".join(f"{v:g}" for v in ex.start)),

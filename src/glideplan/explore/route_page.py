@@ -121,7 +121,7 @@ class RouteView:
 def route_view(flow: Any, state: RouteState) -> RouteView:
     """`glideplan.routing.route` for the state's points, speed and departure (the call of
     `glideplan route`), or the one-line message of each bad input."""
-    from glideplan.cli.route import parse_depart
+    from glideplan.fields import parse_utc
     from glideplan.routing import route
 
     errors: dict[str, str] = {}
@@ -131,31 +131,25 @@ def route_view(flow: Any, state: RouteState) -> RouteView:
             pts[name] = _latlon(text, f"--{name}")
         except InvalidParameterError as err:
             errors[name] = one_line(err)
-    try:
-        speed = float(state.speed)
-        if not (math.isfinite(speed) and speed > 0):
-            raise ValueError
-    except ValueError:
-        errors["speed"] = one_line(
-            InvalidParameterError("--speed", state.speed, "must be finite and > 0 (m/s)")
-        )
+    from glideplan.explore.catalog import parse_number
+    from glideplan.validation import check_physical
+
+    try:  # the rows of validation.PHYSICAL_RANGES that `glideplan route` checks
+        speed = check_physical("--speed", parse_number("--speed", state.speed), "speed")
+    except InvalidParameterError as err:
+        errors["speed"] = one_line(err)
     when = None
     try:
-        when = parse_depart(state.depart or None)
+        when = parse_utc(state.depart or None, "--depart")
     except InvalidParameterError as err:
         errors["depart"] = one_line(err)
     resolution = None
     if state.resolution.strip():
         try:
-            resolution = float(state.resolution)
-            if not (math.isfinite(resolution) and resolution > 0):
-                raise ValueError
-        except ValueError:
-            errors["resolution"] = one_line(
-                InvalidParameterError(
-                    "--resolution", state.resolution, "must be finite and > 0 (m)"
-                )
-            )
+            resolution = check_physical(
+                "--resolution", parse_number("--resolution", state.resolution), "distance")
+        except InvalidParameterError as err:
+            errors["resolution"] = one_line(err)
     if errors:
         return RouteView(state, None, errors)
     try:
@@ -415,11 +409,10 @@ class RoutePage(MapPage):
     # ----- drawing ----------------------------------------------------------------------------
     def _t0(self) -> float:
         """The departure (s since the field's epoch), as `route` takes it."""
-        from glideplan.cli.route import parse_depart
-        from glideplan.fields import to_seconds
+        from glideplan.fields import parse_utc, to_seconds
 
         try:
-            when = parse_depart(self.state.depart or None)
+            when = parse_utc(self.state.depart or None, "--depart")
         except InvalidParameterError:
             when = None
         if when is None:

@@ -22,6 +22,7 @@ from glideplan.fields.field import (  # noqa: E402
     FlowField,
     GriddedField,
     UniformField,
+    parse_utc,
     to_seconds,
 )
 from glideplan.fields.io import depth_average, from_xarray, open_field  # noqa: E402
@@ -36,5 +37,6 @@ __all__ = [
     "double_gyre",
     "from_xarray",
     "open_field",
+    "parse_utc",
     "to_seconds",
 ]

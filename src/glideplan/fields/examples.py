@@ -6,7 +6,8 @@ Double gyre (Shadden, Lekien & Marsden 2005), on x in [0, 2L], y in [0, L]:
 in nondimensional units (A = 0.1, eps = 0.25, w = 2 pi / 10). Dimensional: x = X / L,
 t = T / Ts with Ts = pi A L / U0 so the largest speed is U0 (m/s). The box is placed with
 its south-west corner at (lat0, lon0), x east and y north, metres mapped to degrees by a
-local equirectangular scale (R = 6371 km) — the field is defined on that lat/lon box.
+local equirectangular scale (R = `geodesy.EARTH_RADIUS_M`) — the field is defined on that
+lat/lon box.
 """
 
 from __future__ import annotations
@@ -16,10 +17,10 @@ import math
 import numpy as np
 
 from glideplan.fields.field import AnalyticField, Extent
+from glideplan.geodesy import EARTH_RADIUS_M  # the one Earth radius
 
 __all__ = ["EARTH_RADIUS_M", "double_gyre"]
 
-EARTH_RADIUS_M = 6_371_000.0
 EXAMPLE_EPOCH = np.datetime64("2026-01-01T00:00:00", "ns")
 
 

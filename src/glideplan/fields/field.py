@@ -79,6 +79,22 @@ class Extent:
         }
 
 
+def parse_utc(text: str | None, name: str = "depart") -> np.datetime64 | None:
+    """An ISO 8601 time (UTC when it has no offset; 'Z' accepted) as numpy.datetime64[ms] in
+    UTC, or None for None; a bad text (also "") is refused naming `name`."""
+    if text is None:
+        return None
+    import datetime as dt
+
+    try:
+        when = dt.datetime.fromisoformat(text.strip())
+    except ValueError:
+        raise InvalidParameterError(name, text, "must be ISO 8601 (2026-01-01T06:00Z)") from None
+    if when.tzinfo is not None:
+        when = when.astimezone(dt.UTC).replace(tzinfo=None)
+    return np.datetime64(when, "ms")
+
+
 def to_seconds(t: Any, epoch: np.datetime64 | None) -> FloatArray:
     """Seconds since `epoch` of `t` (seconds already, or datetime64 values)."""
     a = np.asarray(t)

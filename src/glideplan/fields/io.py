@@ -61,6 +61,10 @@ _STANDARD_NAMES = (
 _COMMON_NAMES = (("uo", "vo"), ("water_u", "water_v"), ("u10", "v10"),
                  ("u_eastward", "v_northward"), ("vozocrtx", "vomecrty"), ("u", "v"),
                  ("U", "V"), ("uwnd", "vwnd"), ("ugrd10m", "vgrd10m"))
+#: Names (and standard-name parts) of a current in water and of a wind in air: which row of
+#: `PHYSICAL_RANGES` the field's speeds and a vehicle's speed through it are checked against.
+_WATER_NAMES = frozenset({"uo", "water_u", "u_eastward", "vozocrtx"})
+_AIR_NAMES = frozenset({"u10", "uwnd", "ugrd10m"})
 #: Names whose components are east/north even on a curvilinear grid (others are grid axes).
 _EAST_NORTH_NAMES = frozenset({"water_u", "u10", "u_eastward", "uwnd", "ugrd10m"})
 _UNITS = {"m s-1": 1.0, "m/s": 1.0, "m s**-1": 1.0, "meter second-1": 1.0, "m.s-1": 1.0,
@@ -430,8 +434,39 @@ def from_xarray(
         if tvals.size == 1:
             warnings.append(f"the file has one time step ({str(epoch)[:19]}Z): the field is "
                             "held constant in time")
+    info["medium"] = _medium(ds, east)
+    warnings += _too_fast(u, v, (east, north), info["medium"], ds[east].attrs.get("units"))
     return GriddedField(times=np.asarray(times, dtype=float), lat=lat, lon=lon, u=u, v=v,
                         epoch=epoch, info=info, warnings=tuple(warnings), nodata=nodata)
+
+
+def _medium(ds: Any, east: str) -> str | None:
+    """"water" (a sea-water velocity), "air" (a wind) or None (plain u/v: not known)."""
+    std = str(ds[east].attrs.get("standard_name", ""))
+    if "sea_water" in std or east in _WATER_NAMES:
+        return "water"
+    if "wind" in std or east in _AIR_NAMES:
+        return "air"
+    return None
+
+
+def _too_fast(u: Any, v: Any, names: tuple[str, str], medium: str | None,
+              units: Any) -> list[str]:
+    """A warning naming the variables when the field's fastest speed lies beyond its row of
+    `PHYSICAL_RANGES` ("current_speed" in water, else "wind_speed"): a field in cm/s labelled
+    m/s reads 100 times too fast."""
+    from glideplan.validation import PHYSICAL_RANGES
+
+    row = PHYSICAL_RANGES["current_speed" if medium == "water" else "wind_speed"]
+    with np.errstate(invalid="ignore"):
+        speed = np.hypot(u, v)
+    top = float(np.nanmax(speed)) if np.any(np.isfinite(speed)) else 0.0
+    if top <= row.high:
+        return []
+    what = "current" if medium == "water" else "flow"
+    return [f"{names[0]}/{names[1]}: the {what} reaches {top:.3g} m/s (units "
+            f"{str(units or 'm s-1')!r}), beyond {row.high:g} m/s ({row.reason}): are the "
+            "values cm/s labelled m/s?"]
 
 
 def _same_grid(comps: list[Any]) -> list[Any]:

@@ -39,6 +39,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from glideplan.geodesy import EARTH_RADIUS_M  # the one Earth radius
+
 __all__ = [
     "COPERNICUS_DEPTHS",
     "EARTH_RADIUS_M",
@@ -59,7 +61,6 @@ VelocityFn = Callable[[np.ndarray, np.ndarray, np.ndarray], tuple[ArrayLike, Arr
 #: True where (lat, lon) is land.
 LandFn = Callable[[np.ndarray, np.ndarray], np.ndarray]
 
-EARTH_RADIUS_M = 6_371_000.0
 #: The first 32 depth levels (m) of Copernicus Marine's global 1/12 deg analysis (GLO12).
 COPERNICUS_DEPTHS = (
     0.494025, 1.541375, 2.645669, 3.819495, 5.078224, 6.440614, 7.92956, 9.572997, 11.405,
@@ -379,7 +380,8 @@ def roms_dataset(
     """A ROMS-like curvilinear grid centred on (lat0, lon0), its xi axis `angle_deg` CCW from east.
 
     Rho points at x = (i - (nx-1)/2) h, y = (j - (ny-1)/2) h along the grid axes, placed by a
-    local equirectangular map (R = 6371 km). Staggered (ROMS native): `u` at the xi-midpoints
+    local equirectangular map (R = `geodesy.EARTH_RADIUS_M`). Staggered (ROMS native): `u` at
+    the xi-midpoints
     (eta_u, xi_u), `v` at the eta-midpoints, both along the grid axes,
     u_grid = u_e cos(a) + v_n sin(a), v_grid = -u_e sin(a) + v_n cos(a); land (land(lat,
     lon) True at rho points, and u/v points next to them) is 0 with mask 0, like ROMS. Else

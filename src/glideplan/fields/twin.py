@@ -31,11 +31,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
+from glideplan.geodesy import EARTH_RADIUS_M  # the one Earth radius
 
 __all__ = ["QGModel", "TwinConfig", "TwinFiles", "forecast_skill", "twin_missions", "write_twin"]
 
 FloatArray = NDArray[np.float64]
-EARTH_RADIUS_M = 6_371_000.0
 DAY = 86400.0
 
 

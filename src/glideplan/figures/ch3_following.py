@@ -38,7 +38,7 @@ def _follow_examples(eps: float = 0.25) -> dict[str, dict[str, object]]:
         goals = np.array([[x * r0, y * r0, psi]] * 2)
         radii = np.array([r0, r0 * (1.0 + eps) ** 2])
         paths = PathArrays.dubins(goals, radii)
-        stream = SteadyDisturbance(eps * settings.speed, 0.0).stream(2, settings.dt)
+        stream = SteadyDisturbance((eps * settings.speed, 0.0)).stream(2, settings.dt)
         res = follow_paths(
             paths, stream, settings=settings, disturbance_bound=eps * settings.speed, record=True
         )

@@ -20,13 +20,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from glideplan.errors import InvalidParameterError
+from glideplan.geodesy import EARTH_RADIUS_M  # the one Earth radius
 
 __all__ = ["EARTH_RADIUS_M", "LatLonGrid"]
 
 FloatArray = NDArray[np.float64]
 
-#: Mean Earth radius (IUGG, R1 = (2a + b) / 3 of WGS84), metres: the sphere the fronts use.
-EARTH_RADIUS_M = 6_371_008.8
 
 #: Latitudes beyond this are refused: cos(lat) -> 0 makes hx vanish (and the time step with it).
 MAX_ABS_LAT_DEG = 89.0

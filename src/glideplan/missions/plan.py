@@ -5,9 +5,9 @@ K candidates, then refinement), then plans every leg with `glideplan.plan()` —
 planner in still air, the convected-Dubins planner with a wind — so each leg's path is
 verified by integrating the vehicle's equations of motion and carries its endpoint error.
 
-Wind inside the library is one vector, `wind_vector = (east, north)` m/s the air (water)
-moves TOWARDS; the compass form (speed, direction it blows FROM in degrees) appears only at the
-edges: the `wind=` compatibility keyword of `plan_mission` and the JSON of `to_dict()`.
+Wind inside the library is one vector, `wind = (east, north)` m/s the air (water) moves
+TOWARDS (`glideplan.units.WindEN`); the compass form (speed, direction it blows FROM in degrees)
+appears only at the edges: the CLI's `--wind` and the JSON of `to_dict()`.
 
 `MissionPlan.to_dict()` (and `FieldMission.to_dict()`) is exactly the `--json` object of
 `glideplan mission plan` (the CLI only adds `files`, the files it wrote).
@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
-from glideplan.geodesy import heading_to_compass, wind_from_to_vector
+from glideplan.geodesy import heading_to_compass
 from glideplan.missions.headings import (
     HeadingPlan,
     LegCost,
@@ -38,6 +38,7 @@ from glideplan.path import Path
 from glideplan.results import Outcome, Reason
 from glideplan.solution import Solution, Status
 from glideplan.track import Track, iso_times
+from glideplan.units import WindEN, wind_to_compass
 from glideplan.validation import check_finite, check_physical
 
 if TYPE_CHECKING:
@@ -46,25 +47,12 @@ if TYPE_CHECKING:
     from glideplan.missions.straight_legs import StraightLegList
 
 __all__ = ["DEFAULT_MAX_DEVIATION_M", "MissionLeg", "MissionPlan", "Track", "mission_outcome",
-           "plan_mission", "wind_compass"]
+           "plan_mission"]
 
 OBJECTIVES = ("length", "time")
 # The straight-leg deviation of `to_dict()` when none is given (m): the CLI's default, half its
 # default 100 m acceptance radius (`glideplan.formats.ExportOptions`).
 DEFAULT_MAX_DEVIATION_M = 50.0
-
-
-def wind_compass(wind_vector: tuple[float, float]) -> tuple[float, float]:
-    """(speed m/s, compass direction it blows FROM, deg in [0, 360)) of an (east, north) wind.
-
-    The inverse of `geodesy.wind_from_to_vector`: (u, v) = -speed (sin b, cos b), so
-    b = atan2(-u, -v). Both are rounded (speed to 1e-12 m/s, b to 1e-9 deg) so that a compass
-    wind given at an edge reads back as given.
-    """
-    u, v = float(wind_vector[0]), float(wind_vector[1])
-    speed = math.hypot(u, v)
-    b = math.degrees(math.atan2(-u, -v)) % 360.0 if speed > 0.0 else 0.0
-    return round(speed, 12), round(b, 9) % 360.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -275,7 +263,7 @@ class MissionPlan(LegTotals, Outcome):
         `StraightLegList`; default: the list within `DEFAULT_MAX_DEVIATION_M`).
         """
         r = self.route
-        wind = None if self.wind_vector is None else wind_compass(self.wind_vector)
+        wind = None if self.wind_vector is None else wind_to_compass(*self.wind_vector)
         return self._with_track({
             **super().to_dict(),
             "objective": self.objective,
@@ -322,8 +310,8 @@ def plan_mission(
     speed: float,
     radius: float,
     objective: str = "length",
-    wind_vector: tuple[float, float] | None = None,
-    wind: tuple[float, float] | None = None,
+    wind: WindEN | None = None,
+    wind_vector: WindEN | None = None,
     headings: int | None = None,
     precision: str = "single",
     refine: bool = True,
@@ -331,11 +319,11 @@ def plan_mission(
 ) -> MissionPlan:
     """Plan `route` for a vehicle of `speed` (m/s) and minimum turn `radius` (m).
 
-    `objective` "length" (m) or "time" (s); `wind_vector` = (east, north) m/s the steady wind
-    (current) moves TOWARDS plans time-optimal convected Dubins legs (the objective must be
-    "time"). `wind` = (speed m/s, compass direction it blows FROM, deg) is the compatibility
-    form of the same (the compass convention of earlier releases; prefer `wind_vector`),
-    converted once here by `geodesy.wind_from_to_vector`; give at most one of the two.
+    `objective` "length" (m) or "time" (s); `wind` = (east, north) m/s the steady wind
+    (current) moves TOWARDS (`glideplan.units.WindEN`, as every planner and product takes it)
+    plans time-optimal convected Dubins legs (the objective must be "time"); `wind_vector` is
+    an older name of the same vector (give at most one). A compass wind (speed, FROM deg) is
+    converted at the edge by `glideplan.units.wind_from_compass`.
     `headings` = K candidates per free waypoint (default 360 in still air, 36 in a wind).
     `progress(phase, done, total)` reports the long phases ("headings": the DP over the
     legs; "legs": planning and verifying each leg) for a progress bar.
@@ -350,14 +338,13 @@ def plan_mission(
     if objective not in OBJECTIVES:
         raise InvalidParameterError("objective", objective, "must be length or time")
     if wind is not None and wind_vector is not None:
-        raise InvalidParameterError("wind", wind, "give either wind_vector or wind, not both")
-    if wind is not None:  # the compass edge form (compatibility)
-        wind_vector = wind_from_to_vector(check_physical("wind speed", wind[0], "wind_speed"),
-                                          check_physical("wind direction", wind[1], "heading"))
+        raise InvalidParameterError("wind", wind, "give either wind or wind_vector, not both")
+    name = "wind" if wind_vector is None else "wind_vector"
+    wind_vector = wind if wind is not None else wind_vector
     if wind_vector is not None:
-        wind_vector = (check_finite("wind_vector east", wind_vector[0]),
-                       check_finite("wind_vector north", wind_vector[1]))
-        check_physical("wind_vector", math.hypot(*wind_vector), "wind_speed")
+        wind_vector = (check_finite(f"{name} east", wind_vector[0]),
+                       check_finite(f"{name} north", wind_vector[1]))
+        check_physical(name, math.hypot(*wind_vector), "wind_speed")
     k = headings if headings is not None else (36 if wind_vector is not None else 360)
     if not isinstance(k, int) or not 4 <= k <= 3600:
         raise InvalidParameterError("headings", k, "must be an integer in [4, 3600]")
@@ -370,8 +357,7 @@ def plan_mission(
                 "objective", objective, "with a wind the planner minimises time: use time"
             )
         u, v = wind_vector
-        w = math.hypot(u, v)
-        vehicle = DubinsCarInWind(speed, radius, w, math.atan2(v, u) if w > 0 else 0.0)
+        vehicle = DubinsCarInWind(speed, radius, wind=(u, v))
         cost = WindCost(pts, radius, speed, (u, v))
     else:
         vehicle = DubinsCar(speed=speed, turn_radius=radius)

@@ -14,9 +14,10 @@ from typing import Any
 import numpy as np
 
 from glideplan.missions.field_mission import FieldMission
-from glideplan.missions.plan import MissionPlan, wind_compass
+from glideplan.missions.plan import MissionPlan
 from glideplan.missions.route import Route
 from glideplan.missions.straight_legs import StraightLegList
+from glideplan.units import wind_to_compass
 
 __all__ = ["plot_mission", "route_centre_lon", "unwrap_lon"]
 
@@ -135,7 +136,7 @@ def plot_mission(
         name = pathlib.Path(str(src)).name if src else ""
         how = f"time-optimal through the current field {name}".rstrip()
     else:
-        compass = None if plan.wind_vector is None else wind_compass(plan.wind_vector)
+        compass = None if plan.wind_vector is None else wind_to_compass(*plan.wind_vector)
         wind = "" if compass is None else (
             f", wind {compass[0]:g} m/s from {compass[1]:g}\N{DEGREE SIGN}")
         how = f"Dubins legs, turn radius R = {plan.radius:g} m{wind}, {plan.objective} optimal"

@@ -373,8 +373,7 @@ def plan_wind(problem: Problem, *, disturbance_ratio: float = 0.0) -> PlannerOut
     vehicle = problem.vehicle
     assert isinstance(vehicle, DubinsCarInWind)
     # the wind is given in the world; the planner works in the start frame
-    psi_w = vehicle.wind_direction - problem.frame.heading
-    wind = (vehicle.wind_speed * math.cos(psi_w), vehicle.wind_speed * math.sin(psi_w))
+    wind = vehicle.wind_in_frame(problem.frame.heading)
     sol = convected_dubins(
         problem.goal, speed=vehicle.speed, radius=vehicle.turn_radius, wind=wind, eps=eps
     )
@@ -398,7 +397,7 @@ def plan_wind(problem: Problem, *, disturbance_ratio: float = 0.0) -> PlannerOut
         "radius": sol.radius,
         "nominal_radius": vehicle.turn_radius,
         "eps": float(eps),
-        "wind": {"speed": vehicle.wind_speed, "direction": vehicle.wind_direction},
+        "wind": {"east": vehicle.wind[0], "north": vehicle.wind[1]},
     }
     warnings = tuple(
         f"word {word}: {count} root bracket(s) of F_W skipped before its first arrival "

@@ -21,6 +21,8 @@ from typing import Any
 import numba
 import numpy as np
 
+from glideplan.geodesy import EARTH_RADIUS_M  # a global: numba compiles it as a constant
+
 __all__ = ["CONE", "dial_chunk"]
 
 #: cos of the half-angle of the cone of edges relaxed from a free node (60 deg).
@@ -300,7 +302,7 @@ def straight_from_start(block: Any, loss: Any, parent: Any, fi0: float, fj0: flo
     lat between the start and the point: the rhumb line to 1e-6). rtab: the ground glide
     ratio at 0.1 deg steps of chi (3601 values, CCW from east). Returns nodes lowered."""
     ny, nx = block.shape
-    rr = 6371008.8
+    rr = EARTH_RADIUS_M
     hy = rr * math.radians(dlat)
     hxr = np.empty(ny)  # east spacing at the mid latitude between the start and each row
     for i in range(ny):

@@ -50,7 +50,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from glideplan.errors import InvalidParameterError
 from glideplan.sailplane.polar import SailplanePolar
-from glideplan.validation import check_finite, check_nonnegative, check_positive
+from glideplan.validation import check_finite, check_physical, check_positive
 
 __all__ = ["Glide", "GroundGlide"]
 
@@ -88,7 +88,7 @@ class Glide:
     safety_glide_ratio: float | None = None
 
     def __post_init__(self) -> None:
-        check_nonnegative("mc", self.mc)
+        check_physical("mc", self.mc, "mc")  # validation.PHYSICAL_RANGES, as final_glide
         if len(self.wind) != 2:
             raise InvalidParameterError("wind", self.wind, "must be (east, north) m/s")
         w = (check_finite("wind east", self.wind[0]), check_finite("wind north", self.wind[1]))

@@ -90,24 +90,16 @@ def _elevation_colorbar(ax: Any, sm: Any, cs: Any) -> Any:
 
 
 def _wind_arrow(ax: Any, wind: tuple[float, float], lat: float) -> None:
-    """An arrow in the top-left corner pointing where the wind blows (display space, so its
-    direction is true on an equal-metre map), and its speed and FROM direction."""
-    del lat  # the map's aspect makes display directions true
-    speed = math.hypot(*wind)
-    kw = {"transform": ax.transAxes, "va": "top", "fontsize": 8, "zorder": 20}
-    if speed == 0:
-        ax.text(0.03, 0.97, "no wind", **kw)
-        return
-    from matplotlib.transforms import offset_copy
+    """`plotting.wind_arrow` in the top-left corner, and the wind's speed and FROM direction
+    above it (display space, so its direction is true on an equal-metre map)."""
+    from glideplan.plotting import wind_arrow, wind_label
 
-    u, v = wind[0] / speed, wind[1] / speed
-    tip = offset_copy(ax.transAxes, ax.get_figure(), x=11 * u, y=11 * v, units="points")
-    ax.annotate("", xy=(0.1, 0.83), xycoords=tip, xytext=(-22 * u, -22 * v),
-                textcoords="offset points", gid="wind_arrow", zorder=20,
-                arrowprops={"arrowstyle": "-|>", "color": "navy", "lw": 2})  # centred there
-    frm = (math.degrees(math.atan2(-wind[0], -wind[1])) + 360.0) % 360.0
-    ax.text(0.03, 0.97, f"wind {speed:.3g} m/s from {frm:.0f}°", color="navy",
-            bbox={"boxstyle": "round", "fc": "white", "alpha": 0.7, "lw": 0}, **kw)
+    del lat  # the map's aspect makes display directions true
+    kw = {"transform": ax.transAxes, "va": "top", "fontsize": 8, "zorder": 20}
+    wind_arrow(ax, wind, (0.1, 0.83))
+    text = wind_label(wind)
+    ax.text(0.03, 0.97, text, **kw, **({} if text == "no wind" else {
+        "color": "navy", "bbox": {"boxstyle": "round", "fc": "white", "alpha": 0.7, "lw": 0}}))
 
 
 def _footprint(ax: Any, result: ReachResult) -> None:
@@ -264,12 +256,12 @@ def plot_turnback(result: TurnbackResult, ax: Any = None) -> Any:
             s0 = float(s[-1])
         # the altitude a straight glide home needs from each point of the course (terrain
         # ignored): the outbound line meets it at the turn-back point when no terrain binds
-        from glideplan.reach.turnback import destination
+        from glideplan.geodesy import rhumb_destination
 
         lat0_, lon0_, _ = result.start
         chi = math.radians(90.0 - result.course_deg)
         ss = np.linspace(0.0, 1.3 * max(result.distance_m, 1.0), 200)
-        pla, plo = destination(lat0_, lon0_, chi, ss)
+        pla, plo = rhumb_destination(lat0_, lon0_, chi, ss)
         n = ss.size
         dd, cc = rhumb(pla, plo, np.full(n, home.lat), np.full(n, home.lon))
         need = home.elevation_m + result.safety_height + dd / result.glide.ratio(cc)

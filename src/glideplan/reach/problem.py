@@ -10,7 +10,7 @@ from glideplan.errors import InvalidParameterError
 from glideplan.geodesy import check_latlon
 from glideplan.reach.model import Glide
 from glideplan.terrain.grid import Terrain
-from glideplan.validation import check_finite, check_nonnegative, check_positive
+from glideplan.validation import check_finite, check_nonnegative, check_physical, check_positive
 
 __all__ = ["Landable", "ReachProblem"]
 
@@ -48,7 +48,7 @@ class ReachProblem:
         if len(self.start) != 3:
             raise InvalidParameterError("start", self.start, "must be (lat, lon, altitude_m)")
         lat, lon = (float(v) for v in check_latlon(self.start[0], self.start[1], "start"))
-        alt = check_finite("start altitude", self.start[2])
+        alt = check_physical("start altitude", self.start[2], "altitude")  # as final_glide
         object.__setattr__(self, "start", (lat, lon, alt))
         object.__setattr__(self, "landables", tuple(self.landables))
         check_nonnegative("safety_height", self.safety_height)

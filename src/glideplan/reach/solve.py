@@ -387,16 +387,16 @@ def two_heights(safety_height: float | None, terrain_clearance: float | None,
                 arrival_height: float | None) -> tuple[float, float]:
     """(en-route terrain clearance, arrival height) m: explicit values, else the former
     single `safety_height` for both, else XCSoar's defaults (150, 300)."""
-    from glideplan.validation import check_nonnegative
+    from glideplan.validation import check_physical
 
-    if safety_height is not None:
-        check_nonnegative("safety_height", safety_height)
+    if safety_height is not None:  # validation.PHYSICAL_RANGES["height"], as final_glide
+        check_physical("safety_height", safety_height, "height")
     clear_h = terrain_clearance if terrain_clearance is not None else (
         safety_height if safety_height is not None else DEFAULT_TERRAIN_CLEARANCE_M)
     arrive_h = arrival_height if arrival_height is not None else (
         safety_height if safety_height is not None else DEFAULT_ARRIVAL_HEIGHT_M)
-    return (float(check_nonnegative("terrain_clearance", clear_h)),
-            float(check_nonnegative("arrival_height", arrive_h)))
+    return (check_physical("terrain_clearance", clear_h, "height"),
+            check_physical("arrival_height", arrive_h, "height"))
 
 
 def wrap_lon(terrain: Terrain, lon: float) -> float:
@@ -430,30 +430,19 @@ def _voids_touched(loss: FloatArray, z: FloatArray) -> tuple[str, ...]:
 
 
 class _SearchProgress:
-    """Rich progress on stderr for the native search, shown once it has run ~2 s: the
-    fraction (loss reached / largest loss)^2 and Rich's estimate of the time remaining."""
+    """The native search's bar (`glideplan.progress.DelayedBar`, shown once it has run
+    ~2 s): the fraction (loss reached / largest loss)^2 and the time remaining."""
 
     def __init__(self, enabled: bool) -> None:
-        self.enabled = enabled
-        self.started = time.perf_counter()
-        self.bar: Any = None
-        self.task: Any = None
+        from glideplan.progress import DelayedBar
+
+        self.bar = DelayedBar("glide reach: search", 1000.0, enabled=enabled, delay=2.0)
 
     def __call__(self, fraction: float) -> None:
-        if not self.enabled:
-            return
-        if self.bar is None:
-            if time.perf_counter() - self.started < 2.0:
-                return
-            from glideplan.progress import start_progress_bar
-
-            self.bar, self.task = start_progress_bar("glide reach: search", 1000.0)
-        self.bar.update(self.task, completed=round(1000 * fraction))
+        self.bar.update(completed=round(1000 * fraction))
 
     def close(self) -> None:
-        if self.bar is not None:
-            self.bar.stop()
-            self.bar = None
+        self.bar.close()
 
 
 def _clipped(margin: FloatArray, grid: ReachGrid, terrain: Terrain) -> tuple[str, ...]:

@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
-from glideplan.geodesy import check_latlon
+from glideplan.geodesy import EARTH_RADIUS_M, check_latlon, rhumb_destination
 from glideplan.reach.flight import FlownPath, fly, rhumb
 from glideplan.reach.grid import ReachGrid, reach_grid
 from glideplan.reach.model import Glide
@@ -50,7 +50,7 @@ from glideplan.reach.turnback_search import _Prober, _search, grid_contains
 from glideplan.results import Outcome, Reason
 from glideplan.sailplane.polar import SailplanePolar
 from glideplan.solution import Status
-from glideplan.terrain.grid import EARTH_RADIUS_M, Terrain
+from glideplan.terrain.grid import Terrain
 from glideplan.validation import check_finite
 
 if TYPE_CHECKING:
@@ -59,19 +59,6 @@ if TYPE_CHECKING:
 __all__ = ["TurnbackResult", "turnback"]
 
 FloatArray = NDArray[np.float64]
-
-
-def destination(lat: float, lon: float, chi: float, s: FloatArray) -> tuple[FloatArray, ...]:
-    """Points s metres from (lat, lon) along the rhumb line of direction chi (rad CCW from
-    east): lat = lat0 + s sin(chi) / R, lon from the isometric latitude (as `flight`)."""
-    s = np.asarray(s, dtype=float)
-    p0 = math.radians(lat)
-    p = p0 + s * math.sin(chi) / EARTH_RADIUS_M
-    dpsi = np.log(np.tan(0.25 * np.pi + 0.5 * p)) - math.log(math.tan(0.25 * math.pi + 0.5 * p0))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        q = np.where(np.abs(dpsi) > 1e-12, (p - p0) / np.where(dpsi == 0, 1, dpsi), math.cos(p0))
-    dl = s * math.cos(chi) / (EARTH_RADIUS_M * q)
-    return np.degrees(p), lon + np.degrees(dl)
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -199,7 +186,7 @@ class _Outbound:
     r_out: float
 
     def at(self, s: float) -> tuple[float, float, float]:
-        la, lo = destination(self.lat0, self.lon0, self.chi, np.array(s))
+        la, lo = rhumb_destination(self.lat0, self.lon0, self.chi, np.array(s))
         return float(la), float(lo), self.alt - s / self.r_out
 
 
@@ -327,7 +314,7 @@ def _outbound_limit(req: TurnbackRequest, problem: ReachProblem, grid: ReachGrid
     s_max = max((way.alt - home.elevation_m - req.arrival_m) * way.r_out, 0.0)
     step = min(fine.spacing_m) / 3.0
     ss = np.linspace(0.0, s_max, max(2, math.ceil(s_max / step) + 1))
-    la_s, lo_s = destination(way.lat0, way.lon0, way.chi, ss)
+    la_s, lo_s = rhumb_destination(way.lat0, way.lon0, way.chi, ss)
     ground = fine.elevation(la_s, lo_s)
     inside = np.isfinite(ground) & np.asarray(grid_contains(grid, la_s, lo_s))
     clear = np.where(inside, way.alt - ss / way.r_out - np.where(inside, ground, 0.0), -np.inf)

@@ -33,10 +33,10 @@ import numpy as np
 
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import GriddedField
+from glideplan.geodesy import EARTH_RADIUS_M  # the one Earth radius
 
 __all__ = ["Forecast", "forecast_issue_time", "newest", "open_forecasts", "planning_field"]
 
-EARTH_RADIUS_M = 6_371_000.0
 
 
 @dataclass(frozen=True, eq=False)

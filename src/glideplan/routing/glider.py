@@ -145,9 +145,9 @@ def flyable_path(
     """
     from glideplan.planners.dubins import WORDS, dubins_shortest, feasible_radius, word_directions
     from glideplan.simulation import PathArrays
+    from glideplan.validation import check_physical
 
-    if not (math.isfinite(radius) and radius > 0):
-        raise InvalidParameterError("radius", radius, "must be finite and > 0 (m)")
+    check_physical("radius", radius, "turn_radius")  # validation.PHYSICAL_RANGES
     if not result.ok:
         raise InvalidParameterError("route", result.status, "needs a solved route")
     proj = LocalProjection(float(result.lat[0]), float(result.lon[0]))
@@ -393,10 +393,10 @@ def trochoid_chain(
     from glideplan.planners.wind import convected_dubins, convected_dubins_path
     from glideplan.pose import Pose
     from glideplan.routing.verify import integrate_headings
+    from glideplan.validation import check_physical
     from glideplan.verify import endpoint_error
 
-    if not (math.isfinite(radius) and radius > 0):
-        raise InvalidParameterError("radius", radius, "must be finite and > 0 (m)")
+    check_physical("radius", radius, "turn_radius")  # validation.PHYSICAL_RANGES
     if not result.ok:
         raise InvalidParameterError("route", result.status, "needs a solved route")
     proj = LocalProjection(float(result.lat[0]), float(result.lon[0]))

@@ -190,6 +190,8 @@ def setup(field_: Any, start: Any, goal: Any, speed: float, depart: Any = None,
     settings = settings or RouteSettings()
     speed = check_physical("speed", speed, "speed")
     fld = _as_field(field_, depth_range)
+    if (getattr(fld, "info", None) or {}).get("medium") == "water":  # a current, not a wind
+        check_physical("speed", speed, "water_speed")
     if depart is None:
         t0 = fld.time_span[0] if fld.time_span is not None else 0.0
         if fld.time_span is None and fld.time_levels is not None:
@@ -394,21 +396,11 @@ class _Progress:
         if self.bar is None:
             if now - self.started < 2.0:
                 return
-            from rich.console import Console
-            from rich.progress import (
-                BarColumn,
-                Progress,
-                TextColumn,
-                TimeElapsedColumn,
-                TimeRemainingColumn,
-            )
+            from glideplan.progress import start_progress_bar
 
-            self.bar = Progress(TextColumn("{task.description}"), BarColumn(),
-                                TextColumn("{task.fields[info]}"), TimeElapsedColumn(),
-                                TextColumn("left"), TimeRemainingColumn(),
-                                console=Console(stderr=True), transient=True)
-            self.bar.start()
-            self.task = self.bar.add_task("routing: front", total=self.expected, info="")
+            self.bar, self.task = start_progress_bar(
+                "routing: front", self.expected, info=True, count=False, remaining="left",
+                transient=True)
         done = max(t - self.t0, 0.0)
         if done > self.expected:  # later than the straight line: expect a little more
             self.expected = min(1.05 * done, self.t_max - self.t0)

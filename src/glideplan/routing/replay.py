@@ -46,6 +46,7 @@ from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import FlowField
+from glideplan.geodesy import EARTH_RADIUS_M as R_EARTH  # the one Earth radius
 from glideplan.results import Outcome, Reason
 from glideplan.routing.forecasts import Forecast, mean_current, newest, planning_field
 from glideplan.routing.steering import _follow, _naive, _tracker
@@ -57,7 +58,6 @@ if TYPE_CHECKING:
 __all__ = ["REASONS", "Flight", "Mission", "Plan", "ReplayResult", "ReplaySettings", "replay"]
 
 FloatArray = NDArray[np.float64]
-R_EARTH = 6_371_000.0
 REASONS = ("max_duration", "field_extent", "aground")
 
 

@@ -25,8 +25,9 @@ from glideplan.errors import InvalidParameterError
 
 __all__ = ["RouteSettings"]
 
-#: The widest land clearance a route may ask for (m).
+#: The widest land clearance a route may ask for (m): `PHYSICAL_RANGES["clearance"]`.
 MAX_LAND_CLEARANCE_M = 100_000.0
+_KINDS = {"resolution": "distance", "land_clearance_m": "clearance", "max_duration": "duration"}
 
 
 @dataclass(frozen=True)
@@ -45,19 +46,11 @@ class RouteSettings:
     max_nodes: int = 6_000_000
 
     def __post_init__(self) -> None:
-        for name in ("resolution", "land_clearance_m", "max_duration"):
-            val = getattr(self, name)
-            if val is None:
-                continue
-            ok = isinstance(val, (int, float)) and math.isfinite(val)
-            if not ok or val < 0 or (val == 0 and name != "land_clearance_m"):
-                rule = ">= 0 (m)" if name == "land_clearance_m" else "> 0"
-                raise InvalidParameterError(name, val, f"must be finite and {rule}")
-        if self.land_clearance_m is not None and self.land_clearance_m > MAX_LAND_CLEARANCE_M:
-            raise InvalidParameterError(
-                "land_clearance_m", self.land_clearance_m,
-                f"must be <= {MAX_LAND_CLEARANCE_M:g} m (a clearance wider than 100 km leaves "
-                "no coastal water to route through)")
+        from glideplan.validation import check_physical
+
+        for name, kind in _KINDS.items():  # validation.PHYSICAL_RANGES, the one table
+            if getattr(self, name) is not None:
+                check_physical(name, getattr(self, name), kind)
         if not (math.isfinite(self.cfl) and 0 < self.cfl <= 1):
             raise InvalidParameterError("cfl", self.cfl, "must be in (0, 1]")
         if not (isinstance(self.cells, int) and self.cells >= 8):

@@ -31,6 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import FlowField
+from glideplan.geodesy import EARTH_RADIUS_M, destination  # one place each: re-exported here
 
 __all__ = [
     "EARTH_RADIUS_M",
@@ -46,8 +47,6 @@ __all__ = [
 
 FloatArray = NDArray[np.float64]
 
-#: The fronts' sphere (glideplan.fronts.grid.EARTH_RADIUS_M), metres.
-EARTH_RADIUS_M = 6_371_008.8
 
 #: (t, lat, lon) -> (u, v): the current where the field's interpolation stencil touches land
 #: (nearest water value), used by the verification only (FlownRoute.filled counts its uses).
@@ -76,19 +75,6 @@ def gc_bearing(lat1: ArrayLike, lon1: ArrayLike, lat2: ArrayLike, lon2: ArrayLik
     y = np.sin(dl) * np.cos(p2)
     x = np.cos(p1) * np.sin(p2) - np.sin(p1) * np.cos(p2) * np.cos(dl)
     return np.asarray(np.arctan2(y, x), dtype=float)
-
-
-def destination(lat: ArrayLike, lon: ArrayLike, bearing: ArrayLike, dist: ArrayLike) -> tuple[
-    FloatArray, FloatArray
-]:
-    """The point `dist` m from (lat, lon) deg along compass `bearing` (rad): (lat, lon) deg;
-    lon continuous with the input's (not wrapped)."""
-    p1, l1 = np.radians(lat), np.radians(lon)
-    d = np.asarray(dist, dtype=float) / EARTH_RADIUS_M
-    b = np.asarray(bearing, dtype=float)
-    p2 = np.arcsin(np.clip(np.sin(p1) * np.cos(d) + np.cos(p1) * np.sin(d) * np.cos(b), -1, 1))
-    l2 = l1 + np.arctan2(np.sin(b) * np.sin(d) * np.cos(p1), np.cos(d) - np.sin(p1) * np.sin(p2))
-    return np.degrees(p2), np.degrees(l2)
 
 
 @dataclass(frozen=True, eq=False)

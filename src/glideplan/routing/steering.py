@@ -14,13 +14,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from glideplan.errors import InvalidParameterError
+from glideplan.geodesy import EARTH_RADIUS_M as R_EARTH  # the one Earth radius
 
 if TYPE_CHECKING:
     from glideplan.routing.replay import Plan
 
 __all__ = ["crab"]
 
-R_EARTH = 6_371_000.0
 
 
 def _naive(goal: tuple[float, float]) -> Callable[[float, float, float], float]:

@@ -22,6 +22,7 @@ from glideplan.vehicles.sailplane_polar import (
     STALL_FRACTION,
     SailplanePolar,
     fit_three_points,
+    load_polar,
     polar_from_file,
 )
 
@@ -40,6 +41,7 @@ __all__ = [
     "fit_ardusoar",
     "fit_three_points",
     "ground_speed",
+    "load_polar",
     "maccready_table",
     "parse_plr",
     "polar_from_file",

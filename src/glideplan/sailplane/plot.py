@@ -15,9 +15,9 @@ __all__ = ["draw_final_glide", "final_glide_figure", "glide_summary", "wind_text
 
 def wind_text(d: FinalGlideDrawing) -> str:
     """`wind 8 m/s from 270°` (compass, where it blows FROM), or `no wind`."""
-    if d.wind_speed <= 0.0 or d.wind_from_deg is None:
-        return "no wind"
-    return f"wind {d.wind_speed:.3g} m/s from {d.wind_from_deg % 360.0:.0f}°"
+    from glideplan.plotting import wind_label
+
+    return wind_label(d.wind)
 
 
 def glide_summary(d: FinalGlideDrawing) -> str:
@@ -60,14 +60,10 @@ def _wind_arrow(ax: Any, fig: Any, d: FinalGlideDrawing, xk: np.ndarray, yk: np.
                 avoid_lower_right: bool) -> None:
     """An arrow where the wind blows TO, labelled `wind_text`, in the corner of the
     ground-track panel farthest from the track (the lower right is kept for the inset)."""
-    from matplotlib.transforms import offset_copy
+    from glideplan.plotting import wind_arrow
 
-    from glideplan.geodesy import wind_from_to_vector
-
-    if d.wind_speed <= 0.0 or d.wind_from_deg is None:
+    if d.wind is None or math.hypot(*d.wind) <= 0.0:
         return
-    wx, wy = wind_from_to_vector(d.wind_speed, d.wind_from_deg)
-    norm = math.hypot(wx, wy)
     fig.canvas.draw()  # the equal-aspect limits are final only once drawn
     to_axes = ax.transAxes.inverted()
     pts = to_axes.transform(ax.transData.transform(np.column_stack([xk, yk])))
@@ -75,25 +71,10 @@ def _wind_arrow(ax: Any, fig: Any, d: FinalGlideDrawing, xk: np.ndarray, yk: np.
     if not avoid_lower_right:
         corners.append((0.86, 0.12))
     cx, cy = max(corners, key=lambda c: float(np.min(np.hypot(*(pts - np.array(c)).T))))
-    half = 22.0  # arrow half-length, points; the arrow is centred on the corner point
-    ux, uy = wx / norm, wy / norm
-    tip = offset_copy(ax.transAxes, fig=fig, x=half * ux, y=half * uy, units="points")
-    ax.annotate(
-        "", xy=(cx, cy), xycoords=tip, xytext=(-2 * half * ux, -2 * half * uy),
-        textcoords="offset points",
-        arrowprops={"arrowstyle": "-|>", "color": "tab:blue", "lw": 2.2, "mutation_scale": 16,
-                    "shrinkA": 0.0, "shrinkB": 0.0},
-        zorder=7,
-    )
-    ax.annotate(
-        wind_text(d).replace(" from", "\nfrom"), xy=(cx, cy), xycoords="axes fraction",
-        # below the arrow in the upper corners, above it in the lower ones
-        xytext=(0.0, (half * abs(uy) + 6.0) * (1.0 if cy < 0.5 else -1.0)),
-        textcoords="offset points", ha="center", va="bottom" if cy < 0.5 else "top",
-        fontsize=8, color="tab:blue",
-        bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.8},
-        zorder=7,
-    )
+    # below the arrow in the upper corners, above it in the lower ones
+    wind_arrow(ax, d.wind, (cx, cy), half=22.0, colour="tab:blue", lw=2.2,
+               label="above" if cy < 0.5 else "below", mutation_scale=16, shrinkA=0.0,
+               shrinkB=0.0)
 
 
 def draw_final_glide(d: FinalGlideDrawing, filename: str | pathlib.Path) -> None:

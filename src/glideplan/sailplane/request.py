@@ -28,7 +28,8 @@ from glideplan.results import Outcome, Reason
 from glideplan.sailplane.straight import straight_final_glide
 from glideplan.solution import Status
 from glideplan.track import Track
-from glideplan.validation import check_finite, check_nonnegative
+from glideplan.units import WindEN, wind_to_compass
+from glideplan.validation import check_finite, check_physical
 from glideplan.vehicles.sailplane_polar import SailplanePolar
 
 if TYPE_CHECKING:
@@ -36,14 +37,14 @@ if TYPE_CHECKING:
 
     from glideplan.solution import Solution
 
-__all__ = ["FinalGlide", "FinalGlideDrawing", "final_glide", "run_final"]
+__all__ = ["FinalGlide", "FinalGlideDrawing", "final_glide"]
 
 
 @dataclass(frozen=True, eq=False)
 class FinalGlideDrawing:
     """What a figure needs: local track (m; x east, y north), distance along it (m), altitude
-    (m), levels (m), the problem in words (`title`), and the wind: speed (m/s) and the compass
-    direction it blows FROM (deg, a label at the figure's edge; None when no wind was given)."""
+    (m), levels (m), the problem in words (`title`), and the wind (east, north) m/s blowing
+    TOWARDS (None when no wind was given; the figure labels it in compass degrees)."""
 
     x: np.ndarray
     y: np.ndarray
@@ -53,8 +54,7 @@ class FinalGlideDrawing:
     safety_height: float
     title: str
     straight: dict[str, np.ndarray] = field(default_factory=dict)
-    wind_speed: float = 0.0
-    wind_from_deg: float | None = None
+    wind: WindEN | None = None
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -102,14 +102,6 @@ class FinalGlide(Outcome):
 
 def _finite(v: float | None) -> float | None:
     return float(v) if v is not None and math.isfinite(v) else None
-
-
-def _wind_from_deg(wind: tuple[float, float]) -> float:
-    """The compass direction (deg, [0, 360)) a wind of velocity (east, north) blows FROM."""
-    from glideplan.geodesy import heading_to_compass
-
-    b = float(heading_to_compass(math.atan2(-wind[1], -wind[0])))
-    return round(b, 9) % 360.0  # round-off of the vector's components, not the data
 
 
 @dataclass(frozen=True, eq=False)
@@ -228,10 +220,10 @@ def final_glide_request(
     lat1, lon1, elev1 = goal
     check_latlon(lat0, lon0, "start")
     check_latlon(lat1, lon1, "goal")
-    alt0 = check_finite("start altitude", alt0)
-    elev1 = check_finite("goal elevation", elev1)
-    mc = check_nonnegative("mc", mc)
-    safety = check_nonnegative("safety_height", safety_height)
+    alt0 = check_physical("start altitude", alt0, "altitude")  # validation.PHYSICAL_RANGES
+    elev1 = check_physical("goal elevation", elev1, "elevation")
+    mc = check_physical("mc", mc, "mc")
+    safety = check_physical("safety_height", safety_height, "height")
     wx, wy = (0.0, 0.0) if wind is None else (
         check_finite("wind east", wind[0]), check_finite("wind north", wind[1]))
     return FinalGlideRequest(polar, (float(lat0), float(lon0), alt0),
@@ -320,7 +312,7 @@ def _final(req: FinalGlideRequest, frame: _Frame, row: dict[str, float], step: _
     """The `FinalGlide` of a solve step: status, message, reason, the track and the JSON."""
     alt0, elev1 = req.start[2], req.goal[2]
     wind_speed = math.hypot(*req.wind)
-    wind_from = _wind_from_deg(req.wind) if req.wind_given else None
+    wind_from = wind_to_compass(*req.wind)[1] if req.wind_given else None
     data: dict[str, Any] = {
         "polar": req.polar.name, "mass_kg": req.polar.mass_kg, "distance_m": frame.dist,
         "bearing_deg": _bearing(frame), "mc": req.mc, "safety_height_m": req.safety_height,
@@ -338,7 +330,7 @@ def _final(req: FinalGlideRequest, frame: _Frame, row: dict[str, float], step: _
         reason = None if status is Status.SOLVED else Reason.BELOW_SAFETY_HEIGHT
         message = (f"arrives {abs(margin):.0f} m " + ("above" if margin >= 0.0 else "below")
                    + f" the goal elevation + safety height ({floor:.0f} m)")
-    drawing = replace(step.drawing, wind_speed=wind_speed, wind_from_deg=wind_from)
+    drawing = replace(step.drawing, wind=req.wind if req.wind_given else None)
     ground_track = _ground_track(frame, row, step, drawing, data.get("duration_s") or 0.0)
     if step.solution is not None:  # the planned path's samples: t, lat, lon, heading_deg, alt
         data["track"] = ground_track.to_dict()
@@ -365,24 +357,6 @@ def _ground_track(frame: _Frame, row: dict[str, float], step: _Glide,
                  alt=drawing.altitude)
 
 
-def run_final(
-    polar: SailplanePolar,
-    start: tuple[float, float, float],
-    goal: tuple[float, float, float],
-    *,
-    wind: tuple[float, float] | None = None,
-    **options: Any,
-) -> tuple[dict[str, Any], FinalGlideDrawing]:
-    """Compatibility: `final_glide()` (same `options`) with the wind as (speed m/s, compass
-    direction it blows FROM, deg), returning (the JSON object, the figure's data). New code:
-    `final_glide()`, the wind as its (east, north) vector."""
-    from glideplan.geodesy import wind_from_to_vector
-
-    vec = None if wind is None else wind_from_to_vector(float(wind[0]), float(wind[1]))
-    res = final_glide(polar, start, goal, wind=vec, **options)
-    return res.to_dict(), res.drawing
-
-
 def _status(loss: float, margin: float) -> Status:
     """UNREACHABLE (no airspeed makes progress: the loss is infinite), else SOLVED when the
     arrival margin is >= 0 m, BELOW_GLIDE when it is negative."""
@@ -396,7 +370,7 @@ def _unreachable_why(polar: SailplanePolar, wind: tuple[float, float], row: dict
     """Why no airspeed makes progress: the wind ((east, north) m/s; said as speed and the
     compass direction it blows from) against the polar's top speed, with its headwind and
     crosswind components on the track (m/s)."""
-    speed, from_deg = math.hypot(*wind), _wind_from_deg(wind)
+    speed, from_deg = wind_to_compass(*wind)
     along = row["tailwind"]
     part = f"headwind {-along:.1f}" if along <= 0.0 else f"tailwind {along:.1f}"
     return (
@@ -424,9 +398,7 @@ def _arrival(req: FinalGlideRequest, frame: _Frame, row: dict[str, float], title
     if not 0.0 < bank <= 80.0:
         raise InvalidParameterError("bank_max", req.bank_max, "must be in (0, 80] degrees")
     wind, mc = req.wind, req.mc
-    speed = math.hypot(*wind)
-    vehicle = Sailplane(req.polar, bank_max=math.radians(bank), wind_speed=speed,
-                        wind_direction=math.atan2(wind[1], wind[0]) if speed > 0.0 else 0.0)
+    vehicle = Sailplane(req.polar, bank_max=math.radians(bank), wind=wind)
     goal_pose = Pose(frame.gx, frame.gy, float(compass_to_heading(arrival_heading)))
     if req.start_heading is None:
         psi0 = best_start_heading((0.0, 0.0), goal_pose, vehicle, mc=mc)

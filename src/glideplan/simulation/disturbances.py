@@ -85,29 +85,25 @@ class _ConstantStream:
 
 @dataclass(frozen=True, eq=False)
 class SteadyDisturbance:
-    """A constant uniform disturbance per row: magnitude `speed` (m/s) towards `direction`
-    (rad, counter-clockwise from +x); scalars broadcast to every row."""
+    """A constant uniform disturbance: the (east, north) velocity `wind` (m/s, the direction it
+    blows TOWARDS; `glideplan.units.WindEN`), shape (2,) for every row or (rows, 2)."""
 
-    speed: ArrayLike
-    direction: ArrayLike
+    wind: ArrayLike
 
     def __post_init__(self) -> None:
-        speed = check_finite_array("speed", self.speed)
-        if np.any(speed < 0.0):
-            raise InvalidParameterError("speed", "array", "must be >= 0")
-        object.__setattr__(self, "speed", speed)
-        object.__setattr__(self, "direction", check_finite_array("direction", self.direction))
+        wind = check_finite_array("wind", self.wind, last_dim=2)
+        if wind.ndim > 2:
+            raise InvalidParameterError("wind", wind.shape, "must have shape (2,) or (rows, 2)")
+        object.__setattr__(self, "wind", wind)
 
     def velocity(self, rows: int) -> np.ndarray:
         """The constant velocity (rows, 2) in m/s."""
         try:
-            s = np.broadcast_to(np.asarray(self.speed).reshape(-1), (rows,))
-            d = np.broadcast_to(np.asarray(self.direction).reshape(-1), (rows,))
+            return np.broadcast_to(np.asarray(self.wind).reshape(-1, 2), (rows, 2)).copy()
         except ValueError:
             raise InvalidParameterError(
                 "rows", rows, "must match the number of wind values"
             ) from None
-        return np.stack([s * np.cos(d), s * np.sin(d)], axis=-1)
 
     def stream(
         self, rows: int, dt: float, rng: np.random.Generator | None = None

@@ -251,7 +251,8 @@ def simulate_unit(unit: Unit) -> dict[str, np.ndarray]:
     settings = cfg.follower_settings
     bound = unit.eps * cfg.speed
     if unit.case == "steady":
-        stream = SteadyDisturbance(bound, wind_dir).stream(n, settings.dt)
+        towards = np.column_stack([bound * np.cos(wind_dir), bound * np.sin(wind_dir)])
+        stream = SteadyDisturbance(towards).stream(n, settings.dt)
     else:
         model = DrydenTurbulence(
             sigma=bound,

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from glideplan.batch import default_processes, run_batch
-from glideplan.progress import start_progress_bar
+from glideplan.progress import DelayedBar
 from glideplan.studies.store import ResultsStore
 
 __all__ = ["RunReport", "run_units"]
@@ -31,26 +31,18 @@ class RunReport:
     seconds: float
 
 
-class _Bar:
-    """A Rich progress bar (rate and ETA) over the work the study still has to do."""
+class _Bar(DelayedBar):
+    """The study's bar (`glideplan.progress.DelayedBar`, rate and ETA) over the work the study
+    still has to do."""
 
     def __init__(self, enabled: bool, total: float, label: str, unit: str) -> None:
-        self.bar: Any = None
-        if not enabled or total <= 0:
-            return
+        super().__init__(label, total, enabled=enabled and total > 0, delay=-1.0,
+                         with_rate=True)
         self.unit = unit
-        self.t0 = time.perf_counter()
-        self.bar, self.task = start_progress_bar(label, total, with_rate=True)
 
     def advance(self, amount: float, done: float) -> None:
-        if self.bar is None:
-            return
-        rate = done / max(1e-9, time.perf_counter() - self.t0)
-        self.bar.update(self.task, advance=amount, rate=f"{rate:,.0f} {self.unit}/s")
-
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.stop()
+        rate = done / max(1e-9, time.perf_counter() - self.started)
+        self.update(advance=amount, rate=f"{rate:,.0f} {self.unit}/s")
 
 
 def run_units(

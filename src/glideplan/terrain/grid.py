@@ -19,13 +19,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from glideplan.errors import InvalidParameterError
+from glideplan.geodesy import EARTH_RADIUS_M  # the one Earth radius
 
 __all__ = ["EARTH_RADIUS_M", "Terrain"]
 
 FloatArray = NDArray[np.float64]
 
-#: Mean Earth radius (m), the sphere the front grid and the flown tracks use (IUGG R1).
-EARTH_RADIUS_M = 6371008.8
 
 
 @dataclass(frozen=True, eq=False)

@@ -9,10 +9,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 __all__ = [
-    "LENGTH_LIMITS_M",
-    "MAX_SPEED_RATIO",
-    "SPEED_LIMITS_M_S",
-    "TURN_RATE_LIMITS_RAD_S",
     "Vehicle",
     "check_length",
     "check_speed",
@@ -20,58 +16,40 @@ __all__ = [
     "check_turn_rate",
 ]
 
-# The supported range of vehicle parameters. Inside it every planner's closed forms and the
-# verification by integration agree to better than 1e-6 of the length scale (double precision
-# leaves ~1e-16 * (scale ratio) of round-off; at v_max / v_min = 1e6 or R = 1e7 m with a goal
-# a few metres away the endpoint errors measured are <= 1e-8 m). Outside it a "solution" can be
-# pure round-off (v_max = 1e200 gave an endpoint 1.57 m from a goal 2 m away), so it is refused.
-# The ends are physical too: a turn radius from a micrometre to 10,000 km (beyond that the
-# plane is not flat), speeds and turn rates from 1e-6 to 1e6 (m/s, rad/s).
-SPEED_LIMITS_M_S = (1e-6, 1e6)
-TURN_RATE_LIMITS_RAD_S = (1e-6, 1e6)
-LENGTH_LIMITS_M = (1e-6, 1e7)
-MAX_SPEED_RATIO = 1e6
-
-
-def _check_range(name: str, value: Any, limits: tuple[float, float], unit: str) -> float:
-    from glideplan.errors import InvalidParameterError
-    from glideplan.validation import check_positive
-
-    out = check_positive(name, value)
-    low, high = limits
-    if not low <= out <= high:
-        raise InvalidParameterError(
-            name, value, f"must lie in [{low:g}, {high:g}] {unit} (the supported range)"
-        )
-    return out
+# The supported ranges of vehicle parameters are rows of the one range table,
+# `glideplan.validation.PHYSICAL_RANGES` ("speed", "turn_radius", "turn_rate", "speed_ratio"):
+# inside them every planner's closed forms and the verification by integration agree to better
+# than 1e-6 of the length scale; outside them a "solution" can be pure round-off (v_max = 1e200
+# gave an endpoint 1.57 m from a goal 2 m away), so they are refused. The functions below only
+# name the row each vehicle field is checked against.
 
 
 def check_speed(name: str, value: Any) -> float:
-    """A speed (m/s, or nondimensional) inside `SPEED_LIMITS_M_S`."""
-    return _check_range(name, value, SPEED_LIMITS_M_S, "m/s")
+    """A speed (m/s) inside `PHYSICAL_RANGES["speed"]`."""
+    from glideplan.validation import check_physical
+
+    return check_physical(name, value, "speed")
 
 
 def check_turn_rate(name: str, value: Any) -> float:
-    """A turn rate (rad/s) inside `TURN_RATE_LIMITS_RAD_S`."""
-    return _check_range(name, value, TURN_RATE_LIMITS_RAD_S, "rad/s")
+    """A turn rate (rad/s) inside `PHYSICAL_RANGES["turn_rate"]`."""
+    from glideplan.validation import check_physical
+
+    return check_physical(name, value, "turn_rate")
 
 
 def check_length(name: str, value: Any) -> float:
-    """A length such as a turn radius (m) inside `LENGTH_LIMITS_M`."""
-    return _check_range(name, value, LENGTH_LIMITS_M, "m")
+    """A turn radius (m) inside `PHYSICAL_RANGES["turn_radius"]`."""
+    from glideplan.validation import check_physical
+
+    return check_physical(name, value, "turn_radius")
 
 
 def check_speed_ratio(name_hi: str, hi: float, name_lo: str, lo: float) -> None:
-    """Require hi / lo <= `MAX_SPEED_RATIO` (e.g. v_max / v_min)."""
-    from glideplan.errors import InvalidParameterError
+    """Require hi / lo inside `PHYSICAL_RANGES["speed_ratio"]` (e.g. v_max / v_min)."""
+    from glideplan.validation import check_physical
 
-    if hi > MAX_SPEED_RATIO * lo:
-        raise InvalidParameterError(
-            name_hi,
-            hi,
-            f"{name_hi}/{name_lo} = {hi / lo:.3g} must be <= {MAX_SPEED_RATIO:g} "
-            "(the supported range)",
-        )
+    check_physical(f"{name_hi}/{name_lo}", hi / lo, "speed_ratio")
 
 
 @dataclass(frozen=True)

@@ -7,51 +7,60 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from glideplan.errors import InvalidParameterError
-from glideplan.validation import check_finite, check_nonnegative
+from glideplan.units import WindEN
+from glideplan.validation import check_finite, check_physical
 from glideplan.vehicles.dubins_car import ConstantSpeedCar
 
 __all__ = ["DubinsCarInWind", "SteadyWind"]
 
 
 class SteadyWind:
-    """Mixin of the vehicles flown in a steady uniform wind of `wind_speed` (m/s) blowing
-    TOWARDS `wind_direction` (rad, counter-clockwise from +x); the dataclass declares both."""
+    """Mixin of the vehicles flown in a steady uniform wind `wind` = (east, north) = (wx, wy)
+    m/s, the direction it blows TOWARDS (`glideplan.units.WindEN`, the library's one wind
+    value); the dataclass declares the field."""
 
-    wind_speed: float
-    wind_direction: float
+    wind: WindEN
 
     def _check_wind(self, speed_limit: float, rule: str) -> None:
-        """Validate the wind fields in place; the wind speed must stay below `speed_limit`."""
-        object.__setattr__(self, "wind_speed", check_nonnegative("wind_speed", self.wind_speed))
-        object.__setattr__(
-            self, "wind_direction", check_finite("wind_direction", self.wind_direction)
-        )
+        """Validate the wind in place; its speed must stay below `speed_limit`."""
+        try:
+            wx, wy = self.wind
+        except (TypeError, ValueError):
+            raise InvalidParameterError(
+                "wind", self.wind, "must be an (east, north) pair in m/s"
+            ) from None
+        w = (check_finite("wind east", wx), check_finite("wind north", wy))
+        object.__setattr__(self, "wind", w)
+        check_physical("wind", math.hypot(*w), "wind_speed")
         if self.wind_speed >= speed_limit:
-            raise InvalidParameterError("wind_speed", self.wind_speed, rule)
+            raise InvalidParameterError("wind", self.wind, f"speed {self.wind_speed:g} m/s {rule}")
 
     @property
-    def wind(self) -> tuple[float, float]:
-        """The wind velocity (wx, wy) in m/s (world frame)."""
-        return (
-            self.wind_speed * math.cos(self.wind_direction),
-            self.wind_speed * math.sin(self.wind_direction),
-        )
+    def wind_speed(self) -> float:
+        """|wind| (m/s)."""
+        return math.hypot(*self.wind)
+
+    def wind_in_frame(self, heading: float) -> WindEN:
+        """The wind in a frame rotated by `heading` (rad, CCW): (wx cos h + wy sin h,
+        -wx sin h + wy cos h)."""
+        c, s = math.cos(heading), math.sin(heading)
+        wx, wy = self.wind
+        return wx * c + wy * s, -wx * s + wy * c
 
 
 @dataclass(frozen=True)
 class DubinsCarInWind(SteadyWind, ConstantSpeedCar):
     """Air- (or water-) relative speed `speed` (m/s), minimum turn radius `turn_radius` (m) in the
-    air frame, and a steady uniform wind of `wind_speed` (m/s) blowing towards `wind_direction`
-    (rad, counter-clockwise from +x). Kinematics (A.4) with no unknown part:
-    x' = v cos psi + w cos psi_w, y' = v sin psi + w sin psi_w, psi' = u, |u| <= v / R0.
-    The wind must be slower than the vehicle (w < v).
+    air frame, and a steady uniform wind `wind` = (wx, wy) (m/s, east and north, blowing
+    TOWARDS). Kinematics (A.4) with no unknown part:
+    x' = v cos psi + wx, y' = v sin psi + wy, psi' = u, |u| <= v / R0.
+    The wind must be slower than the vehicle (|w| < v).
 
-    Supported range (`glideplan.vehicles.base`): speed in [1e-6, 1e6] m/s, turn radius in
-    [1e-6, 1e7] m, u_max = v / R in [1e-6, 1e6] rad/s; anything else is refused.
+    Supported range (`glideplan.validation.PHYSICAL_RANGES`): "speed", "turn_radius",
+    "turn_rate" (u_max = v / R) and "wind_speed"; anything else is refused.
     """
 
-    wind_speed: float = 0.0
-    wind_direction: float = 0.0
+    wind: WindEN = (0.0, 0.0)
 
     model: ClassVar[str] = "dubins_car_in_wind"
     default_objective: ClassVar[str] = "time"

@@ -22,6 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from glideplan.errors import InvalidParameterError
+from glideplan.units import WindEN
 from glideplan.validation import check_positive
 from glideplan.vehicles.base import Vehicle
 from glideplan.vehicles.dubins_car_in_wind import SteadyWind
@@ -32,15 +33,14 @@ __all__ = ["Sailplane", "dg1001m_sailplane"]
 
 @dataclass(frozen=True)
 class Sailplane(SteadyWind, Vehicle):
-    """A sailplane: `polar` (SI), `bank_max` (rad, in (0, 80 deg]), a steady wind of
-    `wind_speed` (m/s) blowing TOWARDS `wind_direction` (rad, CCW from +x: the same
-    convention as `DubinsCarInWind`), optional `turn_rate_max` (rad/s) and `turning_polar`.
+    """A sailplane: `polar` (SI), `bank_max` (rad, in (0, 80 deg]), a steady wind `wind` =
+    (east, north) m/s blowing TOWARDS (`glideplan.units.WindEN`, as `DubinsCarInWind`),
+    optional `turn_rate_max` (rad/s) and `turning_polar`.
     """
 
     polar: SailplanePolar
     bank_max: float = math.radians(45.0)
-    wind_speed: float = 0.0
-    wind_direction: float = 0.0
+    wind: WindEN = (0.0, 0.0)
     turn_rate_max: float | None = None
     turning_polar: bool = True
 
@@ -101,18 +101,17 @@ class Sailplane(SteadyWind, Vehicle):
             "model": self.model,
             "polar": self.polar.to_dict(),
             "bank_max": self.bank_max,
-            "wind_speed": self.wind_speed,
-            "wind_direction": self.wind_direction,
+            "wind": list(self.wind),
             "turn_rate_max": self.turn_rate_max,
             "turning_polar": self.turning_polar,
         }
 
 
-def dg1001m_sailplane(wind_speed: float = 0.0, wind_direction: float = 0.0) -> Sailplane:
+def dg1001m_sailplane(wind: WindEN = (0.0, 0.0)) -> Sailplane:
     """The DG-1001M of section 5.9 (eq. 5.26 in SI, 750 kg, 75.6–160 km/h) as a `Sailplane`.
 
     w = a V^2 + b V + c with a = 2.093e-4 / (km/h)^2, b = -0.0381 / (km/h), c = 2.3146 m/s;
-    the wind of `wind_speed` (m/s) blows towards `wind_direction` (rad, CCW from +x).
+    the wind `wind` = (east, north) m/s blows TOWARDS.
     """
     kmh = 1.0 / 3.6
     polar = SailplanePolar(
@@ -125,4 +124,4 @@ def dg1001m_sailplane(wind_speed: float = 0.0, wind_direction: float = 0.0) -> S
         reference_mass_kg=750.0,
         name="DG-1001M (section 5.9)",
     )
-    return Sailplane(polar, wind_speed=wind_speed, wind_direction=wind_direction)
+    return Sailplane(polar, wind=wind)

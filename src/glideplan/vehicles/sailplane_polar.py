@@ -49,6 +49,7 @@ __all__ = [
     "STALL_FRACTION",
     "SailplanePolar",
     "fit_three_points",
+    "load_polar",
     "polar_from_file",
 ]
 
@@ -202,6 +203,20 @@ class SailplanePolar:
         }
 
 
+def _check_mass_ratio(shown: float, total: float, reference: float) -> None:
+    """The all-up mass `total` (kg) within `PHYSICAL_RANGES["mass_ratio"]` times the polar's
+    reference mass, else refuse `mass` = `shown` naming the range in kg."""
+    from glideplan.validation import PHYSICAL_RANGES
+
+    r = PHYSICAL_RANGES["mass_ratio"]
+    if not r.low <= total / reference <= r.high:
+        raise InvalidParameterError(
+            "mass", shown,
+            f"with the ballast must lie in [{r.low * reference:g}, {r.high * reference:g}] kg, "
+            f"{r.low:g} to {r.high:g} times the polar's reference mass {reference:g} kg "
+            f"({r.reason})")
+
+
 def polar_from_file(
     pf: PolarFile,
     *,
@@ -260,5 +275,21 @@ def polar_from_file(
             "ballast", ballast_l, f"must be <= the glider's maximum {pf.max_ballast_l:g} L"
         )
     mass = pf.mass_kg if mass_kg is None else check_positive("mass", mass_kg)
+    _check_mass_ratio(mass_kg if mass_kg is not None else mass + ballast, mass + ballast,
+                      pf.mass_kg)
     polar = base.at_mass(mass + ballast) if mass + ballast != pf.mass_kg else base
     return polar.with_bugs(bugs_pct) if bugs_pct else polar
+
+
+def load_polar(path: Any, *, mass_kg: float | None = None, ballast_l: float = 0.0,
+               bugs_pct: float = 0.0) -> SailplanePolar:
+    """The SI polar of the `.plr` file at `path` (`read_plr`, then `polar_from_file` with the
+    same mass, ballast and bugs): what `glideplan glide ... --polar FILE` and the explorer
+    read. The mass is checked against `PHYSICAL_RANGES["mass"]` and `["mass_ratio"]`."""
+    from glideplan.sailplane.plr import read_plr
+    from glideplan.validation import check_physical
+
+    if mass_kg is not None:
+        check_physical("mass", mass_kg, "mass")
+    return polar_from_file(read_plr(path), mass_kg=mass_kg, ballast_l=ballast_l,
+                           bugs_pct=bugs_pct)

@@ -92,8 +92,7 @@ def plan_final_glide(
     be shorter than one mesh interval.)"""
     vehicle = problem.vehicle
     assert isinstance(vehicle, Sailplane)
-    psi_w = vehicle.wind_direction - problem.frame.heading
-    wind = (vehicle.wind_speed * math.cos(psi_w), vehicle.wind_speed * math.sin(psi_w))
+    wind = vehicle.wind_in_frame(problem.frame.heading)
     t0 = time.perf_counter()
     synth = _synthesis(problem.goal, vehicle, wind, mc)
     t_synth = time.perf_counter() - t0

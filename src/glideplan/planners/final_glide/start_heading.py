@@ -86,7 +86,6 @@ def best_start_heading(
     times = []
     for h in headings:
         frame = Pose(start[0], start[1], float(h))
-        psi_w = vehicle.wind_direction - float(h)
-        w = (vehicle.wind_speed * math.cos(psi_w), vehicle.wind_speed * math.sin(psi_w))
+        w = vehicle.wind_in_frame(float(h))
         times.append(convected_dubins(goal.relative_to(frame), speed=v, radius=radius, wind=w).time)
     return float(headings[int(np.argmin(times))])
