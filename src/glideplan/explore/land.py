@@ -189,13 +189,15 @@ def on_land(lat: float, lon: float) -> bool:
 
 
 def distance_to_coast_m(lat: float, lon: float, search_deg: float = 0.5) -> float:
-    """The least distance (m, local equirectangular plane, R = 6371 km) from (lat, lon) to
+    """The least distance (m, local equirectangular plane, the one Earth radius) from (lat, lon) to
     the bundled coastline's segments within `search_deg`; inf if none there."""
     _, line = land_shapes(lon - search_deg, lat - search_deg, lon + search_deg, lat + search_deg)
     x, y = line["x"], line["y"]
     if x.size < 2:
         return math.inf
-    r = 6_371_000.0 * math.pi / 180.0
+    from glideplan.geodesy import EARTH_RADIUS_M
+
+    r = EARTH_RADIUS_M * math.pi / 180.0
     k = math.cos(math.radians(lat))
     ax, ay, bx, by = x[:-1], y[:-1], x[1:], y[1:]
     ok = np.isfinite(ax) & np.isfinite(bx)
