@@ -422,7 +422,7 @@ class _Expected:
             dx = math.radians(lon - self.at[1]) * R_EARTH * math.cos(math.radians(lat))
             w = math.exp(-0.5 * (dx * dx + dy * dy) / (L * L)
                          - max(t - self.t_fix, 0.0) / max(self.s.bias_time_s, 1e-9))
-            u, v = float(u) + b[0] * w, float(v) + b[1] * w
+            return float(u) + b[0] * w, float(v) + b[1] * w
         return u, v
 
 
