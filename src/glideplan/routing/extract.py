@@ -313,7 +313,7 @@ def tracking_candidate(problem: Any, rg: Any, ref: Any, gain_s: float | None = N
     flight that ends farther than `goal_m` from the goal (the front's arrival is a little
     early: the vehicle lags its reference) goes on, heading at the goal with the crab angle
     for the field's current (`_home`), for at most a quarter of the reference's duration."""
-    from glideplan.routing.phases import Candidate
+    from glideplan.routing.phases import _held
 
     R = EARTH_RADIUS_M
     V = problem.speed
@@ -369,9 +369,11 @@ def tracking_candidate(problem: Any, rg: Any, ref: Any, gain_s: float | None = N
         _home(problem, rhs, times, las, los, chis, goal_m, 0.25 * float(sub[-1] - sub[0]),
               max(float(np.median(np.diff(sub))), 60.0))
     chis.append(chis[-1])
-    return Candidate("characteristic-tracked", np.asarray(times), np.degrees(las),
-                     np.degrees(los), np.unwrap(np.array(chis)), True,
-                     float(times[-1] - problem.t0))
+    # each step's heading held: published as controls linear in time between samples with
+    # a millisecond switch at each sample (phases._held), so that the route's track, flown
+    # as published, is the flight that was verified
+    return _held("characteristic-tracked", np.asarray(times), np.degrees(las),
+                 np.degrees(los), np.unwrap(np.array(chis)), problem.t0)
 
 
 def _home(problem: Any, rhs: Any, times: list[float], las: list[float], los: list[float],
