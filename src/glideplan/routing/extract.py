@@ -256,10 +256,11 @@ def swept(problem: Any, rg: Any, t_end: float) -> bool:
 
 
 def rescue(problem: Any, rg: Any, fo: Any, tolerance: float, tried: bool,
-           track: bool = True) -> tuple[Any, Any] | None:
+           track: bool = True, home: bool = False) -> tuple[Any, Any] | None:
     """A verified route from the characteristic when the other routes failed: its own
     controls (unless `tried`), then (with `track`, a refinement) flown closed-loop
-    (`tracking_candidate`); (candidate, flown) or None."""
+    (`tracking_candidate`), then (with `home`: routes without refinement) flown closed-loop
+    and homing on the goal past the reference's end; (candidate, flown) or None."""
     from glideplan.routing.phases import flown_ok, verify
 
     ref = characteristic_candidate(problem, rg, fo)
@@ -271,12 +272,13 @@ def rescue(problem: Any, rg: Any, fo: Any, tolerance: float, tried: bool,
             return ref, flown
     if not track:
         return None
-    tracked = tracking_candidate(problem, rg, ref, goal_m=0.5 * tolerance)
-    if tracked is None:
-        return None
-    flown = verify(problem, rg, tracked)
-    if flown_ok(flown, tolerance):
-        return tracked, flown
+    for goal_m in (None, 0.5 * tolerance) if home else (None,):
+        tracked = tracking_candidate(problem, rg, ref, goal_m=goal_m)
+        if tracked is None:
+            return None
+        flown = verify(problem, rg, tracked)
+        if flown_ok(flown, tolerance):
+            return tracked, flown
     return None
 
 

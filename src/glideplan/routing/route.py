@@ -216,7 +216,8 @@ def route(
     # refine=False: the grid route's legs only (a coarse, quick route): when they miss, the
     # characteristic tracked in closed loop (its flown controls) -- also when swept
     if not ok and (not strong or not settings.refine):
-        rescued = extract.rescue(problem, rg, fo, tolerance, tried=strong)
+        rescued = extract.rescue(problem, rg, fo, tolerance, tried=strong,
+                                 home=not settings.refine)
         lap("rescue")
         if rescued is not None and not settings.refine and \
                 rescued[0].duration > grid_T * (1 + RESCUE_TIME_TOLERANCE):
