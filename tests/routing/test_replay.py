@@ -199,3 +199,31 @@ def test_scalar_gridded_equals_scipy_interpolation(twin):
     assert math.isnan(float(fast.velocity(100.0, float(fld.lat[10]), float(fld.lon[10]))[0]))
     with pytest.raises(InvalidParameterError):
         fast.velocity(100.0, 0.0, 0.0)
+
+
+def test_lateness_and_front_schedule_closed_forms():
+    """`_lateness`: a plan due east along the equator at 1 m/s, the vehicle 3.6 km short of
+    where the plan is at 2 h -> 1 h late (to 1 s: the local plane at the equator is exact to
+    1e-6 over 10 km); `_front_schedule`: an arrival map linear in longitude is interpolated
+    exactly at the track's vertices, ending at the front's arrival."""
+    from types import SimpleNamespace
+
+    from glideplan.routing.replay import Plan, _Flyer, _front_schedule, _lateness
+
+    k = math.radians(1.0) * 6_371_000.0  # metres per degree at the equator
+    t = np.linspace(0.0, 10_000.0, 11)
+    plan = Plan(0.0, "x", "solved", 10_000.0, t, 0 * t, t / k, 0 * t + math.pi / 2)
+    m = Mission((0.0, 0.0), (0.0, 0.2), 1.0, np.datetime64("2026-01-01"))
+    fl = _Flyer(None, m, 0.0, 1e6, 600.0)  # type: ignore[arg-type]
+    fl.t.append(7200.0)
+    fl.lat.append(0.0)
+    fl.lon.append(3600.0 / k)
+    assert _lateness(plan, fl) == pytest.approx(3600.0, abs=1.0)
+    lon = np.linspace(0.0, 1.0, 11)
+    front = SimpleNamespace(lat=np.array([-1.0, 1.0]), lon=lon,
+                            arrival=np.tile(lon * 36_000.0, (2, 1)))
+    r = SimpleNamespace(front=front, grid_duration_s=36_000.0,
+                        lat=np.zeros(5), lon=np.array([0.0, 0.25, 0.5, 0.7, 1.0]))
+    sched, dur = _front_schedule(r, np.zeros(5), 1e9)
+    assert dur == 36_000.0
+    assert sched == pytest.approx([0.0, 9_000.0, 18_000.0, 25_200.0, 36_000.0], abs=1e-6)

@@ -93,3 +93,10 @@ def test_study_replay_cli_resumes_and_reports(twin, run_cli, cli_error, tmp_path
                    "x,29.5,-60.5,30,-60,2026-03-01T00:00Z,0.5,10\n")
     line = cli_error(*args[:6], "--missions", str(bad), "--out", str(tmp_path / "t"))
     assert "bad.csv" in line and "goal_radius_m" in line
+
+
+def test_route_replay_help_reads_as_documented(run_cli):
+    """`route replay --help` names the command as the user types it (was `route-replay`)."""
+    code, out, _ = run_cli("route", "replay", "--help")
+    assert code == 0
+    assert "glideplan route replay" in out and "route-replay" not in out

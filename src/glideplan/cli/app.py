@@ -216,6 +216,7 @@ def _click_command() -> Any:
     if key not in _BUILT:
         command = _polish(typer.main.get_command(app))
         _coerce.fast_coercion(command)
+        _alias_names(command)
         _BUILT[key] = command
     return _BUILT[key]
 
@@ -233,6 +234,24 @@ def _subcommand(args: list[str]) -> list[str]:
         if name is not None:
             return [*args[: words[0]], name, *args[words[1] + 1 :]]
     return args
+
+
+def _alias_names(root: Any) -> None:
+    """Usage and errors of a hidden `route-replay` read `glideplan route replay` (the name the
+    user typed): its context is named with the two words."""
+    for words, name in _SUBCOMMANDS.items():
+        sub = getattr(root, "commands", {}).get(name)
+        if sub is None:
+            continue
+        make = sub.make_context
+
+        def make_context(info_name: str | None, args: list[str], parent: Any = None,
+                         _make: Any = make, _name: str = name, _words: str = " ".join(words),
+                         **extra: Any) -> Any:
+            return _make(_words if info_name == _name else info_name, args, parent=parent,
+                         **extra)
+
+        sub.make_context = make_context
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -256,10 +256,11 @@ def swept(problem: Any, rg: Any, t_end: float) -> bool:
 
 
 def rescue(problem: Any, rg: Any, fo: Any, tolerance: float, tried: bool,
-           track: bool = True) -> tuple[Any, Any] | None:
+           track: bool = True, home: bool = False) -> tuple[Any, Any] | None:
     """A verified route from the characteristic when the other routes failed: its own
     controls (unless `tried`), then (with `track`, a refinement) flown closed-loop
-    (`tracking_candidate`); (candidate, flown) or None."""
+    (`tracking_candidate`), then (with `home`: routes without refinement) flown closed-loop
+    and homing on the goal past the reference's end; (candidate, flown) or None."""
     from glideplan.routing.phases import flown_ok, verify
 
     ref = characteristic_candidate(problem, rg, fo)
@@ -271,12 +272,13 @@ def rescue(problem: Any, rg: Any, fo: Any, tolerance: float, tried: bool,
             return ref, flown
     if not track:
         return None
-    tracked = tracking_candidate(problem, rg, ref)
-    if tracked is None:
-        return None
-    flown = verify(problem, rg, tracked)
-    if flown_ok(flown, tolerance):
-        return tracked, flown
+    for goal_m in (None, 0.5 * tolerance) if home else (None,):
+        tracked = tracking_candidate(problem, rg, ref, goal_m=goal_m)
+        if tracked is None:
+            return None
+        flown = verify(problem, rg, tracked)
+        if flown_ok(flown, tolerance):
+            return tracked, flown
     return None
 
 
@@ -304,12 +306,16 @@ def characteristic_candidate(problem: Any, rg: Any, fo: Any) -> Any:
     return Candidate("characteristic", t, lat, lon, chi, False, float(t[-1] - problem.t0))
 
 
-def tracking_candidate(problem: Any, rg: Any, ref: Any, gain_s: float | None = None) -> Any:
+def tracking_candidate(problem: Any, rg: Any, ref: Any, gain_s: float | None = None,
+                       goal_m: float | None = None) -> Any:
     """The reference route flown closed-loop through the field (RK4 at the reference's own
     samples): water heading along V n_ref + (x_ref(t) - x) / tau, scaled to the speed V
     (tau = `gain_s`, default one cell's crossing at V); its flown headings and track as a
-    Candidate ("characteristic-tracked"), or None where the field is NaN."""
-    from glideplan.routing.phases import Candidate
+    Candidate ("characteristic-tracked"), or None where the field is NaN. With `goal_m`, a
+    flight that ends farther than `goal_m` from the goal (the front's arrival is a little
+    early: the vehicle lags its reference) goes on, heading at the goal with the crab angle
+    for the field's current (`_home`), for at most a quarter of the reference's duration."""
+    from glideplan.routing.phases import _held
 
     R = EARTH_RADIUS_M
     V = problem.speed
@@ -360,6 +366,53 @@ def tracking_candidate(problem: Any, rg: Any, ref: Any, gain_s: float | None = N
             los.append(lo)
     except InvalidParameterError:  # the field refused a point (off its extent or time)
         return None
+    times = list(sub)
+    if goal_m is not None:
+        _home(problem, rhs, times, las, los, chis, goal_m, 0.25 * float(sub[-1] - sub[0]),
+              max(float(np.median(np.diff(sub))), 60.0))
     chis.append(chis[-1])
-    return Candidate("characteristic-tracked", sub, np.degrees(las), np.degrees(los),
-                     np.unwrap(np.array(chis)), True, float(sub[-1] - problem.t0))
+    # each step's heading held: published as controls linear in time between samples with
+    # a millisecond switch at each sample (phases._held), so that the route's track, flown
+    # as published, is the flight that was verified
+    return _held("characteristic-tracked", np.asarray(times), np.degrees(las),
+                 np.degrees(los), np.unwrap(np.array(chis)), problem.t0)
+
+
+def _home(problem: Any, rhs: Any, times: list[float], las: list[float], los: list[float],
+          chis: list[float], goal_m: float, extra_s: float, dt: float) -> None:
+    """Extend a flight (lists in place; radians) at the goal until within `goal_m` of it or
+    `extra_s` more: compass heading = the crab angle along the bearing to the goal for the
+    current there (`steering.crab`), RK4 steps of at most `dt`, the last shortened to the
+    closest approach (distance d <= V h for the step)."""
+    from glideplan.routing.steering import crab
+
+    R = EARTH_RADIUS_M
+    V = problem.speed
+    gla, glo = math.radians(problem.goal[0]), math.radians(problem.goal[1])
+    t_stop = times[-1] + extra_s
+    fld = problem.field_
+    try:
+        while times[-1] < t_stop:
+            la, lo, s0 = las[-1], los[-1], times[-1]
+            east = R * math.cos(la) * (glo - lo)
+            north = R * (gla - la)
+            d = math.hypot(east, north)
+            if d <= goal_m:
+                return
+            u, v = fld.velocity(s0, math.degrees(la), math.degrees(lo))
+            ch = crab(east, north, float(np.ravel(u)[0]), float(np.ravel(v)[0]), V)
+            h = min(dt, t_stop - s0, max(d / V, 1.0))
+            k1 = rhs(s0, la, lo, ch)
+            k2 = None if k1 is None else rhs(s0 + h / 2, la + h / 2 * k1[0],
+                                             lo + h / 2 * k1[1], ch)
+            k3 = None if k2 is None else rhs(s0 + h / 2, la + h / 2 * k2[0],
+                                             lo + h / 2 * k2[1], ch)
+            k4 = None if k3 is None else rhs(s0 + h, la + h * k3[0], lo + h * k3[1], ch)
+            if k1 is None or k2 is None or k3 is None or k4 is None:
+                return
+            chis.append(ch)
+            las.append(la + h / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0]))
+            los.append(lo + h / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1]))
+            times.append(s0 + h)
+    except InvalidParameterError:  # past the field's extent or time: stop where it was
+        return

@@ -93,7 +93,12 @@ class ReplaySettings:
     for the current the vehicle expects: the plan's field, corrected by its measurement) or
     "headings" (the plan's headings in time, open loop); switch_margin: a new plan replaces
     the one being flown only when it is faster, on the new forecast, than the rest of the old
-    path by this fraction (0: always)."""
+    path by this fraction (0: always); crab_fixes: the crab angle's current is corrected at
+    each fix by the current the vehicle measured since the previous one (as at planning);
+    late_replan_s: the closed loop also replans (on the newest forecast, with the new
+    measurement) at a fix where the vehicle is this far behind its plan's schedule (None:
+    never). Both off by default: on the QG twin (0.3 m/s) they gained on one mission set
+    (90.7 -> 94.4 % of feasible) and lost on another (82.4 -> 76.5 %)."""
 
     step_s: float = 600.0
     fix_every_s: float = 3 * 3600.0
@@ -104,6 +109,8 @@ class ReplaySettings:
     follow: str = "track"
     lookahead_m: float = 6000.0
     switch_margin: float = 0.03
+    crab_fixes: bool = False
+    late_replan_s: float | None = None
 
     def __post_init__(self) -> None:
         if self.follow not in ("track", "headings"):
@@ -331,32 +338,110 @@ def _plan(fld: FlowField, pos: tuple[float, float], goal: tuple[float, float], s
     if r.status.value == "unreachable" or not r.track.size:
         return Plan(float(t - t0), issued, r.status.value, None, empty, empty, empty, empty)
     chi = math.pi / 2 - np.asarray(r.track.heading, dtype=float)
-    return Plan(float(t - t0), issued, r.status.value, float(r.duration_s or 0.0),
-                np.asarray(r.track.t) + t - t0,
+    times, dur = np.asarray(r.track.t, dtype=float), float(r.duration_s or 0.0)
+    if r.status.value != "solved":  # its legs' times are not flown ones: the front's
+        times, dur = _front_schedule(r, times, dur)
+    return Plan(float(t - t0), issued, r.status.value, dur, times + t - t0,
                 r.lat.copy(), r.lon.copy(), chi)
 
 
+def _front_schedule(r: Any, times: FloatArray, dur: float) -> tuple[FloatArray, float]:
+    """A route whose controls did not verify keeps its path (the front's characteristic) but
+    takes the front's schedule: the arrival map T(lat, lon) interpolated (bilinear) at its
+    vertices, made non-decreasing, ending at the front's arrival (grid_duration_s). Its legs'
+    own times (each leg held with its crab angle) are wrong where a leg heads into a current
+    faster than the vehicle (measured on the QG twin: 2,160 h for a 111 h front)."""
+    fm, T = r.front, r.grid_duration_s
+    if fm is None or T is None or not math.isfinite(T) or r.lat.size < 2:
+        return times, dur
+    from scipy.interpolate import RegularGridInterpolator
+
+    arr = np.where(np.isfinite(fm.arrival), fm.arrival, np.nan)
+    interp = RegularGridInterpolator((fm.lat, fm.lon), arr, bounds_error=False)
+    sched = interp(np.column_stack([r.lat, r.lon]))
+    if not np.all(np.isfinite(sched)):
+        return times, dur
+    sched = np.clip(np.maximum.accumulate(sched - sched[0]), 0.0, T)
+    sched[-1] = T
+    return sched, float(T)
+
+
 def _fly_plan(fl: _Flyer, plan: Plan, t_stop: float, s: ReplaySettings,
-              expected: FlowField | None = None) -> bool:
-    """Fly the plan until t_stop: its track (crabbing for the `expected` current) or its
-    headings (then at the goal); without a plan, at the goal."""
+              expected: FlowField | None = None, late_s: float | None = None) -> bool:
+    """Fly the plan until t_stop: its track (crabbing for the `expected` current, corrected
+    at each fix by the current the vehicle measured) or its headings (then at the goal);
+    without a plan, at the goal. With `late_s`, stop early (True) at the first fix where the
+    vehicle is more than `late_s` behind the plan's schedule (`_lateness`)."""
     if not plan.t.size:
         return fl.fly(t_stop, _naive(fl.m.goal))
-    if s.follow == "track":
-        cur = None if expected is None else _expected(expected)
-        return fl.fly(t_stop, _tracker(plan, fl.m.goal, fl.m.speed, cur, s.lookahead_m))
-    return fl.fly(t_stop, _follow(plan, fl.t0, fl.m.goal), plan.t + fl.t0)
+    if s.follow != "track":
+        return fl.fly(t_stop, _follow(plan, fl.t0, fl.m.goal), plan.t + fl.t0)
+    cur = None if expected is None else _Expected(expected, s)
+    steer = _tracker(plan, fl.m.goal, fl.m.speed, cur, s.lookahead_m)
+    if cur is None or not s.crab_fixes:
+        return fl.fly(t_stop, steer)
+    fix = s.fix_every_s
+    while True:  # a fix every `fix` s after departure: the crab's current is corrected there
+        t = fl.t[-1]
+        if t > fl.t0 + 60.0:
+            cur.update(fl)
+            if late_s is not None and _lateness(plan, fl) > late_s:
+                return True
+        seg = min(t_stop, fl.t0 + (math.floor((t - fl.t0) / fix + 1e-9) + 1) * fix)
+        if not fl.fly(seg, steer) or seg >= t_stop - 1e-9:
+            return fl.status is None and fl.t[-1] < fl.t_end - 1e-9
 
 
-def _expected(fld: FlowField) -> Callable[[float, float, float], tuple[Any, Any]]:
-    """The current the vehicle expects: `fld` at (t clipped into its span, lat, lon)."""
-    span = fld.time_span
+def _lateness(plan: Plan, fl: _Flyer) -> float:
+    """How far (s) the vehicle is behind the plan's schedule: now minus the plan's time at
+    the point of its track nearest the vehicle (segments in a local plane)."""
+    lat, lon = fl.lat[-1], fl.lon[-1]
+    ky = math.radians(1.0) * R_EARTH
+    kx = ky * math.cos(math.radians(lat))
+    x, y = (plan.lon - lon) * kx, (plan.lat - lat) * ky
+    if x.size < 2:
+        return 0.0
+    dx, dy = np.diff(x), np.diff(y)
+    f = np.clip(-(x[:-1] * dx + y[:-1] * dy) / np.maximum(dx * dx + dy * dy, 1e-9), 0.0, 1.0)
+    d2 = (x[:-1] + f * dx) ** 2 + (y[:-1] + f * dy) ** 2
+    j = int(np.argmin(d2))
+    t_plan = plan.t[j] + f[j] * (plan.t[j + 1] - plan.t[j])
+    return float(fl.t[-1] - fl.t0 - t_plan)
 
-    def current(t: float, lat: float, lon: float) -> tuple[Any, Any]:
+
+class _Expected:
+    """The current the vehicle expects at (t, lat, lon): the field it steers by (t clipped
+    into its span), plus the bias b it measured at its last fix (measured current minus the
+    field's along the same segment), fading as at planning:
+    c = c_fld + b exp(-d^2 / 2L^2) exp(-(t - t_fix) / tau)."""
+
+    def __init__(self, fld: FlowField, s: ReplaySettings) -> None:
+        self.fld, self.s = fld, s
+        self.span = fld.time_span
+        self.bias = (0.0, 0.0)
+        self.at = (0.0, 0.0)
+        self.t_fix = 0.0
+
+    def update(self, fl: _Flyer) -> None:
+        meas = fl.measured_current(self.s.fix_every_s)
+        if meas is None:
+            return
+        fu, fv = mean_current(self.fld, meas[2], meas[3], meas[4])
+        self.bias = (meas[0] - fu, meas[1] - fv)
+        self.at, self.t_fix = (fl.lat[-1], fl.lon[-1]), fl.t[-1]
+
+    def __call__(self, t: float, lat: float, lon: float) -> tuple[Any, Any]:
+        span = self.span
         tt = t if span is None else min(max(t, span[0]), span[1])
-        return fld.velocity(tt, lat, lon)
-
-    return current
+        u, v = self.fld.velocity(tt, lat, lon)
+        b, L = self.bias, self.s.bias_length_m
+        if (b[0] or b[1]) and L > 0:
+            dy = math.radians(lat - self.at[0]) * R_EARTH
+            dx = math.radians(lon - self.at[1]) * R_EARTH * math.cos(math.radians(lat))
+            w = math.exp(-0.5 * (dx * dx + dy * dy) / (L * L)
+                         - max(t - self.t_fix, 0.0) / max(self.s.bias_time_s, 1e-9))
+            return float(u) + b[0] * w, float(v) + b[1] * w
+        return u, v
 
 
 def _events(forecasts: list[Forecast], epoch: np.datetime64, t0: float, t_end: float,
@@ -409,7 +494,7 @@ def _closed_loop(truth: FlowField, forecasts: list[Forecast], m: Mission, t0: fl
             plan_end = t + plan.planned_duration_s
             if plan_end < nxt - 1.0 and fl.goal_distance(*pos) > 4 * m.goal_radius_m:
                 nxt = max(plan_end, t + 3600.0)  # the plan ran out before the goal: replan
-        if not _fly_plan(fl, plan, nxt, s, fld):
+        if not _fly_plan(fl, plan, nxt, s, fld, s.late_replan_s):
             break
         t = fl.t[-1]
     return fl.flight(tuple(plans)), plans[0], first_field
