@@ -55,13 +55,8 @@ typecheck: $(STAMP)
 	$(BIN)/mypy src
 
 # Two pytest workers keep both cores busy: numba's kernels run single-threaded inside them.
-# mypy runs beside them (one process, cold ~40 s: it fills the workers' idle moments); its
-# report is printed after pytest's and either failing fails the target.
-test: $(STAMP) test-setup lint
-	@out=$$(mktemp); $(BIN)/mypy src >$$out 2>&1 & mypy=$$!; \
-	MPLBACKEND=Agg NUMBA_NUM_THREADS=1 $(BIN)/python -m pytest -n 2 -q -m "not heavy"; rc=$$?; \
-	wait $$mypy; m=$$?; echo "mypy src:"; cat $$out; rm -f $$out; \
-	[ $$rc -eq 0 ] && [ $$m -eq 0 ]
+test: $(STAMP) test-setup lint typecheck
+	MPLBACKEND=Agg NUMBA_NUM_THREADS=1 $(BIN)/python -m pytest -n 2 -q -m "not heavy"
 
 bench: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/python benchmarks/run_all.py
