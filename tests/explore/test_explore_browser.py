@@ -639,6 +639,7 @@ def test_reach_map_counts_reachable_landables(server: str, browser_context: Any)
         page.close()
 
 
+@pytest.mark.heavy  # 6 s: make validate
 def test_closing_a_tab_mid_update_logs_nothing(
     server: str, browser_context: Any, caplog: pytest.LogCaptureFixture
 ):

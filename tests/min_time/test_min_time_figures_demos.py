@@ -24,6 +24,7 @@ def test_quick_figures(tmp_path, fid):
         assert report.rows[-1].ours == 0  # no CCC path to this goal
 
 
+@pytest.mark.heavy  # 9 s: the whole table 4.3 reproduction; make validate runs it
 def test_table_4_3_report(tmp_path):
     load_all()
     report = run_figure(get_figure("table4.3"), tmp_path)
