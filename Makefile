@@ -13,7 +13,9 @@ EXTRAS := all,test,bench
 $(STAMP): pyproject.toml $(LOCK)
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -c $(LOCK) -e ".[$(EXTRAS)]"
+	# --no-compile: Python compiles what is imported on first use; compiling every installed
+	# module up front costs ~35 s of a fresh install (measured 61 s -> 27 s)
+	$(BIN)/python -m pip install --quiet --no-compile -c $(LOCK) -e ".[$(EXTRAS)]"
 	touch $(STAMP)
 
 install: $(STAMP)
