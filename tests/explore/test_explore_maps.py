@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import os
 import pathlib
-import socket
 import time
 from collections.abc import Iterator
 from typing import Any
@@ -47,25 +46,6 @@ PAN_JS = """(dx) => { for (const d of Bokeh.documents) for (const m of d.all_mod
     if (m.x_range && m.renderers && m.renderers.some(r => r.name === 'gp-land')) {
       m.x_range.setv({start: m.x_range.start + dx, end: m.x_range.end + dx}); return true; }
   return false; }"""
-
-
-@pytest.fixture(scope="module")
-def server() -> Iterator[str]:
-    from glideplan.explore.server import serve
-
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = int(s.getsockname()[1])
-    srv = serve(port, "127.0.0.1", show=False, threaded=True)
-    deadline = time.monotonic() + 20
-    while time.monotonic() < deadline:
-        try:
-            socket.create_connection(("127.0.0.1", port), timeout=0.5).close()
-            break
-        except OSError:
-            time.sleep(0.1)
-    yield f"http://127.0.0.1:{port}"
-    srv.stop()
 
 
 @pytest.fixture(scope="module")

@@ -11,7 +11,6 @@ count is `glide_reach` (as in test_explore_browser.py).
 from __future__ import annotations
 
 import os
-import socket
 import time
 from collections.abc import Iterator
 from typing import Any
@@ -40,25 +39,6 @@ ANSWER_JS = """() => { const out = [];
     if (m.name === 'gp-answer') { const k = Object.keys(m.data)[0];
       out.push(k ? m.data[k].length : 0); }
   return out; }"""
-
-
-@pytest.fixture(scope="module")
-def server() -> Iterator[str]:
-    from glideplan.explore.server import serve
-
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = int(s.getsockname()[1])
-    srv = serve(port, "127.0.0.1", show=False, threaded=True)
-    deadline = time.monotonic() + 20
-    while time.monotonic() < deadline:
-        try:
-            socket.create_connection(("127.0.0.1", port), timeout=0.5).close()
-            break
-        except OSError:
-            time.sleep(0.1)
-    yield f"http://127.0.0.1:{port}"
-    srv.stop()
 
 
 @pytest.fixture(scope="module")
