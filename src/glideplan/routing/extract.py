@@ -338,8 +338,7 @@ def tracking_candidate(problem: Any, rg: Any, ref: Any, gain_s: float | None = N
         return math.atan2(we, wn) if (we or wn) else ch
 
     def rhs(s: float, la: float, lo: float, ch: float) -> tuple[float, float] | None:
-        u, v = fld.velocity(s, math.degrees(la), math.degrees(lo))
-        uu, vv = float(np.ravel(u)[0]), float(np.ravel(v)[0])
+        uu, vv = fld.velocity_at(s, math.degrees(la), math.degrees(lo))
         if not (math.isfinite(uu) and math.isfinite(vv)):
             return None
         return (V * math.cos(ch) + vv) / R, (V * math.sin(ch) + uu) / (R * max(math.cos(la),
@@ -399,8 +398,8 @@ def _home(problem: Any, rhs: Any, times: list[float], las: list[float], los: lis
             d = math.hypot(east, north)
             if d <= goal_m:
                 return
-            u, v = fld.velocity(s0, math.degrees(la), math.degrees(lo))
-            ch = crab(east, north, float(np.ravel(u)[0]), float(np.ravel(v)[0]), V)
+            u, v = fld.velocity_at(s0, math.degrees(la), math.degrees(lo))
+            ch = crab(east, north, u, v, V)
             h = min(dt, t_stop - s0, max(d / V, 1.0))
             k1 = rhs(s0, la, lo, ch)
             k2 = None if k1 is None else rhs(s0 + h / 2, la + h / 2 * k1[0],

@@ -99,10 +99,9 @@ class _OffField(Exception):
 
 def _current(field_: FlowField, t: float, lat: float, lon: float) -> tuple[float, float]:
     try:
-        u, v = field_.velocity(t, lat, lon)
+        return field_.velocity_at(t, lat, lon)
     except InvalidParameterError as exc:
         raise _OffField(str(exc)) from None
-    return float(u), float(v)
 
 
 def fly_headings(
