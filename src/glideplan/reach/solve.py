@@ -263,12 +263,7 @@ def glide_reach(
     points = _landable_points(problem, fine, crop, search, clear_h, arrive_h)
     timings["paths_s"] = time.perf_counter() - t
     t = time.perf_counter()
-    z = np.asarray(fine.z, dtype=float)
-    hx = EARTH_RADIUS_M * np.cos(np.radians(fine.lat)) * math.radians(fine.dlon)
-    hy = EARTH_RADIUS_M * math.radians(fine.dlat)
-    margin = clearance_margin(search.loss, z, problem.start[2], arrive_h, hx, hy, glide)
-    burn_in_points(margin, fine, points)
-    polys = footprint_polygons(fine.lat, fine.lon, margin)
+    z, margin, polys = _footprint(fine, search, problem, arrive_h, points)
     timings["footprint_s"] = time.perf_counter() - t
     timings["total_s"] = time.perf_counter() - t_all
     spacing = max(fine.spacing_m)
@@ -289,6 +284,18 @@ def glide_reach(
         stop_reason="the search settled every node it can reach", front_steps=search.pops,
         timings=timings, warnings=tuple(warnings), terrain_clearance=clear_h,
         arrival_height=arrive_h)
+
+
+def _footprint(fine: Terrain, search: Any, problem: ReachProblem, arrive_h: float,
+               points: list[Any]) -> tuple[np.ndarray, np.ndarray, Any]:
+    """The terrain heights (m), the clearance margin of every node (m; the landables' paths
+    burnt in) and the footprint's polygons."""
+    z = np.asarray(fine.z, dtype=float)
+    hx = EARTH_RADIUS_M * np.cos(np.radians(fine.lat)) * math.radians(fine.dlon)
+    hy = EARTH_RADIUS_M * math.radians(fine.dlat)
+    margin = clearance_margin(search.loss, z, problem.start[2], arrive_h, hx, hy, problem.glide)
+    burn_in_points(margin, fine, points)
+    return z, margin, footprint_polygons(fine.lat, fine.lon, margin)
 
 
 def _read_inputs(terrain: Terrain | Sequence[str | pathlib.Path],
