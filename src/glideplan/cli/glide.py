@@ -284,12 +284,7 @@ def glide_final(
     ] = None,
 ) -> None:
     """Altitude needed to reach a goal: straight final glide, or to an arrival heading."""
-    from glideplan.cli.common import (
-        check_figure_file,
-        check_output_file,
-        file_flag,
-        flag_names,
-    )
+    from glideplan.cli.common import check_figure_file, check_output_file, flag_names
     from glideplan.cli.emit import emit
     from glideplan.sailplane.request import final_glide
     from glideplan.units import wind_from_compass
@@ -325,6 +320,17 @@ def glide_final(
             start_heading=start_heading,
             bank_max=bank_max,
         )
+    exports = _write_task(cup, tsk, start, goal, p.name)
+    emit(result, json=json_out, plot=plot, exports=exports or None, summary=_final_summary,
+         what="final glide")
+
+
+def _write_task(cup: pathlib.Path | None, tsk: pathlib.Path | None,
+                start: tuple[float, float, float], goal: tuple[float, float, float],
+                polar_name: str) -> dict[str, pathlib.Path]:
+    """The start-goal task as SeeYou .cup (--cup) and XCSoar .tsk (--tsk); the files written."""
+    from glideplan.cli.common import file_flag
+
     exports: dict[str, pathlib.Path] = {}
     if cup is not None or tsk is not None:
         from glideplan.sailplane import TaskPoint, write_cup_task, write_tsk_task
@@ -337,12 +343,11 @@ def glide_final(
                 continue
             with file_flag(flag, path):
                 if flag == "--cup":
-                    write_cup_task(path, a, b, description=f"final glide {p.name}")
+                    write_cup_task(path, a, b, description=f"final glide {polar_name}")
                 else:
                     write_tsk_task(path, a, b)
             exports[flag[2:]] = path
-    emit(result, json=json_out, plot=plot, exports=exports or None, summary=_final_summary,
-         what="final glide")
+    return exports
 
 
 def _final_summary(result: Any) -> None:

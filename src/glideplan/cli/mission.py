@@ -163,9 +163,9 @@ def mission_plan(
     """
     from glideplan.cli.emit import emit
     from glideplan.cli.route import check_depth_range, parse_depart
-    from glideplan.formats import ExportOptions, export_mission, parse_formats, read_route
+    from glideplan.formats import ExportOptions, parse_formats, read_route
     from glideplan.formats.export import skipped_formats, skipped_warning
-    from glideplan.missions import plan_mission, straight_leg_list
+    from glideplan.missions import plan_mission
     from glideplan.units import wind_from_compass
 
     plot = check_figure_file(plot)
@@ -178,16 +178,8 @@ def mission_plan(
         raise InvalidParameterError("--depth-range", depth_range, "applies with --field only")
     check_depth_range(depth_range)
     when = parse_depart(depart)
-    if field is not None and wind is not None:
-        raise InvalidParameterError("--wind", wind, "give either --wind or --field, not both")
-    if field is not None and objective not in (None, "time"):
-        raise InvalidParameterError("--objective", objective, "with --field only time")
-    check_mission_inputs(speed=speed, radius=radius, wind=wind, headings=headings,
-                         acceptance_radius=acceptance_radius, max_deviation=max_deviation,
-                         altitude=altitude, depth_range=depth_range)
-    if wind is not None and wind[0] >= speed:
-        raise InvalidParameterError(
-            "--wind", wind[0], f"speed must be below the vehicle's speed {speed:g} m/s")
+    _check_plan_options(field, wind, objective, speed, radius, headings, acceptance_radius,
+                        max_deviation, altitude, depth_range)
     obj = objective or ("time" if wind is not None else "length")
     with flag_names(**{"acceptance-radius": "--acceptance-radius", "altitude": "--altitude",
                        "max-deviation": "--max-deviation", "goto-number": "--goto-number",
@@ -223,19 +215,48 @@ def mission_plan(
         mission = replace(mission, warnings=(*mission.warnings, skipped_warning(skipped)))
     files: dict[str, Any] = {}
     if mission.ok:  # a failed mission has no track to export or draw
-        with flag_names(**{"max-deviation": "--max-deviation", "goto-number": "--goto-number",
-                           "max-goto-waypoints": "--max-goto-waypoints"}):
-            if export is not None:
-                files, legs = export_mission(mission, export, fmts, options)
-            else:
-                legs = straight_leg_list(mission, options.deviation)
-        mission = replace(mission, straight_legs=legs)
+        mission, files = _export(mission, export, fmts, options)
     elif plot is not None:
         print_warnings([f"no track to draw: {plot} not written"])
         plot = None
     # the plan's JSON is the library's (`to_dict`); emit adds only the files written
     emit(mission, json=json_out, plot=plot, exports=files, summary=_print_summary,
          what="mission")
+
+
+def _check_plan_options(field: Any, wind: tuple[float, float] | None, objective: str | None,
+                        speed: float, radius: float, headings: int | None,
+                        acceptance_radius: float, max_deviation: float | None,
+                        altitude: float, depth_range: Any) -> None:
+    """The options that go together (--field with neither --wind nor a length objective) and
+    the physical ranges, naming the options."""
+    if field is not None and wind is not None:
+        raise InvalidParameterError("--wind", wind, "give either --wind or --field, not both")
+    if field is not None and objective not in (None, "time"):
+        raise InvalidParameterError("--objective", objective, "with --field only time")
+    check_mission_inputs(speed=speed, radius=radius, wind=wind, headings=headings,
+                         acceptance_radius=acceptance_radius, max_deviation=max_deviation,
+                         altitude=altitude, depth_range=depth_range)
+    if wind is not None and wind[0] >= speed:
+        raise InvalidParameterError(
+            "--wind", wind[0], f"speed must be below the vehicle's speed {speed:g} m/s")
+
+
+def _export(mission: Any, export: pathlib.Path | None, fmts: Any, options: Any) -> tuple[
+        Any, dict[str, Any]]:
+    """The mission with its straight legs (written in `fmts` under --export when given); the
+    files written."""
+    from glideplan.formats import export_mission
+    from glideplan.missions import straight_leg_list
+
+    files: dict[str, Any] = {}
+    with flag_names(**{"max-deviation": "--max-deviation", "goto-number": "--goto-number",
+                       "max-goto-waypoints": "--max-goto-waypoints"}):
+        if export is not None:
+            files, legs = export_mission(mission, export, fmts, options)
+        else:
+            legs = straight_leg_list(mission, options.deviation)
+    return replace(mission, straight_legs=legs), files
 
 
 def _plan_in_field(r: Any, path: pathlib.Path, speed: float, radius: float, when: Any,

@@ -3,12 +3,17 @@
 from __future__ import annotations
 
 import pathlib
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
 from glideplan.cli import common
 from glideplan.cli.app import plan_app
+
+if TYPE_CHECKING:
+    from glideplan.pose import Pose
+    from glideplan.solution import Solution
+    from glideplan.vehicles.load_factor_glider import LoadFactorGlider
 
 
 @plan_app.command("load-factor")
@@ -58,8 +63,6 @@ def plan_load_factor_command(
     loss; the JSON adds the control history (`controls`: s, v, n, bank_deg, label) and the
     arc classification (`arcs`: extremal locus, stall boundary, corner, wings level).
     """
-    from glideplan.errors import InvalidParameterError
-    from glideplan.planning import plan
     from glideplan.vehicles.load_factor_glider import LoadFactorGlider
 
     plot = common.check_figure_file(plot)
@@ -75,29 +78,9 @@ def plan_load_factor_command(
     }
     with common.flag_names(**names, start="--start", goal="--goal"):
         glider = LoadFactorGlider(l_over_d_max=l_over_d, v_min=v_min, v_max=v_max, n_max=n_max)
-        if method == "synthesis":
-            solution = common.solving(
-                "planning (load-factor, synthesis)",
-                lambda: plan(start_pose, goal_pose, glider, "altitude", "synthesis"),
-            )
-        elif method != "direct":
-            raise InvalidParameterError("--method", method, "must be direct or synthesis")
-        else:
-            options = common.time_limit_option(glider, "altitude", "direct", time_limit)
-            solution = common.solving(
-                "planning (load-factor, direct method)",
-                lambda: plan(
-                    start_pose,
-                    goal_pose,
-                    glider,
-                    "altitude",
-                    "direct",
-                    scheme=scheme,
-                    max_starts=max_starts,
-                    max_iterations=max_iterations,
-                    **options,
-                ),
-            )
+        solution = _solve(start_pose, goal_pose, glider, method, time_limit,
+                          {"scheme": scheme, "max_starts": max_starts,
+                           "max_iterations": max_iterations})
 
     def draw() -> None:
         assert plot is not None
@@ -114,3 +97,23 @@ def plan_load_factor_command(
         common.emit_solution(solution, json_out, None)
     finally:
         common.write_figure(plot, json_out, draw if solution.ok else None)
+
+
+def _solve(start_pose: Pose, goal_pose: Pose, glider: LoadFactorGlider, method: str,
+           time_limit: float | None, direct: dict[str, Any]) -> Solution:
+    """`plan` by the synthesis or the direct method (its `direct` options and time limit)."""
+    from glideplan.errors import InvalidParameterError
+    from glideplan.planning import plan
+
+    if method == "synthesis":
+        return common.solving(
+            "planning (load-factor, synthesis)",
+            lambda: plan(start_pose, goal_pose, glider, "altitude", "synthesis"),
+        )
+    if method != "direct":
+        raise InvalidParameterError("--method", method, "must be direct or synthesis")
+    options = common.time_limit_option(glider, "altitude", "direct", time_limit)
+    return common.solving(
+        "planning (load-factor, direct method)",
+        lambda: plan(start_pose, goal_pose, glider, "altitude", "direct", **direct, **options),
+    )

@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 import pathlib
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
 from glideplan.cli import common
 from glideplan.cli.app import plan_app
 from glideplan.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from glideplan.solution import Solution
+    from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider
 
 VEHICLES = ("dg1001m",)
 METHODS = ("synthesis", "direct")
@@ -80,24 +84,13 @@ def plan_min_altitude_command(
     R_stf, m), `improvement` (m), `length_unit` (R_stf, m) and `profile` (time, arc length,
     pose, speed, turn rate and cumulative altitude loss along the path).
     """
-    from glideplan.planners.min_altitude import flight_profile
     from glideplan.planning import plan
     from glideplan.pose import Pose
 
     if method not in METHODS:
         raise InvalidParameterError("--method", method, f"must be one of {', '.join(METHODS)}")
     plot = common.check_figure_file(plot)
-    names = {
-        "a": "--polar A",
-        "b": "--polar B",
-        "c": "--polar C",
-        "v_stall": "--v-stall",
-        "v_max": "--v-max",
-        "u_max": "--u-max",
-        "v_stall/u_max": "--v-stall/--u-max",
-        "v_max/u_max": "--v-max/--u-max",
-    }
-    with common.flag_names(**names):
+    with common.flag_names(**_POLAR_FLAGS):
         glider = _glider(vehicle, polar, v_stall, v_max, u_max)
     start_pose, goal_pose = common.parse_start_goal(start, goal)
     if normalized:
@@ -110,12 +103,7 @@ def plan_min_altitude_command(
             f"planning (min-altitude, {method})",
             lambda: plan(start_pose, goal_pose, glider, "altitude", method, **options),
         )
-    extra: dict[str, object] = {"length_unit": glider.radius_stf}
-    if solution.ok and solution.path is not None:
-        extra["profile"] = flight_profile(solution.path)
-        ref = solution.extras.get("dubins_cost")
-        if isinstance(ref, float):
-            extra["improvement"] = ref - solution.cost
+    extra = _extras(solution, glider)
 
     def draw() -> None:
         assert plot is not None
@@ -128,6 +116,33 @@ def plan_min_altitude_command(
         common.emit_solution(solution, json_out, None, extra=extra)
     finally:
         common.write_figure(plot, json_out, draw if drawable else None)
+
+
+#: The glider's parameter names -> the options the user gave (errors name the option).
+_POLAR_FLAGS = {
+    "a": "--polar A",
+    "b": "--polar B",
+    "c": "--polar C",
+    "v_stall": "--v-stall",
+    "v_max": "--v-max",
+    "u_max": "--u-max",
+    "v_stall/u_max": "--v-stall/--u-max",
+    "v_max/u_max": "--v-max/--u-max",
+}
+
+
+def _extras(solution: Solution, glider: QuadraticPolarGlider) -> dict[str, object]:
+    """What the JSON adds: the length unit R_stf (m); when solved, the flight profile and the
+    improvement (m) on the Dubins path flown at v_stf."""
+    from glideplan.planners.min_altitude import flight_profile
+
+    extra: dict[str, object] = {"length_unit": glider.radius_stf}
+    if solution.ok and solution.path is not None:
+        extra["profile"] = flight_profile(solution.path)
+        ref = solution.extras.get("dubins_cost")
+        if isinstance(ref, float):
+            extra["improvement"] = ref - solution.cost
+    return extra
 
 
 def _glider(

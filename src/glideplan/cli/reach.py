@@ -295,14 +295,7 @@ def glide_reach_cmd(
 
     Try it without files: glideplan glide reach --example ridge
     """
-    from glideplan.cli.common import (
-        check_figure_file,
-        check_input_file,
-        check_output_file,
-        file_flag,
-        flag_names,
-        print_warnings,
-    )
+    from glideplan.cli.common import check_figure_file, check_output_file, flag_names
     from glideplan.cli.emit import emit
     from glideplan.reach import glide_reach
 
@@ -319,27 +312,13 @@ def glide_reach_cmd(
         tile, cup, plr = _example_files(ex, write_example_dir)
         args = _flag_args(polar_file or plr, start_v, list(terrain or [tile]), wind_in, mc_v,
                           safety_v, safety_glide_ratio, mass, ballast, bugs, resolution,
-                          fill_voids)
-        for flag, value in (("--terrain-clearance", terrain_clearance),
-                            ("--arrival-height", arrival_height)):
-            if value is not None:
-                args += [flag, repr(float(value))]
+                          fill_voids) + _height_args(terrain_clearance, arrival_height)
         args += ["--landables", str(landables or cup)]
         _write_example(ex, write_example_dir, "reach", args, json_out)
         return
     p = _polar(polar_file or ex.polar_file, mass, ballast, bugs)
     t = _terrain(terrain, fill_voids, required=True) if terrain else ex.terrain
-    lands: Any = () if ex is None else ex.landables
-    notes: list[str] = []  # the .cup reader's (elevations taken from the terrain)
-    if landables is not None:
-        check_input_file(landables, "--landables")
-        from glideplan.reach.landables import read_cup_landables
-
-        with file_flag("--landables", landables):
-            lands, skipped = read_cup_landables(landables, t, notes)
-        if skipped:
-            print_warnings([f"--landables: {skipped} waypoint(s) are not landable (SeeYou "
-                            "style not 2-5) and were skipped"])
+    lands, notes = _landables(landables, t, () if ex is None else ex.landables)
     w = _wind(wind_in)
     if ex is not None:
         _announce_example(ex, start_v, p, wind_in, mc_v, safety_v, json_out)
@@ -357,6 +336,45 @@ def glide_reach_cmd(
 
         result = dataclasses.replace(result, warnings=(*(f"--landables {n}" for n in notes),
                                                        *result.warnings))
+    exports = _write_reach_files(result, geojson, kml)
+    emit(result, json=json_out, plot=plot, exports=exports or None, summary=_reach_summary,
+         what="reach")
+
+
+def _height_args(terrain_clearance: float | None, arrival_height: float | None) -> list[str]:
+    """The two heights as flags of the written example's command line (when given)."""
+    args: list[str] = []
+    for flag, value in (("--terrain-clearance", terrain_clearance),
+                        ("--arrival-height", arrival_height)):
+        if value is not None:
+            args += [flag, repr(float(value))]
+    return args
+
+
+def _landables(path: pathlib.Path | None, terrain: Any, default: Any) -> tuple[Any, list[str]]:
+    """The --landables .cup file read (elevations from the terrain), else `default`; the
+    reader's notes (a warning printed for waypoints that are not landable)."""
+    from glideplan.cli.common import check_input_file, file_flag, print_warnings
+
+    notes: list[str] = []  # the .cup reader's (elevations taken from the terrain)
+    if path is None:
+        return default, notes
+    check_input_file(path, "--landables")
+    from glideplan.reach.landables import read_cup_landables
+
+    with file_flag("--landables", path):
+        lands, skipped = read_cup_landables(path, terrain, notes)
+    if skipped:
+        print_warnings([f"--landables: {skipped} waypoint(s) are not landable (SeeYou "
+                        "style not 2-5) and were skipped"])
+    return lands, notes
+
+
+def _write_reach_files(result: Any, geojson: pathlib.Path | None,
+                       kml: pathlib.Path | None) -> dict[str, pathlib.Path]:
+    """The footprint and landables as GeoJSON (--geojson) and KML (--kml); the files written."""
+    from glideplan.cli.common import file_flag
+
     exports: dict[str, pathlib.Path] = {}
     for path, flag, write in ((geojson, "--geojson", result.write_geojson),
                               (kml, "--kml", result.write_kml)):
@@ -364,8 +382,7 @@ def glide_reach_cmd(
             with file_flag(flag, path):
                 write(path)
             exports[flag[2:]] = path
-    emit(result, json=json_out, plot=plot, exports=exports or None, summary=_reach_summary,
-         what="reach")
+    return exports
 
 
 def _reach_summary(result: Any) -> None:
@@ -419,10 +436,7 @@ def glide_turnback_cmd(
 
     Try it without files: glideplan glide turnback --example ridge
     """
-    from glideplan.cli.common import (
-        check_figure_file,
-        flag_names,
-    )
+    from glideplan.cli.common import check_figure_file, flag_names
     from glideplan.cli.emit import emit
     from glideplan.reach import turnback
 
@@ -443,11 +457,7 @@ def glide_turnback_cmd(
         tile, _, plr = _example_files(ex, write_example_dir)
         args = _flag_args(polar_file or plr, start_v, list(terrain or [tile]), wind_in, mc_v,
                           safety_v, safety_glide_ratio, mass, ballast, bugs, resolution,
-                          fill_voids)
-        for flag, value in (("--terrain-clearance", terrain_clearance),
-                            ("--arrival-height", arrival_height)):
-            if value is not None:
-                args += [flag, repr(float(value))]
+                          fill_voids) + _height_args(terrain_clearance, arrival_height)
         args += ["--course", repr(course_v), "--home", *(repr(float(v)) for v in home_v)]
         _write_example(ex, write_example_dir, "turnback", args, json_out)
         return

@@ -211,17 +211,12 @@ def route_command(
         flag_names,
         usage_error,
     )
-    from glideplan.errors import InvalidParameterError
 
     check_route_inputs(speed=speed, from_=from_, to=to, resolution=resolution, radius=radius,
                        land_clearance=land_clearance, max_duration=max_duration)
     check_depth_range(depth_range)
     plot = check_figure_file(plot)
-    exports = {fmt: p for fmt, p in (("geojson", geojson), ("kml", kml), ("gpx", gpx),
-                                     ("csv", csv)) if p is not None}
-    for fmt, out_file in exports.items():
-        if out_file.parent and not out_file.parent.is_dir():
-            raise InvalidParameterError(f"--{fmt}", str(out_file), "its folder does not exist")
+    exports = _export_files(geojson=geojson, kml=kml, gpx=gpx, csv=csv)
     if (ensemble is not None or depart_range is not None) and (gpx or csv):
         usage_error("--gpx and --csv write one route: not with --ensemble or --depart-range")
     if ensemble is not None or depart_range is not None:
@@ -246,9 +241,7 @@ def route_command(
     from glideplan.cli.emit import emit
     from glideplan.routing import RouteSettings, route
 
-    names = {"from": "--from", "to": "--to", "speed": "--speed", "resolution": "--resolution",
-             "field": "--field", "depth_range": "--depth-range", "radius": "--radius",
-             "land_clearance_m": "--land-clearance", "max_duration": "--max-duration"}
+    names = _ROUTE_FLAGS
     with flag_names(**names):
         settings = RouteSettings(
             resolution=resolution, land_clearance_m=land_clearance,
@@ -272,6 +265,23 @@ def route_command(
          summary=lambda r: _print_summary(r.to_dict()),
          plot_kw={"flow": flow, "speed": speed, "start": from_, "goal": to},
          save_kw={"tight": False}, what="route")
+
+
+#: The library's parameter names -> the options the user gave (errors name the option).
+_ROUTE_FLAGS = {"from": "--from", "to": "--to", "speed": "--speed", "resolution": "--resolution",
+                "field": "--field", "depth_range": "--depth-range", "radius": "--radius",
+                "land_clearance_m": "--land-clearance", "max_duration": "--max-duration"}
+
+
+def _export_files(**files: pathlib.Path | None) -> dict[str, pathlib.Path]:
+    """The export files given (format -> path), each in a folder that exists."""
+    from glideplan.errors import InvalidParameterError
+
+    exports = {fmt: p for fmt, p in files.items() if p is not None}
+    for fmt, out_file in exports.items():
+        if out_file.parent and not out_file.parent.is_dir():
+            raise InvalidParameterError(f"--{fmt}", str(out_file), "its folder does not exist")
+    return exports
 
 
 def _open_flow(field: list[pathlib.Path] | None, example: str | None,

@@ -40,6 +40,46 @@ def open_truth(path: pathlib.Path) -> Any:
         return open_field(path)
 
 
+def _check_inputs(speed: float, from_: tuple[float, float], to: tuple[float, float],
+                  goal_radius: float, resolution: float | None, max_duration: float | None,
+                  replan_every: float | None, plot: pathlib.Path | None,
+                  geojson: pathlib.Path | None) -> pathlib.Path | None:
+    """The options' ranges (the rows `route` checks), naming each option; the --plot file."""
+    from glideplan.cli.common import check_figure_file
+    from glideplan.errors import InvalidParameterError
+    from glideplan.validation import check_physical
+
+    check_physical("--speed", speed, "speed")  # the rows `route` checks
+    check_latlon("--from", from_)
+    check_latlon("--to", to)
+    for flag, value in (("--goal-radius", goal_radius), ("--resolution", resolution)):
+        if value is not None:
+            check_physical(flag, value, "distance")
+    positive("--max-duration", max_duration, "h")
+    positive("--replan-every", replan_every, "h")
+    plot = check_figure_file(plot)
+    if geojson is not None and not geojson.parent.is_dir():
+        raise InvalidParameterError("--geojson", str(geojson), "its folder does not exist")
+    return plot
+
+
+def _max_duration_s(flow: Any, when: Any, depart: str, max_duration: float | None) -> float:
+    """--max-duration in s; by default from --depart to the truth's last time."""
+    import numpy as np
+
+    from glideplan.errors import InvalidParameterError
+
+    if max_duration is not None:
+        return max_duration * 3600.0
+    span = flow.time_span
+    if span is None or flow.epoch is None:
+        raise InvalidParameterError("--max-duration", None, "give it (the truth is steady)")
+    max_s = span[1] - float((when - flow.epoch) / np.timedelta64(1, "s"))
+    if max_s <= 0:
+        raise InvalidParameterError("--depart", depart, "after the truth's last time")
+    return float(max_s)
+
+
 @app.command("route-replay", hidden=True)
 def route_replay_command(
     truth: Annotated[pathlib.Path, typer.Option("--truth", metavar="FILE", show_default=False,
@@ -78,38 +118,17 @@ def route_replay_command(
     """Replay a mission (`glideplan route replay`): plan on the newest forecast, fly the plan
     through the truth, replan at each new forecast (and every --replan-every h); with the
     baselines naive, plan_once and hindsight. Exit 0 reached, 1 not reached, 2 bad input."""
-    import numpy as np
-
-    from glideplan.cli.common import check_figure_file
     from glideplan.cli.route import parse_depart
     from glideplan.errors import InvalidParameterError
     from glideplan.routing.forecasts import open_forecasts
     from glideplan.routing.replay import Mission, ReplaySettings, replay
-    from glideplan.validation import check_physical
 
-    check_physical("--speed", speed, "speed")  # the rows `route` checks
-    check_latlon("--from", from_)
-    check_latlon("--to", to)
-    for flag, value in (("--goal-radius", goal_radius), ("--resolution", resolution)):
-        if value is not None:
-            check_physical(flag, value, "distance")
-    positive("--max-duration", max_duration, "h")
-    positive("--replan-every", replan_every, "h")
-    plot = check_figure_file(plot)
-    if geojson is not None and not geojson.parent.is_dir():
-        raise InvalidParameterError("--geojson", str(geojson), "its folder does not exist")
+    plot = _check_inputs(speed, from_, to, goal_radius, resolution, max_duration, replan_every,
+                         plot, geojson)
     when = parse_depart(depart)
     flow = open_truth(truth)
     fcs = open_forecasts(forecasts)
-    if max_duration is None:
-        span = flow.time_span
-        if span is None or flow.epoch is None:
-            raise InvalidParameterError("--max-duration", None, "give it (the truth is steady)")
-        max_s = span[1] - float((when - flow.epoch) / np.timedelta64(1, "s"))
-        if max_s <= 0:
-            raise InvalidParameterError("--depart", depart, "after the truth's last time")
-    else:
-        max_s = max_duration * 3600.0
+    max_s = _max_duration_s(flow, when, depart, max_duration)
     mission = Mission(from_, to, speed, when, goal_radius, max_s,
                       None if replan_every is None else replan_every * 3600.0)
     if follow not in ("track", "headings"):

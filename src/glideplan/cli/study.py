@@ -4,13 +4,16 @@ from __future__ import annotations
 
 import math
 import pathlib
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
 from glideplan.cli.app import study_app
 from glideplan.errors import InvalidParameterError
 from glideplan.studies.cross_track import MAX_DT_FRACTION
+
+if TYPE_CHECKING:
+    from glideplan.studies.cross_track import CrossTrackConfig, CrossTrackResult
 
 
 def _values(name: str, items: list[str] | None) -> tuple[float, ...] | None:
@@ -54,6 +57,25 @@ TABLE_COLUMNS = (
              "minimum (where the curve flattens)"),
     ("failures", "runs that never crossed the finish line (left out of the means)"),
 )  # fmt: skip
+
+
+#: The study's library parameter names -> the options the user gave (errors name the option).
+_CROSS_TRACK_FLAGS = {
+    "samples": "--samples",
+    "chunk": "--chunk",
+    "seed": "--seed",
+    "case": "--case",
+    "eps": "--eps",
+    "r_plan": "--r-plan",
+    "speed": "--speed",
+    "u_max": "--u-max",
+    "max_turn_rate": "--u-max",
+    "gust_scale": "--gust-scale",
+    "dt": "--dt",
+    "out": "--out",
+    "scheduler": "--scheduler",
+    "processes": "--processes",
+}
 
 
 @study_app.command(
@@ -143,23 +165,7 @@ def cross_track_command(
         raise InvalidParameterError("--scheduler", scheduler, "must be a scheduler address")
     check_output_dir(out, "--out")
     follower = {} if dt == 0.05 else {"dt": dt}
-    names = {
-        "samples": "--samples",
-        "chunk": "--chunk",
-        "seed": "--seed",
-        "case": "--case",
-        "eps": "--eps",
-        "r_plan": "--r-plan",
-        "speed": "--speed",
-        "u_max": "--u-max",
-        "max_turn_rate": "--u-max",
-        "gust_scale": "--gust-scale",
-        "dt": "--dt",
-        "out": "--out",
-        "scheduler": "--scheduler",
-        "processes": "--processes",
-    }
-    with flag_names(**names):
+    with flag_names(**_CROSS_TRACK_FLAGS):
         config = CrossTrackConfig(
             eps=_values("--eps", eps) or DEFAULT_EPS,
             r_plan=_values("--r-plan", r_plan) or DEFAULT_R_PLAN,
@@ -178,6 +184,13 @@ def cross_track_command(
     if json_out:
         print_json({"summary": result.summary, "knees": result.knees, "directory": str(out)})
         return
+    _print_cross_track(result, config, out, gust_scale)
+
+
+def _print_cross_track(result: CrossTrackResult, config: CrossTrackConfig, out: pathlib.Path,
+                       gust_scale: float) -> None:
+    """The study's table: per case and eps, E at the first radius, near R0', at the last; the
+    knee; failures; then the work units run and resumed."""
     from rich.console import Console
     from rich.table import Table
 

@@ -247,24 +247,8 @@ def plan_mission_in_field(
 
         flow, depth_range = open_field(flow, depth_range=depth_range), None
     _check_waypoints(route, flow, depart)
-    from glideplan.missions.field_legs import BATCH_MIN_LEGS, steady_legs
-
-    if flow.time_span is None and route.n - 1 >= BATCH_MIN_LEGS:
-        # a steady field: the legs are independent (only their departure times chain)
-        legs, info = _chain(steady_legs(route, flow, speed, resolution, land_clearance_m,
-                                        progress), flow, depart)
-    else:
-        bar, task = None, None
-        if progress and route.n > 2:
-            from glideplan.progress import start_progress_bar
-
-            bar, task = start_progress_bar("legs", route.n - 1, with_rate=True)
-        try:
-            legs, info = _route_legs(route, flow, speed, depart, depth_range, resolution,
-                                     land_clearance_m, bar, task)
-        finally:
-            if bar is not None:
-                bar.stop()
+    legs, info = _all_legs(route, flow, speed, depart, depth_range, resolution,
+                           land_clearance_m, progress)
     if radius is not None and all(leg.ok for leg in legs):
         legs = _fly_legs(legs, flow, speed, radius)
     h = np.full(route.n, np.nan)
@@ -272,6 +256,48 @@ def plan_mission_in_field(
         if leg.ok and len(leg.result.heading_deg):
             h[leg.start] = compass_to_heading(float(leg.result.heading_deg[0]))
             h[leg.end] = compass_to_heading(float(leg.result.heading_deg[-1]))
+    stats = _field_stats(route, legs, radius)
+    # what the user must see: the field's warnings (e.g. depth range extended to the surface,
+    # held constant in time, regridded), the legs' routes', headings given but not enforced
+    warnings = list(route.warnings) + list(flow.warnings)
+    for leg in legs:
+        warnings += [w for w in leg.result.warnings if w not in warnings]
+    warnings += [f"heading given at {name} is not enforced when routing through a field (the "
+                 "router steers a point mass)" for name in stats["headings_not_enforced"]]
+    return FieldMission(**mission_outcome(legs, route.names), route=route,
+                        headings=np.nan_to_num(h), legs=tuple(legs), speed=speed,
+                        field_info=info, stats=stats, radius=radius, warnings=tuple(warnings))
+
+
+def _all_legs(route: Route, flow: FlowField, speed: float, depart: Any,
+              depth_range: tuple[float, float] | None, resolution: float | None,
+              land_clearance_m: float | None, progress: bool) -> tuple[list[FieldLeg], dict[
+                  str, Any]]:
+    """Every leg routed: batched when the field is steady and the legs many (only their
+    departure times chain), else one after the other with a progress bar; the field's info."""
+    from glideplan.missions.field_legs import BATCH_MIN_LEGS, steady_legs
+
+    if flow.time_span is None and route.n - 1 >= BATCH_MIN_LEGS:
+        # a steady field: the legs are independent (only their departure times chain)
+        return _chain(steady_legs(route, flow, speed, resolution, land_clearance_m, progress),
+                      flow, depart)
+    bar, task = None, None
+    if progress and route.n > 2:
+        from glideplan.progress import start_progress_bar
+
+        bar, task = start_progress_bar("legs", route.n - 1, with_rate=True)
+    try:
+        return _route_legs(route, flow, speed, depart, depth_range, resolution,
+                           land_clearance_m, bar, task)
+    finally:
+        if bar is not None:
+            bar.stop()
+
+
+def _field_stats(route: Route, legs: list[FieldLeg], radius: float | None) -> dict[str, Any]:
+    """The mission's numbers: max endpoint error, legs routed, headings not enforced, the
+    projection, and (with `radius`) the flyable paths' radii, length, cross-track error."""
+    assert route.lat is not None and route.lon is not None
     errors = [e for e in (leg.result.endpoint_error_m for leg in legs) if e is not None]
     stats: dict[str, Any] = {
         "max_endpoint_error": max(errors) if errors else None,
@@ -290,16 +316,7 @@ def plan_mission_in_field(
             "path_length_m": sum(g.path_length_m for g in flown),
             "max_cross_track_m": max((g.max_cross_track_m or 0.0) for g in flown),
         } if len(flown) == len(legs) else None
-    # what the user must see: the field's warnings (e.g. depth range extended to the surface,
-    # held constant in time, regridded), the legs' routes', headings given but not enforced
-    warnings = list(route.warnings) + list(flow.warnings)
-    for leg in legs:
-        warnings += [w for w in leg.result.warnings if w not in warnings]
-    warnings += [f"heading given at {name} is not enforced when routing through a field (the "
-                 "router steers a point mass)" for name in stats["headings_not_enforced"]]
-    return FieldMission(**mission_outcome(legs, route.names), route=route,
-                        headings=np.nan_to_num(h), legs=tuple(legs), speed=speed,
-                        field_info=info, stats=stats, radius=radius, warnings=tuple(warnings))
+    return stats
 
 
 

@@ -328,15 +328,40 @@ def plan_mission(
     `progress(phase, done, total)` reports the long phases ("headings": the DP over the
     legs; "legs": planning and verifying each leg) for a progress bar.
     """
-    from glideplan.planning import plan
-    from glideplan.pose import Pose
-    from glideplan.vehicles.dubins_car import DubinsCar
-    from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
-
     speed = check_physical("speed", speed, "speed")  # validation.PHYSICAL_RANGES
     radius = check_physical("radius", radius, "turn_radius")
     if objective not in OBJECTIVES:
         raise InvalidParameterError("objective", objective, "must be length or time")
+    wind_vector = _wind(wind, wind_vector)
+    k = headings if headings is not None else (36 if wind_vector is not None else 360)
+    if not isinstance(k, int) or not 4 <= k <= 3600:
+        raise InvalidParameterError("headings", k, "must be an integer in [4, 3600]")
+    vehicle, cost = _vehicle_and_cost(route, speed, radius, objective, wind_vector, precision)
+    hp = optimise_headings(cost, route.points, route.headings, k, refine=refine,
+                           progress=progress)
+    t0 = time.perf_counter()
+    legs = _plan_legs(route, hp.headings, vehicle,
+                      objective if wind_vector is None else "time", progress)
+    errors = [leg.solution.endpoint_error.max for leg in legs if leg.solution.endpoint_error]
+    stats: dict[str, Any] = dict(hp.stats)
+    stats.update(
+        {
+            "legs_seconds": time.perf_counter() - t0,
+            "max_endpoint_error": max(errors) if errors else None,
+            "projection": _projection_stats(route),
+            "planned_cost": hp.total,
+        }
+    )
+    return MissionPlan(
+        **mission_outcome(legs, route.names),
+        route=route, headings=hp.headings, legs=tuple(legs), objective=objective, speed=speed,
+        radius=radius, wind_vector=wind_vector, heading_plan=hp, stats=stats,
+        warnings=tuple(route.warnings),  # what reading the route file skipped or assumed
+    )
+
+
+def _wind(wind: WindEN | None, wind_vector: WindEN | None) -> WindEN | None:
+    """The one wind vector of `wind` or its older name `wind_vector` (checked, m/s)."""
     if wind is not None and wind_vector is not None:
         raise InvalidParameterError("wind", wind, "give either wind or wind_vector, not both")
     name = "wind" if wind_vector is None else "wind_vector"
@@ -345,68 +370,65 @@ def plan_mission(
         wind_vector = (check_finite(f"{name} east", wind_vector[0]),
                        check_finite(f"{name} north", wind_vector[1]))
         check_physical(name, math.hypot(*wind_vector), "wind_speed")
-    k = headings if headings is not None else (36 if wind_vector is not None else 360)
-    if not isinstance(k, int) or not 4 <= k <= 3600:
-        raise InvalidParameterError("headings", k, "must be an integer in [4, 3600]")
+    return wind_vector
+
+
+def _vehicle_and_cost(route: Route, speed: float, radius: float, objective: str,
+                      wind_vector: WindEN | None, precision: str) -> tuple[Any, LegCost]:
+    """The vehicle the legs are planned for and the heading DP's leg cost: convected Dubins
+    in a wind (time only), else the Dubins car (length, or time = length / speed)."""
+    from glideplan.vehicles.dubins_car import DubinsCar
+    from glideplan.vehicles.dubins_car_in_wind import DubinsCarInWind
+
     pts = route.points
-    cost: LegCost
-    vehicle: Any
     if wind_vector is not None:
         if objective != "time":
             raise InvalidParameterError(
                 "objective", objective, "with a wind the planner minimises time: use time"
             )
         u, v = wind_vector
-        vehicle = DubinsCarInWind(speed, radius, wind=(u, v))
-        cost = WindCost(pts, radius, speed, (u, v))
-    else:
-        vehicle = DubinsCar(speed=speed, turn_radius=radius)
-        cost = StillAirCost(pts, radius, 1.0 if objective == "length" else 1.0 / speed,
-                            precision)
-    hp = optimise_headings(cost, pts, route.headings, k, refine=refine, progress=progress)
-    h = hp.headings
-    t0 = time.perf_counter()
+        return (DubinsCarInWind(speed, radius, wind=(u, v)),
+                WindCost(pts, radius, speed, (u, v)))
+    return (DubinsCar(speed=speed, turn_radius=radius),
+            StillAirCost(pts, radius, 1.0 if objective == "length" else 1.0 / speed,
+                         precision))
+
+
+def _plan_legs(route: Route, h: Any, vehicle: Any, objective: str,
+               progress: Callable[[str, int, int], None] | None) -> list[MissionLeg]:
+    """Each leg planned (and verified) by `glideplan.plan` between the chosen headings."""
+    from glideplan.planning import plan
+    from glideplan.pose import Pose
+
+    pts = route.points
     legs = []
     for i in range(route.n - 1):
         sol = plan(
             Pose(float(pts[i, 0]), float(pts[i, 1]), float(h[i])),
             Pose(float(pts[i + 1, 0]), float(pts[i + 1, 1]), float(h[i + 1])),
             vehicle,
-            objective if wind_vector is None else "time",
+            objective,
         )
         if sol.path is None:
             legs.append(MissionLeg(index=i, start=i, end=i + 1, solution=sol,
                                    length_m=math.nan, duration_s=math.nan))
-            if progress is not None:
-                progress("legs", i + 1, route.n - 1)
-            continue
-        legs.append(MissionLeg(index=i, start=i, end=i + 1, solution=sol,
-                               length_m=_ground_length(sol.path),
-                               duration_s=float(sol.path.duration)))
+        else:
+            legs.append(MissionLeg(index=i, start=i, end=i + 1, solution=sol,
+                                   length_m=_ground_length(sol.path),
+                                   duration_s=float(sol.path.duration)))
         if progress is not None:
             progress("legs", i + 1, route.n - 1)
-    errors = [leg.solution.endpoint_error.max for leg in legs if leg.solution.endpoint_error]
-    stats: dict[str, Any] = dict(hp.stats)
-    stats.update(
-        {
-            "legs_seconds": time.perf_counter() - t0,
-            "max_endpoint_error": max(errors) if errors else None,
-            "projection": (
-                {
-                    "kind": "aeqd",
-                    "lat0": route.projection.lat0,
-                    "lon0": route.projection.lon0,
-                    "scale_distortion": route.distortion,
-                    "roundtrip_error_deg": route.roundtrip_error_deg,
-                }
-                if route.projection is not None else None
-            ),
-            "planned_cost": hp.total,
-        }
-    )
-    return MissionPlan(
-        **mission_outcome(legs, route.names),
-        route=route, headings=h, legs=tuple(legs), objective=objective, speed=speed,
-        radius=radius, wind_vector=wind_vector, heading_plan=hp, stats=stats,
-        warnings=tuple(route.warnings),  # what reading the route file skipped or assumed
-    )
+    return legs
+
+
+def _projection_stats(route: Route) -> dict[str, Any] | None:
+    """The projection of a lat/lon route (kind, centre, distortion, round trip), else None."""
+    if route.projection is None:
+        return None
+    return {
+        "kind": "aeqd",
+        "lat0": route.projection.lat0,
+        "lon0": route.projection.lon0,
+        "scale_distortion": route.distortion,
+        "roundtrip_error_deg": route.roundtrip_error_deg,
+    }

@@ -84,43 +84,14 @@ def plot_mission(
     r = plan.route
     track = plan.track()
     geo = r.projection is not None
-    proj = r.projection
-    centre = route_centre_lon(r) if geo else 0.0
-
-    def xy(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        if proj is None:
-            return x, y
-        lat, lon = proj.to_geographic(x, y)
-        return unwrap_lon(lon, centre), np.asarray(lat, dtype=float)
-
-    span = max(float(np.ptp(track.x)), float(np.ptp(track.y)), plan.radius or 0.0)
-    arrow = 0.06 * span
-    tx, ty = xy(track.x, track.y)
+    tx, ty = _drawn(r, track.x, track.y)
     ax.plot(tx, ty, "-", color="tab:blue", lw=1.6, label="planned track")
     if legs is not None:
-        lx, ly = xy(legs.x, legs.y)
+        lx, ly = _drawn(r, legs.x, legs.y)
         ax.plot(lx, ly, "--", color="tab:orange", lw=0.9, marker=".", ms=4,
                 label=f"straight legs (within {legs.tolerance_m:g} m)")
-    wx, wy = xy(r.x, r.y)
-    ax.plot(wx, wy, "o", color="k", ms=6, label="waypoints", zorder=5)
-    hx, hy = xy(r.x + arrow * np.cos(plan.headings), r.y + arrow * np.sin(plan.headings))
-    ax.plot(hx, hy, ls="none")  # the arrow tips inside the frame (else they are not drawn)
-    ax.margins(0.07)  # room for the waypoint labels below and right of the points
-    given = ~r.free if plan.radius is not None else np.zeros(r.n, dtype=bool)  # field: free
-    for i in range(r.n):
-        color = "tab:green" if given[i] else "tab:red"
-        ax.annotate("", xy=(hx[i], hy[i]), xytext=(wx[i], wy[i]),
-                    arrowprops={"arrowstyle": "->", "color": color, "lw": 1.6}, zorder=6)
-        ax.annotate(f"{r.names[i]}\n{plan.headings_deg[i]:.0f}\N{DEGREE SIGN}",
-                    (wx[i], wy[i]), textcoords="offset points", xytext=(6, -14), fontsize=8)
-    for leg in plan.legs:
-        sel = np.nonzero(track.leg == leg.index)[0]
-        mid = sel[len(sel) // 2]
-        what = (f"{leg.duration_s / 3600:.1f} h" if isinstance(plan, FieldMission)
-                else leg.word)  # a field leg has no turn word: its time instead
-        ax.annotate(f"{leg.index + 1}: {what}, {leg.length_m:.0f} m",
-                    (tx[mid], ty[mid]), fontsize=7, color="tab:blue",
-                    bbox={"boxstyle": "round,pad=0.15", "fc": "white", "alpha": 0.7, "lw": 0})
+    given = _draw_waypoints(ax, plan, track)
+    _label_legs(ax, plan, track, tx, ty)
     ax.plot([], [], color="tab:red", label="chosen heading (compass deg)")
     if np.any(given):
         ax.plot([], [], color="tab:green", label="given heading (compass deg)")
@@ -131,6 +102,63 @@ def plot_mission(
         ax.set_aspect("equal")
         ax.set_xlabel("x (m)")
         ax.set_ylabel("y (m)")
+    ax.set_title(_title(plan), fontsize=9, loc="left")
+    ax.grid(True, alpha=0.3)
+    # Right of the axes, clear of the km scale on the right of geographic figures.
+    ax.legend(loc="upper left", bbox_to_anchor=(1.11 if geo else 1.02, 1.0), borderaxespad=0.0,
+              fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def _drawn(r: Route, x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Plane x, y (m) as drawn: (lon unwrapped about the route's centre, lat) for a
+    geographic route, else unchanged."""
+    proj = r.projection
+    if proj is None:
+        return x, y
+    lat, lon = proj.to_geographic(x, y)
+    return unwrap_lon(lon, route_centre_lon(r)), np.asarray(lat, dtype=float)
+
+
+def _draw_waypoints(ax: Any, plan: MissionPlan | FieldMission, track: Any) -> np.ndarray:
+    """The waypoints with their names and heading arrows (green given, red chosen); the
+    mask of given headings."""
+    r = plan.route
+    span = max(float(np.ptp(track.x)), float(np.ptp(track.y)), plan.radius or 0.0)
+    arrow = 0.06 * span
+    wx, wy = _drawn(r, r.x, r.y)
+    ax.plot(wx, wy, "o", color="k", ms=6, label="waypoints", zorder=5)
+    hx, hy = _drawn(r, r.x + arrow * np.cos(plan.headings), r.y + arrow * np.sin(plan.headings))
+    ax.plot(hx, hy, ls="none")  # the arrow tips inside the frame (else they are not drawn)
+    ax.margins(0.07)  # room for the waypoint labels below and right of the points
+    given = ~r.free if plan.radius is not None else np.zeros(r.n, dtype=bool)  # field: free
+    for i in range(r.n):
+        color = "tab:green" if given[i] else "tab:red"
+        ax.annotate("", xy=(hx[i], hy[i]), xytext=(wx[i], wy[i]),
+                    arrowprops={"arrowstyle": "->", "color": color, "lw": 1.6}, zorder=6)
+        ax.annotate(f"{r.names[i]}\n{plan.headings_deg[i]:.0f}\N{DEGREE SIGN}",
+                    (wx[i], wy[i]), textcoords="offset points", xytext=(6, -14), fontsize=8)
+    return np.asarray(given)
+
+
+def _label_legs(ax: Any, plan: MissionPlan | FieldMission, track: Any, tx: np.ndarray,
+                ty: np.ndarray) -> None:
+    """Each leg's number, turn word (or time, field legs) and length at its middle."""
+    for leg in plan.legs:
+        sel = np.nonzero(track.leg == leg.index)[0]
+        mid = sel[len(sel) // 2]
+        what = (f"{leg.duration_s / 3600:.1f} h" if isinstance(plan, FieldMission)
+                else leg.word)  # a field leg has no turn word: its time instead
+        ax.annotate(f"{leg.index + 1}: {what}, {leg.length_m:.0f} m",
+                    (tx[mid], ty[mid]), fontsize=7, color="tab:blue",
+                    bbox={"boxstyle": "round,pad=0.15", "fc": "white", "alpha": 0.7, "lw": 0})
+
+
+def _title(plan: MissionPlan | FieldMission) -> str:
+    """The problem (route file, waypoints, speed, how planned) and the answer (totals,
+    status, endpoint error)."""
+    r = plan.route
     if plan.radius is None:
         src = plan.field_info.get("source") if isinstance(plan, FieldMission) else None
         name = pathlib.Path(str(src)).name if src else ""
@@ -144,15 +172,6 @@ def plot_mission(
     status = "all legs planned" if plan.ok else "some legs FAILED (see the report)"
     if isinstance(err, float):
         status += f", max endpoint error {err:.1e} m"
-    ax.set_title(
-        f"Mission {pathlib.Path(str(r.source)).name}: {r.n} waypoints, "
-        f"speed {plan.speed:g} m/s, {how}\n"
-        f"total {plan.total_length_m:.0f} m, {plan.total_duration_s / 3600:.2f} h; {status}",
-        fontsize=9, loc="left",
-    )
-    ax.grid(True, alpha=0.3)
-    # Right of the axes, clear of the km scale on the right of geographic figures.
-    ax.legend(loc="upper left", bbox_to_anchor=(1.11 if geo else 1.02, 1.0), borderaxespad=0.0,
-              fontsize=8)
-    fig.tight_layout()
-    return fig
+    return (f"Mission {pathlib.Path(str(r.source)).name}: {r.n} waypoints, "
+            f"speed {plan.speed:g} m/s, {how}\n"
+            f"total {plan.total_length_m:.0f} m, {plan.total_duration_s / 3600:.2f} h; {status}")

@@ -238,23 +238,11 @@ def glide_reach(
 
     t_all = time.perf_counter()
     warnings: list[str] = []
-    if not isinstance(terrain, Terrain):
-        from glideplan.terrain.merge import read_terrain
-
-        terrain = read_terrain(list(terrain), voids=voids)
-    warnings += list(terrain.warnings)
-    if isinstance(landables, (str, pathlib.Path)):
-        from glideplan.reach.landables import read_cup_landables
-
-        landables, skipped = read_cup_landables(landables, terrain, warnings)
-        if skipped:
-            warnings.append(f"{skipped} waypoint(s) of the .cup file are not landable "
-                            "(SeeYou style not 2-5) and were skipped")
+    terrain, landables = _read_inputs(terrain, landables, voids, warnings)
     clear_h, arrive_h = two_heights(safety_height, terrain_clearance, arrival_height)
     glide = Glide(polar, mc, wind, safety_glide_ratio)
     start = (start[0], wrap_lon(terrain, start[1]), start[2])
     problem = ReachProblem(terrain, start, glide, tuple(landables), arrive_h, resolution_m)
-    alt = problem.start[2]
     timings: dict[str, float] = {}
     t = time.perf_counter()
     fine, factor, notes, crop = native_terrain(problem, glide.max_ratio, clear_h)
@@ -272,28 +260,13 @@ def glide_reach(
         warnings += _pass_check(fine, crop, search, problem, glide, clear_h, arrive_h)
         timings["pass_check_s"] = time.perf_counter() - t
     t = time.perf_counter()
-    spacing = max(fine.spacing_m)
-    points = []
-    for lnd in problem.landables:
-        comp = replace(lnd, lon=wrap_lon(fine, lnd.lon))
-        if (math.isfinite(float(terrain.elevation(comp.lat, comp.lon)))
-                and not math.isfinite(float(crop.elevation(comp.lat, comp.lon)))):
-            pt = _beyond_crop(problem.start, glide, comp, arrive_h)
-        else:
-            pt = native_point(fine, problem.start, glide, search, comp, clear_h, arrive_h,
-                              spacing, crop)
-        points.append(replace(pt, landable=lnd))
-    points = _shortfalls(points, fine, problem.start, glide, clear_h, arrive_h)
+    points = _landable_points(problem, fine, crop, search, clear_h, arrive_h)
     timings["paths_s"] = time.perf_counter() - t
     t = time.perf_counter()
-    z = np.asarray(fine.z, dtype=float)
-    hx = EARTH_RADIUS_M * np.cos(np.radians(fine.lat)) * math.radians(fine.dlon)
-    hy = EARTH_RADIUS_M * math.radians(fine.dlat)
-    margin = clearance_margin(search.loss, z, alt, arrive_h, hx, hy, glide)
-    burn_in_points(margin, fine, points)
-    polys = footprint_polygons(fine.lat, fine.lon, margin)
+    z, margin, polys = _footprint(fine, search, problem, arrive_h, points)
     timings["footprint_s"] = time.perf_counter() - t
     timings["total_s"] = time.perf_counter() - t_all
+    spacing = max(fine.spacing_m)
     grid = ReachGrid(fine.lat, fine.lon, z, search.block, fine, factor, spacing, ())
     clipped = _clipped(margin, grid, terrain) + _voids_touched(search.loss, z)
     if clipped:
@@ -311,6 +284,57 @@ def glide_reach(
         stop_reason="the search settled every node it can reach", front_steps=search.pops,
         timings=timings, warnings=tuple(warnings), terrain_clearance=clear_h,
         arrival_height=arrive_h)
+
+
+def _footprint(fine: Terrain, search: Any, problem: ReachProblem, arrive_h: float,
+               points: list[Any]) -> tuple[np.ndarray, np.ndarray, Any]:
+    """The terrain heights (m), the clearance margin of every node (m; the landables' paths
+    burnt in) and the footprint's polygons."""
+    z = np.asarray(fine.z, dtype=float)
+    hx = EARTH_RADIUS_M * np.cos(np.radians(fine.lat)) * math.radians(fine.dlon)
+    hy = EARTH_RADIUS_M * math.radians(fine.dlat)
+    margin = clearance_margin(search.loss, z, problem.start[2], arrive_h, hx, hy, problem.glide)
+    burn_in_points(margin, fine, points)
+    return z, margin, footprint_polygons(fine.lat, fine.lon, margin)
+
+
+def _read_inputs(terrain: Terrain | Sequence[str | pathlib.Path],
+                 landables: Sequence[Landable] | str | pathlib.Path, voids: str,
+                 warnings: list[str]) -> tuple[Terrain, Sequence[Landable]]:
+    """The terrain (files merged) and the landables (a .cup file read), their warnings
+    appended to `warnings`."""
+    if not isinstance(terrain, Terrain):
+        from glideplan.terrain.merge import read_terrain
+
+        terrain = read_terrain(list(terrain), voids=voids)
+    warnings += list(terrain.warnings)
+    if isinstance(landables, (str, pathlib.Path)):
+        from glideplan.reach.landables import read_cup_landables
+
+        landables, skipped = read_cup_landables(landables, terrain, warnings)
+        if skipped:
+            warnings.append(f"{skipped} waypoint(s) of the .cup file are not landable "
+                            "(SeeYou style not 2-5) and were skipped")
+    return terrain, landables
+
+
+def _landable_points(problem: ReachProblem, fine: Terrain, crop: Terrain, search: Any,
+                     clear_h: float, arrive_h: float) -> list[Any]:
+    """Each landable's verified path (or the straight glide to one beyond the crop), then
+    the shortfalls of those out of reach."""
+    glide = problem.glide
+    spacing = max(fine.spacing_m)
+    points = []
+    for lnd in problem.landables:
+        comp = replace(lnd, lon=wrap_lon(fine, lnd.lon))
+        if (math.isfinite(float(problem.terrain.elevation(comp.lat, comp.lon)))
+                and not math.isfinite(float(crop.elevation(comp.lat, comp.lon)))):
+            pt = _beyond_crop(problem.start, glide, comp, arrive_h)
+        else:
+            pt = native_point(fine, problem.start, glide, search, comp, clear_h, arrive_h,
+                              spacing, crop)
+        points.append(replace(pt, landable=lnd))
+    return list(_shortfalls(points, fine, problem.start, glide, clear_h, arrive_h))
 
 
 def _pass_check(pooled: Terrain, crop: Terrain, search: Any, problem: ReachProblem,

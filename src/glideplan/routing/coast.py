@@ -25,8 +25,10 @@ great-circle samples, a k-d tree of 3-D positions), the check the tests and `rou
 The front's side: `descent_path` (the front's way round, the corridor), `front_obstacles`
 (the front's obstacles one spacing inside the clearance, so a way open at the mask's
 resolution stays open on any grid) and `narrowest_gap` (the warning naming a gap the grid
-does not resolve). The module is ~600 lines because these pieces are one idea -- the route
-near land at the data's resolution -- and share its geometry; each function is short.
+does not resolve).
+
+Why this module is long: ~600 lines because these pieces are one idea -- the route near land
+at the data's resolution -- and share its geometry; each function is short.
 """
 
 from __future__ import annotations

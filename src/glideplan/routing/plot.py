@@ -17,6 +17,7 @@ import math
 import pathlib
 import textwrap
 from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -249,11 +250,28 @@ def route_figure(
     (`routing.glider.follow_route`), drawn when given.
     """
     import matplotlib.pyplot as plt
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
 
-    from glideplan.routing.sphere import unwrap_lon
+    start, goal, speed, inferred = _ends(result, field_, start, goal, speed)
+    fr = _frame(result, field_, start, goal)
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(10.5, 6.2))
+    else:
+        fig = ax.figure
+    handles, quiver_key = _draw_current(ax, result, field_, fr, arrows)
+    handles += _front_layers(ax, result, fr.unwrap)
+    handles += _draw_route(ax, result, fr, start, goal, glider)
+    _finish_axes(ax, fr, start)
+    ax.set_title(route_title(result, field_, start, goal, speed, inferred, glider),
+                 fontsize=9, loc="left", pad=30)
+    _legend(fig, ax, handles, quiver_key)
+    return fig
 
+
+def _ends(result: RouteResult, field_: FlowField | None, start: tuple[float, float] | None,
+          goal: tuple[float, float] | None, speed: float | None) -> tuple[
+              tuple[float, float] | None, tuple[float, float] | None, float | None, bool]:
+    """Start, goal and water speed of the drawing (given, else the result's, else the
+    track's ends and the speed inferred from it); whether the speed was inferred."""
     has_track = result.lat.size > 0
     if start is None:
         start = (float(result.start[0]), float(result.start[1])) if result.speed > 0 else (
@@ -265,7 +283,38 @@ def route_figure(
     if speed is None:
         speed = result.speed if result.speed > 0 else (
             None if field_ is None else water_speed_from_track(result, field_))
+    return start, goal, speed, inferred
 
+
+@dataclass(frozen=True)
+class _Frame:
+    """The drawing's frame: longitudes unwrapped about `ref_lon`, limits (deg), metres per
+    degree of latitude and longitude at its mean latitude, the data's span (m)."""
+
+    ref_lon: float
+    la0: float
+    la1: float
+    lo0: float
+    lo1: float
+    m_lat: float
+    m_lon: float
+    span_m: float
+
+    def unwrap(self, lon_deg: Any) -> Any:
+        """Longitudes unwrapped about the route's middle."""
+        from glideplan.routing.sphere import unwrap_lon
+
+        return unwrap_lon(lon_deg, self.ref_lon)
+
+
+def _frame(result: RouteResult, field_: FlowField | None, start: tuple[float, float] | None,
+           goal: tuple[float, float] | None) -> _Frame:
+    """The frame centred on the route: the data with a margin of 0.15 of its span, each side
+    at least 0.6 of the span long (a thin strip along a straight route hides the field
+    around it), cut to the field."""
+    from glideplan.routing.sphere import unwrap_lon
+
+    has_track = result.lat.size > 0
     ext = None if field_ is None else field_.extent
     ref_lon = start[1] if start is not None else (
         float(result.lon[0]) if has_track else (0.0 if ext is None else ext.lon_min))
@@ -286,8 +335,6 @@ def route_figure(
     la_mid, lo_mid = 0.5 * (min(lats) + max(lats)), 0.5 * (min(lons) + max(lons))
     m_lat, m_lon = frame_scales(max(min(la_mid, 89.0), -89.0), (lo_mid + 180) % 360 - 180)
     span_m = max((max(lats) - min(lats)) * m_lat, (max(lons) - min(lons)) * m_lon, 1000.0)
-    # The data with a margin of 0.15 of its span, each side at least 0.6 of the span long (a
-    # thin strip along a straight route hides the field around it), cut to the field.
     half_la = max(0.5 * (max(lats) - min(lats)) * m_lat + 0.15 * span_m, 0.3 * span_m) / m_lat
     half_lo = max(0.5 * (max(lons) - min(lons)) * m_lon + 0.15 * span_m, 0.3 * span_m) / m_lon
     half_lo = min(half_lo, 180.0)
@@ -301,15 +348,20 @@ def route_figure(
             lo0, lo1 = max(lo0, e0), min(lo1, e0 + ext.lon_max - ext.lon_min)
     # The aspect: equal ground distances at the frame's mean latitude.
     m_lat, m_lon = frame_scales(0.5 * (la0 + la1), ((lo0 + lo1) / 2 + 180) % 360 - 180)
+    return _Frame(ref_lon, la0, la1, lo0, lo1, m_lat, m_lon, span_m)
 
-    if ax is None:
-        fig, ax = plt.subplots(figsize=(10.5, 6.2))
-    else:
-        fig = ax.figure
+
+def _draw_current(ax: Any, result: RouteResult, field_: FlowField | None, fr: _Frame,
+                  arrows: int) -> tuple[list[Any], tuple[Any, float] | None]:
+    """Current arrows at departure on a grid square in ground distance, land on a finer
+    grid; legend handles and the arrow key (quiver, m/s) when there is a current."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    la0, la1, lo0, lo1 = fr.la0, fr.la1, fr.lo0, fr.lo1
     handles: list[Any] = []
     quiver_key: tuple[Any, float] | None = None
-    # Current arrows on a grid square in ground distance; land on a finer grid.
-    w_m, h_m = (lo1 - lo0) * m_lon, (la1 - la0) * m_lat
+    w_m, h_m = (lo1 - lo0) * fr.m_lon, (la1 - la0) * fr.m_lat
     n_lo = arrows if w_m >= h_m else max(5, round(arrows * w_m / h_m))
     n_la = arrows if h_m > w_m else max(5, round(arrows * h_m / w_m))
     snapshot = "" if field_ is None else _time_text(field_, result.depart_s)
@@ -339,8 +391,16 @@ def route_figure(
             handles.append(Line2D([], [], ls="none", label="still water (no current)"))
     except ValueError:  # a field that cannot be drawn here: draw the track alone
         pass
+    return handles, quiver_key
 
-    handles += _front_layers(ax, result, frame)
+
+def _draw_route(ax: Any, result: RouteResult, fr: _Frame, start: tuple[float, float] | None,
+                goal: tuple[float, float] | None, glider: GliderFollow | None) -> list[Any]:
+    """The straight line, the route, the glider's flyable path, start and goal with their
+    headings through the water; legend handles."""
+    frame = fr.unwrap
+    has_track = result.lat.size > 0
+    handles: list[Any] = []
     if start is not None and goal is not None:
         (line,) = ax.plot([frame(start[1]), frame(goal[1])], [start[0], goal[0]], ":",
                           color="0.25", lw=1.2, zorder=3)
@@ -358,7 +418,7 @@ def route_figure(
                           color="black", lw=1.0, zorder=4,
                           label=f"glider following, R0 = {glider.radius_m:.4g} m")
         handles.append(line)
-    arrow_m = 0.07 * span_m
+    arrow_m = 0.07 * fr.span_m
     for p, colour, marker, name, k in ((start, "tab:green", "o", "start", 0),
                                        (goal, "tab:red", "s", "goal", -1)):
         if p is None:
@@ -366,33 +426,40 @@ def route_figure(
         text = name
         if has_track and result.heading_deg.size:
             hdg = float(result.heading_deg[k])
-            _heading_arrow(ax, p[0], float(frame(p[1])), hdg, arrow_m, m_lat, m_lon, colour)
+            _heading_arrow(ax, p[0], float(frame(p[1])), hdg, arrow_m, fr.m_lat, fr.m_lon,
+                           colour)
             text += f", heading {hdg:.0f}° (through water)"
         (mk,) = ax.plot(frame(p[1]), p[0], marker, color=colour, ms=8, zorder=5, ls="none",
                         label=text)
         handles.append(mk)
+    return handles
 
-    ax.set_xlim(lo0, lo1)
-    ax.set_ylim(la0, la1)
-    ax.set_aspect(m_lat / m_lon, adjustable="box")
-    ax.set_xlabel("longitude (deg E)")
+
+def _finish_axes(ax: Any, fr: _Frame, start: tuple[float, float] | None) -> None:
+    """Limits, equal ground aspect, degree and km axes, scale bar, north arrow, grid."""
     from matplotlib.ticker import FuncFormatter
 
+    from glideplan.plotting import add_north_arrow, add_scale_bar
+
+    ax.set_xlim(fr.lo0, fr.lo1)
+    ax.set_ylim(fr.la0, fr.la1)
+    ax.set_aspect(fr.m_lat / fr.m_lon, adjustable="box")
+    ax.set_xlabel("longitude (deg E)")
     # the frame is unwrapped about the route (continuous across 180): ticks read -180..180
     ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _p: f"{(v + 180.0) % 360.0 - 180.0:g}"))
     ax.set_ylabel("latitude (deg N)")
-    ref_lat = la0 if start is None else start[0]
-    ref_lon = lo0 if start is None else float(frame(start[1]))
+    ref_lat = fr.la0 if start is None else start[0]
+    ref_lon = fr.lo0 if start is None else float(fr.unwrap(start[1]))
     ref = "the frame's corner" if start is None else "start"
-
-    add_km_axes(ax, ref_lat, ref_lon, m_lat, m_lon, f"km east of {ref}", f"km north of {ref}")
-    from glideplan.plotting import add_north_arrow, add_scale_bar
-
+    add_km_axes(ax, ref_lat, ref_lon, fr.m_lat, fr.m_lon, f"km east of {ref}",
+                f"km north of {ref}")
     add_scale_bar(ax)  # (limits and aspect are final: adjustable "box")
     add_north_arrow(ax)
     ax.grid(True, lw=0.4, alpha=0.5)
-    ax.set_title(route_title(result, field_, start, goal, speed, inferred, glider),
-                 fontsize=9, loc="left", pad=30)
+
+
+def _legend(fig: Any, ax: Any, handles: list[Any], quiver_key: tuple[Any, float] | None) -> None:
+    """The legend outside the axes and the current's arrow key just below it."""
     if handles:
         legend = ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.12, 1.0),
                            borderaxespad=0.0, fontsize=8)
@@ -407,4 +474,3 @@ def route_figure(
         q, key = quiver_key
         ax.quiverkey(q, x, y, key, f"key: current {key:g} m/s", labelpos="E",
                      coordinates="figure", fontproperties={"size": 8})
-    return fig

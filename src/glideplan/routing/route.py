@@ -77,9 +77,60 @@ def route(
     are accepted, e.g. `refine=False`, `land_clearance_m=500.0`). Raises InvalidParameterError
     for bad input; an unreachable goal is a result (`unreachable_reason` says why).
     """
-    from glideplan.routing import phases
-    from glideplan.routing.sphere import gc_distance, straight_line_duration
+    from glideplan.routing import extract, phases
 
+    settings = _settings(settings, resolution, overrides)
+    clock = _Clock()
+    problem = phases.setup(field_, start, goal, speed, depart, depth_range, settings)
+    warnings = list(problem.warnings)
+    clock.lap("setup")
+    common: dict[str, Any] = dict(
+        start=problem.start, goal=problem.goal, speed=problem.speed, depart=problem.depart,
+        depart_s=problem.t0, field_info=problem.field_.describe())
+    if problem.distance_m <= 1e-6:  # start = goal
+        return _coincident(problem, warnings, clock.stats, common)
+    cone = extract.drift_cone(problem, phases.spacing_for(problem))
+    if cone is not None:  # outside the drift cone: no front needed, at any resolution
+        clock.lap("drift_cone")
+        clock.stats["spacing_m"] = phases.spacing_for(problem)
+        return RouteResult(status=Status.UNREACHABLE, message=cone.message,
+                           warnings=tuple(warnings), best_distance_m=problem.distance_m,
+                           reason=Reason(cone.reason), stats=clock.stats, **common)
+    rg, fo, g0, tolerance = _front(problem, clock)
+    warnings += [w for w in rg.warnings if w not in warnings]
+    common.update(land_clearance_m=rg.clearance_m, endpoint_tolerance_m=tolerance,
+                  front=FrontMap(rg.window.lat, rg.window.lon, fo.arrival - problem.t0,
+                                 rg.obstacle.astype(float)))
+    if fo.goal_time is None:
+        return _unreachable(problem, rg, fo, warnings, clock.stats, common)
+    grid_T = fo.goal_time - problem.t0
+    # where the current reaches the vehicle's speed, the characteristic's own controls
+    # (extract.py); else (or when it fails) the polyline held leg by leg
+    strong = extract.swept(problem, rg, fo.goal_time)
+    swept_route = extract.rescue(problem, rg, fo, tolerance, tried=False,
+                                 track=settings.refine) if strong else None
+    g = swept_route[0] if swept_route is not None else g0
+    if g is None:
+        g = _grid_route(problem, rg, fo)
+    clock.lap("backtrack")
+    best, flown, note, refined_T = _refined_or_grid(problem, rg, g, tolerance, clock)
+    ok = phases.flown_ok(flown, tolerance)
+    # refine=False: the grid route's legs only (a coarse, quick route): when they miss, the
+    # characteristic tracked in closed loop (its flown controls) -- also when swept
+    if not ok and (not strong or not settings.refine):
+        rescued, note = _rescue(problem, rg, fo, tolerance, strong, grid_T, note, clock)
+        if rescued is not None:
+            best, flown = rescued
+            ok = True
+    note = _verification_note(flown, tolerance, note, warnings)
+    return _solved(problem, rg, best, flown, ok, note, warnings, clock,
+                   {**common, "grid_duration_s": float(grid_T),
+                    "refined_duration_s": refined_T})
+
+
+def _settings(settings: RouteSettings | None, resolution: float | None,
+              overrides: dict[str, Any]) -> RouteSettings:
+    """The settings with `resolution` and the keyword overrides applied (unknown names refused)."""
     unknown = set(overrides) - _SETTING_NAMES
     if unknown:
         raise InvalidParameterError("route option", sorted(unknown)[0],
@@ -89,129 +140,144 @@ def route(
         overrides["resolution"] = resolution
     if overrides:
         settings = replace(settings, **overrides)
-    clock = {"t": time.perf_counter()}
-    stats: dict[str, Any] = {}
+    return settings
 
-    def lap(name: str) -> None:
+
+class _Clock:
+    """Wall time per phase, into `stats` as `NAME_s` (s, 4 decimals)."""
+
+    def __init__(self) -> None:
+        self.stats: dict[str, Any] = {}
+        self.t = time.perf_counter()
+
+    def lap(self, name: str) -> None:
+        """Record the time since the last lap under `name`."""
         now = time.perf_counter()
-        stats[f"{name}_s"] = round(now - clock["t"], 4)
-        clock["t"] = now
+        self.stats[f"{name}_s"] = round(now - self.t, 4)
+        self.t = now
 
-    problem = phases.setup(field_, start, goal, speed, depart, depth_range, settings)
-    info = problem.field_.describe()
-    warnings = list(problem.warnings)
-    lap("setup")
-    common: dict[str, Any] = dict(
-        start=problem.start, goal=problem.goal, speed=problem.speed, depart=problem.depart,
-        depart_s=problem.t0, field_info=info)
-    if problem.distance_m <= 1e-6:  # start = goal
-        track = Track(np.zeros(1), np.zeros(1), np.zeros(1), np.zeros(1),
-                      lat=np.array([problem.start[0]]), lon=np.array([problem.start[1]]))
-        return RouteResult(status=Status.SOLVED, message="start and goal coincide",
-                           warnings=tuple(warnings), duration_s=0.0, distance_m=0.0,
-                           track=track, endpoint_error_m=0.0, endpoint_tolerance_m=0.0,
-                           straight_line_duration_s=0.0, grid_duration_s=0.0, method="none",
-                           stats=stats, **common)
 
-    from glideplan.routing import extract
+def _coincident(problem: Any, warnings: list[str], stats: dict[str, Any],
+                common: dict[str, Any]) -> RouteResult:
+    """The route when start and goal coincide: solved, one point, zero time."""
+    track = Track(np.zeros(1), np.zeros(1), np.zeros(1), np.zeros(1),
+                  lat=np.array([problem.start[0]]), lon=np.array([problem.start[1]]))
+    return RouteResult(status=Status.SOLVED, message="start and goal coincide",
+                       warnings=tuple(warnings), duration_s=0.0, distance_m=0.0,
+                       track=track, endpoint_error_m=0.0, endpoint_tolerance_m=0.0,
+                       straight_line_duration_s=0.0, grid_duration_s=0.0, method="none",
+                       stats=stats, **common)
 
-    cone = extract.drift_cone(problem, phases.spacing_for(problem))
-    if cone is not None:  # outside the drift cone: no front needed, at any resolution
-        lap("drift_cone")
-        stats["spacing_m"] = phases.spacing_for(problem)
-        return RouteResult(status=Status.UNREACHABLE, message=cone.message,
-                           warnings=tuple(warnings), best_distance_m=problem.distance_m,
-                           reason=Reason(cone.reason), stats=stats, **common)
+
+def _front(problem: Any, clock: _Clock) -> tuple[Any, Any, Any, float]:
+    """Grid and front (again at the strict clearance when the backtrack finds it closed),
+    the backtracked grid route when there is one, the endpoint tolerance (m)."""
+    from glideplan.routing import phases
+
     rg = phases.grid(problem)
-    tolerance = settings.endpoint_tolerance_cells * rg.spacing_m
-    lap("grid")
+    tolerance = problem.settings.endpoint_tolerance_cells * rg.spacing_m
+    clock.lap("grid")
     fo, rg = phases.front(problem, rg)
     g0 = None
     if fo.goal_time is not None:
         try:
             g0 = phases.backtrack(problem, rg, fo)
-        except InvalidParameterError:  # swept along: extract.py below takes it
+        except InvalidParameterError:  # swept along: extract.py takes it
             g0 = None
         # closed at the full clearance: the front again
         if g0 is not None and g0.method == phases.CLOSED:
             rg = phases.strict_grid(problem, rg)
             fo, rg = phases.front(problem, rg)
             g0 = None
-    warnings += [w for w in rg.warnings if w not in warnings]
-    stats.update(grid_nodes=list(rg.window.shape), spacing_m=rg.spacing_m, steps=fo.steps,
-                 window_growths=fo.growths, periodic=rg.window.periodic,
-                 field_levels_evaluated=rg.currents.evaluations)
-    lap("front")
-    front_map = FrontMap(rg.window.lat, rg.window.lon, fo.arrival - problem.t0,
-                         rg.obstacle.astype(float))
-    common.update(land_clearance_m=rg.clearance_m, front=front_map,
-                  endpoint_tolerance_m=tolerance)
-    if fo.goal_time is None:
-        straight = straight_line_duration(problem.field_, problem.speed, problem.t0,
-                                          problem.start, problem.goal, problem.t_max)
-        why = fo.unreachable_reason or "front_stopped"
-        msg = _unreachable_message(why, problem, fo.closest_m,
-                                   rg.clearance_m if rg.coast_xyz.shape[0] else 0.0)
-        if why in ("front_stopped", "field_extent", "time_span", "max_duration"):
-            from glideplan.routing.cutoff import field_cut_off, nan_time_step
+    clock.stats.update(grid_nodes=list(rg.window.shape), spacing_m=rg.spacing_m,
+                       steps=fo.steps, window_growths=fo.growths,
+                       periodic=rg.window.periodic,
+                       field_levels_evaluated=rg.currents.evaluations)
+    clock.lap("front")
+    return rg, fo, g0, tolerance
 
-            shut = field_cut_off(problem.field_, problem.t0, problem.start, problem.goal,
-                                 rg.clearance_m)
-            if shut is not None:  # not the time: no way joins start and goal
-                why, msg = "front_stopped", _cut_off_message(shut, rg.clearance_m, fo.closest_m)
-            gap = nan_time_step(problem.field_, problem.t0, fo.arrival)
-            if gap is not None:  # a time step with no data at all stopped the front
-                why = "missing_data"
-                msg = (f"the field has no data at {problem.field_.format_time(gap)} (every "
-                       "current value NaN at that time step): the front cannot cross it; the "
-                       f"reachable set came within {fo.closest_m / 1000:.3g} km of the goal")
-        from glideplan.routing.window import MAX_LAT_DEG
 
-        top = _great_circle_max_lat(problem.start, problem.goal)
-        if top > MAX_LAT_DEG:
-            why = "polar_limit"
-            msg = (f"the great circle from start to goal passes {top:.1f} deg latitude and "
-                   f"routes are computed within +-{MAX_LAT_DEG:g} deg (the lat/lon lattice "
-                   f"degenerates at the poles): {msg}; plan via waypoints below "
-                   f"{MAX_LAT_DEG:g} deg")
-        return RouteResult(status=Status.UNREACHABLE, message=msg, warnings=tuple(warnings),
-                           straight_line_duration_s=straight, best_distance_m=fo.closest_m,
-                           reason=Reason(why), stats=stats, **common)
+def _unreachable(problem: Any, rg: Any, fo: Any, warnings: list[str], stats: dict[str, Any],
+                 common: dict[str, Any]) -> RouteResult:
+    """The answer when the front never reached the goal, with the real cause in `message`."""
+    from glideplan.routing.sphere import straight_line_duration
+    from glideplan.routing.window import MAX_LAT_DEG
 
-    grid_T = fo.goal_time - problem.t0
-    # where the current reaches the vehicle's speed, the characteristic's own controls
-    # (extract.py); else (or when it fails) the polyline held leg by leg
-    strong = extract.swept(problem, rg, fo.goal_time)
-    swept_route = extract.rescue(problem, rg, fo, tolerance, tried=False,
-                                 track=settings.refine) if strong else None
-    g = swept_route[0] if swept_route is not None else g0
-    if g is None:
-        try:
-            g = phases.backtrack(problem, rg, fo)
-        except InvalidParameterError:  # the polyline's legs outlast the field (swept along)
-            g = extract.characteristic_candidate(problem, rg, fo)
-            if g is None:
-                raise
-    lap("backtrack")
+    straight = straight_line_duration(problem.field_, problem.speed, problem.t0,
+                                      problem.start, problem.goal, problem.t_max)
+    why = fo.unreachable_reason or "front_stopped"
+    msg = _unreachable_message(why, problem, fo.closest_m,
+                               rg.clearance_m if rg.coast_xyz.shape[0] else 0.0)
+    if why in ("front_stopped", "field_extent", "time_span", "max_duration"):
+        why, msg = _real_cause(problem, rg, fo, why, msg)
+    top = _great_circle_max_lat(problem.start, problem.goal)
+    if top > MAX_LAT_DEG:
+        why = "polar_limit"
+        msg = (f"the great circle from start to goal passes {top:.1f} deg latitude and "
+               f"routes are computed within +-{MAX_LAT_DEG:g} deg (the lat/lon lattice "
+               f"degenerates at the poles): {msg}; plan via waypoints below "
+               f"{MAX_LAT_DEG:g} deg")
+    return RouteResult(status=Status.UNREACHABLE, message=msg, warnings=tuple(warnings),
+                       straight_line_duration_s=straight, best_distance_m=fo.closest_m,
+                       reason=Reason(why), stats=stats, **common)
+
+
+def _real_cause(problem: Any, rg: Any, fo: Any, why: str, msg: str) -> tuple[str, str]:
+    """A stopped front's cause when it is not the time: land cutting the goal off, or a
+    time step with no data at all."""
+    from glideplan.routing.cutoff import field_cut_off, nan_time_step
+
+    shut = field_cut_off(problem.field_, problem.t0, problem.start, problem.goal,
+                         rg.clearance_m)
+    if shut is not None:  # not the time: no way joins start and goal
+        why, msg = "front_stopped", _cut_off_message(shut, rg.clearance_m, fo.closest_m)
+    gap = nan_time_step(problem.field_, problem.t0, fo.arrival)
+    if gap is not None:  # a time step with no data at all stopped the front
+        why = "missing_data"
+        msg = (f"the field has no data at {problem.field_.format_time(gap)} (every "
+               "current value NaN at that time step): the front cannot cross it; the "
+               f"reachable set came within {fo.closest_m / 1000:.3g} km of the goal")
+    return why, msg
+
+
+def _grid_route(problem: Any, rg: Any, fo: Any) -> Any:
+    """The backtracked polyline, or the characteristic when its legs outlast the field."""
+    from glideplan.routing import extract, phases
+
+    try:
+        return phases.backtrack(problem, rg, fo)
+    except InvalidParameterError:  # the polyline's legs outlast the field (swept along)
+        g = extract.characteristic_candidate(problem, rg, fo)
+        if g is None:
+            raise
+        return g
+
+
+def _refined_or_grid(problem: Any, rg: Any, g: Any, tolerance: float,
+                     clock: _Clock) -> tuple[Any, Any, str, float | None]:
+    """The Zermelo-shooting route from `g` if it verifies and is not slower than the grid
+    route by more than GRID_TIME_TOLERANCE, else `g`: (best, flown, note, refined duration)."""
+    from glideplan.routing import phases
+
     best, flown, note = g, None, ""
     refined_T = None
     flown_g = None
-    if settings.refine:
+    if problem.settings.refine:
         shot, why_not = phases.refine(problem, rg, g)
-        lap("refine")
+        clock.lap("refine")
         if shot is None:
             note = f"refinement not used: {why_not}"
         else:
             refined_T = shot.duration
             flown_r = phases.verify(problem, rg, shot)
-            lap("verify_refined")
+            clock.lap("verify_refined")
             if phases.flown_ok(flown_r, tolerance) and \
                     shot.duration <= g.duration * (1 + GRID_TIME_TOLERANCE):
                 best, flown = shot, flown_r
             else:
                 flown_g = phases.verify(problem, rg, g)
                 grid_ok = phases.flown_ok(flown_g, tolerance)
-                lap("verify_grid")
+                clock.lap("verify_grid")
                 if flown_r.on_land or flown_r.left_field:
                     note = "refinement rejected: its controls cross land or leave the field"
                 elif flown_r.endpoint_error_m > max(flown_g.endpoint_error_m, tolerance):
@@ -225,56 +291,71 @@ def route(
                             "refined route is the verified one")
     if flown is None:
         flown = flown_g if flown_g is not None else phases.verify(problem, rg, g)
-        lap("verify_grid")
-    ok = phases.flown_ok(flown, tolerance)
-    # refine=False: the grid route's legs only (a coarse, quick route): when they miss, the
-    # characteristic tracked in closed loop (its flown controls) -- also when swept
-    if not ok and (not strong or not settings.refine):
-        rescued = extract.rescue(problem, rg, fo, tolerance, tried=strong,
-                                 home=not settings.refine)
-        lap("rescue")
-        if rescued is not None and not settings.refine and \
-                rescued[0].duration > grid_T * (1 + RESCUE_TIME_TOLERANCE):
-            note = _join(note, f"the characteristic tracked in closed loop verifies but takes "
-                         f"{rescued[0].duration / 3600:.4g} h against the front's "
-                         f"{grid_T / 3600:.4g} h: not used (refine or a finer grid)")
-            rescued = None
-        if rescued is not None:
-            best, flown = rescued
-            ok = True
-            note = _join(note, f"the {best.method} route is the verified one (the others "
-                         "missed the goal)")
+        clock.lap("verify_grid")
+    return best, flown, note, refined_T
+
+
+def _rescue(problem: Any, rg: Any, fo: Any, tolerance: float, strong: bool, grid_T: float,
+            note: str, clock: _Clock) -> tuple[Any, str]:
+    """The characteristic tracked in closed loop when the routes missed: ((candidate, flown)
+    or None, note)."""
+    from glideplan.routing import extract
+
+    refine = problem.settings.refine
+    rescued = extract.rescue(problem, rg, fo, tolerance, tried=strong, home=not refine)
+    clock.lap("rescue")
+    if rescued is not None and not refine and \
+            rescued[0].duration > grid_T * (1 + RESCUE_TIME_TOLERANCE):
+        note = _join(note, f"the characteristic tracked in closed loop verifies but takes "
+                     f"{rescued[0].duration / 3600:.4g} h against the front's "
+                     f"{grid_T / 3600:.4g} h: not used (refine or a finer grid)")
+        rescued = None
+    if rescued is not None:
+        note = _join(note, f"the {rescued[0].method} route is the verified one (the others "
+                     "missed the goal)")
+    return rescued, note
+
+
+def _verification_note(flown: Any, tolerance: float, note: str, warnings: list[str]) -> str:
+    """`note` with what the verification found (land, leaving the field, a miss); the
+    stencil's land fills appended to `warnings`."""
     if flown.filled:
         warnings.append(f"verification: the field's interpolation stencil touched land at "
                         f"{flown.filled} of its evaluations; the nearest water current was "
                         "used there (verification only)")
     if flown.on_land or flown.left_field:
-        note = _join(note, "verification: the controls cross land" if flown.on_land else
+        return _join(note, "verification: the controls cross land" if flown.on_land else
                      f"verification: the controls leave the field ({flown.left_field})")
-    elif flown.endpoint_error_m > tolerance:
-        note = _join(note, f"verification: the heading controls flown through the field end "
+    if flown.endpoint_error_m > tolerance:
+        return _join(note, f"verification: the heading controls flown through the field end "
                      f"{flown.endpoint_error_m:.3g} m from the goal, beyond the tolerance of "
                      f"{tolerance:.3g} m (one grid spacing); a finer grid (resolution) may help")
+    return note
+
+
+def _solved(problem: Any, rg: Any, best: Any, flown: Any, ok: bool, note: str,
+            warnings: list[str], clock: _Clock, common: dict[str, Any]) -> RouteResult:
+    """The result of a route found: solved when verified, else not_verified."""
+    from glideplan.routing.coast import track_clearance
+    from glideplan.routing.sphere import gc_distance, straight_line_duration
+
     T = float(best.duration)
     straight = straight_line_duration(problem.field_, problem.speed, problem.t0, problem.start,
                                       problem.goal, problem.t0 + max(3 * T, 3600.0))
-    lap("straight_line")
-    from glideplan.routing.coast import track_clearance
-
+    clock.lap("straight_line")
     near = track_clearance(problem, rg, best.lat, best.lon)
     if near is not None and math.isfinite(near):
-        stats["least_distance_to_land_m"] = round(near, 1)
+        clock.stats["least_distance_to_land_m"] = round(near, 1)
         if near < rg.clearance_m * (1 - 1e-3):
             warnings.append(f"the track comes within {near:.0f} m of a land node, inside the "
                             f"{rg.clearance_m:.0f} m land clearance")
-    track = _track(problem, best)
     dist = float(np.sum(gc_distance(best.lat[:-1], best.lon[:-1], best.lat[1:], best.lon[1:])))
     return RouteResult(
         status=Status.SOLVED if ok else Status.NOT_VERIFIED,
         message=note or ("solved" if ok else ""), warnings=tuple(warnings), duration_s=T,
-        distance_m=dist, track=track, endpoint_error_m=float(flown.endpoint_error_m),
-        straight_line_duration_s=straight, grid_duration_s=float(grid_T),
-        refined_duration_s=refined_T, method=best.method, stats=stats, **common)
+        distance_m=dist, track=_track(problem, best),
+        endpoint_error_m=float(flown.endpoint_error_m), straight_line_duration_s=straight,
+        method=best.method, stats=clock.stats, **common)
 
 
 def _join(a: str, b: str) -> str:

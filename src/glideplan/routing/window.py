@@ -14,17 +14,17 @@ pad); `fixed_sides` are the window's sides on a bound.
 
 `WindowCurrents` samples the field on the window at time levels (the field's own, one for a
 steady field, or every `sample_dt` seconds for an analytic one), lazily, and interpolates
-linearly in time; `obstacles` marks the nodes within the land clearance of land: the land
-points are the field's own NaN nodes (for a gridded field; its linear interpolation reads NaN
-anywhere within one cell of them) and the window's NaN nodes, at their coasts; the distance is
-the great-circle distance (a k-d tree on 3-D positions, chord radius 2 R sin(c / 2R)).
+linearly in time; `obstacles` (`routing.land`, with the other land helpers) marks the nodes
+within the land clearance of land: the land points are the field's own NaN nodes (for a
+gridded field; its linear interpolation reads NaN anywhere within one cell of them) and the
+window's NaN nodes, at their coasts; the distance is the great-circle distance (a k-d tree
+on 3-D positions, chord radius 2 R sin(c / 2R)).
 """
 
 from __future__ import annotations
 
 import bisect
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -33,6 +33,24 @@ from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import FlowField, GriddedField, UniformField
+from glideplan.routing.land import (  # the land helpers, one import away
+    _coast as _coast,
+)
+from glideplan.routing.land import (
+    _xyz as _xyz,
+)
+from glideplan.routing.land import (
+    distance_to_land as distance_to_land,
+)
+from glideplan.routing.land import (
+    land_clearance_default as land_clearance_default,
+)
+from glideplan.routing.land import (
+    land_points as land_points,
+)
+from glideplan.routing.land import (
+    obstacles as obstacles,
+)
 from glideplan.routing.sphere import EARTH_RADIUS_M, unwrap_lon
 
 __all__ = ["MAX_LAT_DEG", "Lattice", "Window", "WindowCurrents", "initial_window",
@@ -434,101 +452,3 @@ class WindowCurrents:
             if len(self._flat_cache) > 8:
                 self._flat_cache.pop(next(iter(self._flat_cache)))
         return got[1]
-
-
-def land_clearance_default(fld: FlowField, spacing: float, lat_ref: float) -> float:
-    """The default clearance (m): a gridded field with land: its cell's diagonal at lat_ref plus
-    one routing spacing (the NaN stencil reaches one cell from a land node; the grid places the
-    route within one spacing of its obstacles); otherwise one routing spacing."""
-    if isinstance(fld, GriddedField) and not np.all(np.isfinite(fld.u[0])):
-        dy = EARTH_RADIUS_M * math.radians(float(np.mean(np.diff(fld.lat))))
-        dx = EARTH_RADIUS_M * math.cos(math.radians(min(abs(lat_ref), 85.0))) * math.radians(
-            float(np.mean(np.diff(fld.lon))))
-        return math.hypot(dx, dy) + spacing
-    return spacing
-
-
-def _xyz(lat: FloatArray, lon: FloatArray) -> FloatArray:
-    p, lam = np.radians(lat), np.radians(lon)
-    return EARTH_RADIUS_M * np.stack([np.cos(p) * np.cos(lam), np.cos(p) * np.sin(lam),
-                                      np.sin(p)], axis=-1)
-
-
-def _coast(mask: BoolArray) -> BoolArray:
-    """Land nodes with a water node among their 8 neighbours (edges count as land)."""
-    from scipy.ndimage import binary_erosion
-
-    inner = binary_erosion(mask, structure=np.ones((3, 3), dtype=bool), border_value=1)
-    return mask & ~inner
-
-
-def land_points(fld: FlowField, window: Window, land: BoolArray, pad_m: float) -> FloatArray:
-    """3-D positions (m) of the coast points near the window: a gridded field's coastal NaN
-    nodes (its linear interpolation is NaN within a cell of them: the window's NaN nodes there
-    are that stencil band, obstacles of their own), else the window's coastal NaN nodes."""
-    if not isinstance(fld, GriddedField):
-        if not land.any():
-            return np.zeros((0, 3))
-        LA, LO = np.meshgrid(window.lat, window.lon, indexing="ij")
-        c = _coast(land)
-        return _xyz(LA[c], LO[c])
-    nan = ~(np.isfinite(fld.u[0]) & np.isfinite(fld.v[0]))
-    if not nan.any():
-        return np.zeros((0, 3))
-    pad_deg = math.degrees(pad_m / EARTH_RADIUS_M)
-    lat = fld.lat
-    rows = (lat >= window.lat[0] - pad_deg) & (lat <= window.lat[-1] + pad_deg)
-    centre = 0.5 * (window.lon[0] + window.lon[-1])
-    half = 0.5 * (window.lon[-1] - window.lon[0])
-    lat_max = min(max(abs(window.lat[0]), abs(window.lat[-1])) + pad_deg, 89.0)
-    pad_lon = pad_deg / math.cos(math.radians(lat_max))
-    lo = unwrap_lon(fld.lon, centre)
-    cols = (np.abs(lo - centre) <= half + pad_lon) if not window.periodic else np.ones(
-        lo.size, dtype=bool)
-    if not (rows.any() and cols.any()):
-        return np.zeros((0, 3))
-    sub = nan[np.ix_(rows, cols)]
-    c = _coast(sub) if sub.any() else sub
-    if not c.any():
-        return np.zeros((0, 3))
-    LA, LO = np.meshgrid(lat[rows], lo[cols], indexing="ij")
-    return _xyz(LA[c], LO[c])
-
-
-def distance_to_land(points: FloatArray, lat: FloatArray, lon: FloatArray,
-                     upper: float) -> FloatArray:
-    """Great-circle distance (m) from each (lat, lon) to the nearest land point, inf beyond
-    `upper` (or with no land points)."""
-    out = np.full(np.shape(lat), np.inf)
-    if points.shape[0] == 0:
-        return out
-    from scipy.spatial import cKDTree
-
-    tree = cKDTree(points)
-    chord_max = 2 * EARTH_RADIUS_M * math.sin(min(upper / (2 * EARTH_RADIUS_M), math.pi / 2))
-    d, _ = tree.query(_xyz(np.ravel(lat), np.ravel(lon)), distance_upper_bound=chord_max * 1.0001)
-    d = np.asarray(d, dtype=float)
-    fin = np.isfinite(d)
-    d[fin] = 2 * EARTH_RADIUS_M * np.arcsin(np.clip(d[fin] / (2 * EARTH_RADIUS_M), 0, 1))
-    return d.reshape(np.shape(lat))
-
-
-def obstacles(fld: FlowField, window: Window, land: BoolArray, clearance: float,
-              keep_free: Sequence[tuple[float, float, float]] = (),
-              pts: FloatArray | None = None) -> tuple[BoolArray, FloatArray]:
-    """Obstacle nodes: land, or within `clearance` (m) of a land point; nodes within each
-    (lat, lon, radius m) of `keep_free` are freed unless they are land themselves.
-    Returns (mask, the coast points used: `pts`, or `land_points`)."""
-    if pts is None:
-        pts = land_points(fld, window, land, clearance + window.lattice.spacing_m)
-    LA, LO = np.meshgrid(window.lat, window.lon, indexing="ij")
-    mask = land.copy()
-    if clearance > 0 and pts.shape[0]:
-        mask |= distance_to_land(pts, LA, LO, clearance) < clearance
-    if keep_free:
-        from glideplan.routing.sphere import gc_distance
-
-        for la, lo, r in keep_free:
-            near = gc_distance(LA, LO, la, lo) <= r
-            mask &= ~(near & ~land)
-    return mask, pts

@@ -150,22 +150,11 @@ def zermelo_shooting(
     kinks at cell edges a smaller step would resolve as noise); a Newton step that does not
     reduce the miss is halved (up to 4 times); the shooting stops when 4 iterations in a row
     do not improve the best miss."""
-    R = EARTH_RADIUS_M
-    phi0, lam0 = math.radians(start[0]), math.radians(start[1])
-    gphi, glam = math.radians(goal[0]), math.radians(goal[1])
-    delta = 1e-5
+    sh = _Shooter(cur, speed, t0, steps, math.radians(start[0]), math.radians(start[1]),
+                  math.radians(goal[0]), math.radians(goal[1]))
     empty = np.zeros(1)
-
-    def shoot(ch: float, T: float) -> tuple[FloatArray, FloatArray, float] | None:
-        zz = _fly(cur, speed, t0, T, phi0, lam0, np.array([ch, ch + delta]), steps)
-        if zz.shape[0] < steps + 1:
-            return None
-        end = zz[-1]
-        r = np.array([(end[0, 0] - gphi) * R, (end[1, 0] - glam) * R * math.cos(gphi)])
-        return zz, r, math.hypot(r[0], r[1])
-
     ch, T = float(chi0), float(duration)
-    got = shoot(ch, T)
+    got = sh.shoot(ch, T)
     if got is None:
         return Shot(False, empty, empty, empty, empty, T, 1,
                     "trajectory reached land or left the routing window")
@@ -173,33 +162,16 @@ def zermelo_shooting(
     best, stale, msg = err, 0, "not converged"
     for it in range(1, max_iter + 1):
         if err <= tol_m:
-            tt = t0 + np.linspace(0.0, T, steps + 1)
-            phi, lam, qp, ql = zz[:, 0, 0], zz[:, 1, 0], zz[:, 2, 0], zz[:, 3, 0]
-            chi = np.arctan2(ql / np.cos(phi), qp)
-            return Shot(True, tt, np.degrees(phi), np.degrees(lam), chi, T, it, "converged")
-        end = zz[-1]
-        d_end = np.array([(end[0, 1] - end[0, 0]) * R,
-                          (end[1, 1] - end[1, 0]) * R * math.cos(gphi)]) / delta
-        vel = _rhs(cur, speed, t0 + T, end[:, :1])[:2, 0]
-        vel = np.array([vel[0] * R, vel[1] * R * math.cos(gphi)])
-        try:
-            step = np.linalg.solve(np.column_stack([d_end, vel]), -r)
-        except np.linalg.LinAlgError:
+            return sh.converged(zz, T, it)
+        step = sh.newton_step(zz, r, T)
+        if step is None:
             msg = "singular Jacobian"
             break
-        scale = min(1.0, 0.3 / max(abs(step[0]), 1e-12), 0.2 * T / max(abs(step[1]), 1e-12))
-        for _ in range(5):
-            ch_n, T_n = ch + scale * step[0], T + scale * step[1]
-            trial = shoot(ch_n, T_n) if T_n > 0 else None
-            if trial is not None and trial[2] < err:
-                break
-            scale *= 0.5
-        else:
+        found = sh.line_search(ch, T, step, err)
+        if found is None:
             msg = "no Newton step reduces the miss"
             break
-        assert trial is not None
-        ch, T = ch_n, T_n
-        zz, r, err = trial
+        ch, T, (zz, r, err) = found
         if err < 0.999 * best:
             best, stale = err, 0
         else:
@@ -208,9 +180,72 @@ def zermelo_shooting(
                 msg = "the miss stopped decreasing"
                 break
     if err <= tol_m:
-        tt = t0 + np.linspace(0.0, T, steps + 1)
-        phi, lam, qp, ql = zz[:, 0, 0], zz[:, 1, 0], zz[:, 2, 0], zz[:, 3, 0]
-        chi = np.arctan2(ql / np.cos(phi), qp)
-        return Shot(True, tt, np.degrees(phi), np.degrees(lam), chi, T, max_iter, "converged")
+        return sh.converged(zz, T, max_iter)
     return Shot(False, empty, empty, empty, empty, T, max_iter,
                 f"{msg} (miss {err:.3g} m > {tol_m:.3g} m)")
+
+
+#: The difference (rad) in chi0 for the derivative (module docstring of `zermelo_shooting`).
+_DELTA = 1e-5
+
+
+@dataclass(frozen=True)
+class _Shooter:
+    """One shooting problem: the flow on the window, speed (m/s), departure (s), RK4 steps,
+    start and goal (rad)."""
+
+    cur: WindowCurrents
+    speed: float
+    t0: float
+    steps: int
+    phi0: float
+    lam0: float
+    gphi: float
+    glam: float
+
+    def shoot(self, ch: float, T: float) -> tuple[FloatArray, FloatArray, float] | None:
+        """The trajectories from chi0 = ch and ch + delta over T; the miss (north, east m)
+        and its length; None when it meets land or leaves the window."""
+        R = EARTH_RADIUS_M
+        zz = _fly(self.cur, self.speed, self.t0, T, self.phi0, self.lam0,
+                  np.array([ch, ch + _DELTA]), self.steps)
+        if zz.shape[0] < self.steps + 1:
+            return None
+        end = zz[-1]
+        r = np.array([(end[0, 0] - self.gphi) * R,
+                      (end[1, 0] - self.glam) * R * math.cos(self.gphi)])
+        return zz, r, math.hypot(r[0], r[1])
+
+    def newton_step(self, zz: FloatArray, r: FloatArray, T: float) -> FloatArray | None:
+        """The Newton step in (chi0, T) from the end's derivatives; None if singular."""
+        R = EARTH_RADIUS_M
+        end = zz[-1]
+        d_end = np.array([(end[0, 1] - end[0, 0]) * R,
+                          (end[1, 1] - end[1, 0]) * R * math.cos(self.gphi)]) / _DELTA
+        vel = _rhs(self.cur, self.speed, self.t0 + T, end[:, :1])[:2, 0]
+        vel = np.array([vel[0] * R, vel[1] * R * math.cos(self.gphi)])
+        try:
+            return np.asarray(np.linalg.solve(np.column_stack([d_end, vel]), -r))
+        except np.linalg.LinAlgError:
+            return None
+
+    def line_search(self, ch: float, T: float, step: FloatArray, err: float) -> tuple[
+            float, float, tuple[FloatArray, FloatArray, float]] | None:
+        """The step (capped at 0.3 rad and 0.2 T), halved up to 4 times until it reduces the
+        miss: (chi0, T, shot); None if none does."""
+        scale = min(1.0, 0.3 / max(abs(step[0]), 1e-12), 0.2 * T / max(abs(step[1]), 1e-12))
+        for _ in range(5):
+            ch_n, T_n = ch + scale * step[0], T + scale * step[1]
+            trial = self.shoot(ch_n, T_n) if T_n > 0 else None
+            if trial is not None and trial[2] < err:
+                return ch_n, T_n, trial
+            scale *= 0.5
+        return None
+
+    def converged(self, zz: FloatArray, T: float, iterations: int) -> Shot:
+        """The converged shot: times, lat/lon (deg) and compass headings (rad)."""
+        tt = self.t0 + np.linspace(0.0, T, self.steps + 1)
+        phi, lam, qp, ql = zz[:, 0, 0], zz[:, 1, 0], zz[:, 2, 0], zz[:, 3, 0]
+        chi = np.arctan2(ql / np.cos(phi), qp)
+        return Shot(True, tt, np.degrees(phi), np.degrees(lam), chi, T, iterations,
+                    "converged")

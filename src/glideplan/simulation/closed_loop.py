@@ -34,7 +34,6 @@ the field, on land) stops as a failure, flagged in `FollowResult.stopped`.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field, fields
 
 import numpy as np
@@ -43,6 +42,7 @@ from glideplan.errors import InvalidParameterError
 from glideplan.pose import TWO_PI
 from glideplan.simulation.disturbances import DisturbanceStream, PositionalStream
 from glideplan.simulation.guidance import PathArrays
+from glideplan.simulation.step import _guidance, _move, _turn_rate
 from glideplan.validation import check_in_range, check_nonnegative, check_positive
 
 __all__ = ["FollowResult", "FollowerSettings", "finish_line_error", "follow_paths"]
@@ -303,67 +303,6 @@ class _Fleet:
 _SCAN_BREAKS = 8
 
 
-def _guidance(
-    fleet: _Fleet, point: _PathPoint, gx: np.ndarray, gy: np.ndarray, cfg: FollowerSettings
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Lookahead guidance (guidance.lookahead_guidance): the course error (rad) of the ground
-    velocity (gx, gy) against the commanded course, the tangent turned by -atan(e / Delta),
-    the rate of the path parameter (m/s) and the cross-track error e (m)."""
-    c, s = point.cos, point.sin
-    delta = cfg.lookahead_distance
-    ex, ey = fleet.x - point.x, fleet.y - point.y
-    cross = ey * c - ex * s
-    rate = gx * c + gy * s + cfg.gamma * (ex * c + ey * s)
-    inv = 1.0 / np.sqrt(delta * delta + cross * cross)
-    dirx = (c * delta + s * cross) * inv
-    diry = (s * delta - c * cross) * inv
-    return np.arctan2(gx * diry - gy * dirx, gx * dirx + gy * diry), rate, cross
-
-
-def _turn_rate(
-    err: np.ndarray, rate: np.ndarray, point: _PathPoint, cfg: FollowerSettings
-) -> np.ndarray:
-    """Saturated bang-bang course control plus the path's turn rate as a feedforward."""
-    umax, phi_b = cfg.max_turn_rate, cfg.boundary_layer
-    if phi_b > 0.0:
-        u = umax * np.clip(err / phi_b, -1.0, 1.0)
-    else:
-        u = umax * np.sign(err)
-    if cfg.feedforward:
-        kap = np.where(point.beyond == 0.0, point.kappa, 0.0)
-        u = np.clip(u + kap * rate, -umax, umax)
-    return u
-
-
-def _move(
-    fleet: _Fleet, u: np.ndarray, drift: np.ndarray, cfg: FollowerSettings
-) -> tuple[np.ndarray, np.ndarray]:
-    """New positions after one step, and the fleet's heading turned, for constant u and drift.
-
-    Exact motion: the heading turns by u dt, the air-relative displacement is the chord
-    v dt sinc(u dt / 2) at heading psi + u dt / 2 (half-angle series where u_max dt <= 0.2,
-    exact to ~1e-13 there).
-    """
-    dt, v = cfg.dt, cfg.speed
-    half = 0.5 * dt * u
-    if cfg.max_turn_rate * dt <= 0.2:
-        h2 = half * half
-        sh = half * (1.0 - h2 / 6.0 * (1.0 - h2 / 20.0))
-        chh = 1.0 - 0.5 * h2 * (1.0 - h2 / 12.0)
-        sinc = 1.0 - h2 / 6.0 * (1.0 - h2 / 20.0)
-    else:
-        sh, chh = np.sin(half), np.cos(half)
-        sinc = np.sinc(half / math.pi)
-    cp, sp = fleet.cp, fleet.sp
-    cm = cp * chh - sp * sh
-    sm = sp * chh + cp * sh
-    chord = v * dt * sinc
-    x_new = fleet.x + chord * cm + drift[:, 0] * dt
-    y_new = fleet.y + chord * sm + drift[:, 1] * dt
-    fleet.cp, fleet.sp = cm * chh - sm * sh, sm * chh + cm * sh
-    return x_new, y_new
-
-
 def follow_paths(
     paths: PathArrays,
     disturbance: DisturbanceStream | PositionalStream,
@@ -393,42 +332,22 @@ def follow_paths(
     if row_of.shape != (n,) or (n and (row_of.min() < 0 or row_of.max() >= disturbance.rows)):
         raise InvalidParameterError("rows", row_of.shape, "need one valid row per path")
     lost_margin = 2.0 * cfg.min_radius
-
-    error = np.full(n, np.nan)
-    crossed = np.zeros(n, dtype=bool)
-    t_end = np.zeros(n)
-    positional = isinstance(disturbance, PositionalStream)
-    stopped = np.zeros(n, dtype=bool) if positional else None
+    tally = _Tally.empty(n, isinstance(disturbance, PositionalStream))
     t_max = cfg.timeout_factor * (paths.length + TWO_PI * cfg.min_radius) / (v - dmax)
     table = _SegmentTable.of(paths)
     fleet = _Fleet.start(paths, t_max, row_of)
     t = 0.0
     step = 0
-    track_list: list[np.ndarray] = []
-    cross_list: list[np.ndarray] = []
-    if record:
-        full = np.stack([fleet.x, fleet.y], axis=-1)
-        track_list.append(full.copy())
+    rec = _Recorder.start(fleet) if record else None
     live = np.ones(n, dtype=bool)
-    undefined = live & False
     while live.any():
-        if isinstance(disturbance, PositionalStream):
-            drift = disturbance.at(t, fleet.x, fleet.y, fleet.row)
-            bad = ~np.isfinite(drift).all(axis=1)
-            drift[bad] = 0.0
-            undefined = live & bad
-        else:
-            drift = disturbance.next()[fleet.row]
-        gx = v * fleet.cp + drift[:, 0]
-        gy = v * fleet.sp + drift[:, 1]
+        drift, undefined = _drift(disturbance, t, fleet, live)
         point = fleet.path_point(table)
-        err, rate, cross = _guidance(fleet, point, gx, gy, cfg)
-        if record:
-            row = np.full(n, np.nan)
-            row[fleet.ids[live]] = cross[live]
-            cross_list.append(row)
-        u = _turn_rate(err, rate, point, cfg)
-        x_new, y_new = _move(fleet, u, drift, cfg)
+        err, rate, cross = _guidance(fleet, point, v * fleet.cp + drift[:, 0],
+                                     v * fleet.sp + drift[:, 1], cfg)
+        if rec is not None:
+            rec.cross_track(fleet, live, cross, n)
+        x_new, y_new = _move(fleet, _turn_rate(err, rate, point, cfg), drift, cfg)
         step += 1
         if step % 1024 == 0:  # keep (cos psi, sin psi) on the unit circle
             norm = np.hypot(fleet.cp, fleet.sp)
@@ -437,42 +356,111 @@ def follow_paths(
         t = step * dt
         a = (x_new - fleet.xf) * fleet.cf + (y_new - fleet.yf) * fleet.sf
         hit = live & (fleet.varpi >= fleet.arm) & (fleet.a_prev < 0.0) & (a >= 0.0)
-        if positional:
+        if undefined is not None:
             hit &= ~undefined
         if hit.any():
-            frac, err_h = _crossing(
-                fleet.x[hit],
-                fleet.y[hit],
-                x_new[hit],
-                y_new[hit],
-                fleet.a_prev[hit],
-                a[hit],
-                fleet.xf[hit],
-                fleet.yf[hit],
-            )
-            k = fleet.ids[hit]
-            error[k] = err_h
-            crossed[k] = True
-            t_end[k] = t - dt + frac * dt
+            tally.crossing(fleet, hit, x_new, y_new, a, t, dt)
         fleet.x, fleet.y, fleet.a_prev = x_new, y_new, a
-        if record:
-            full[fleet.ids[live], 0], full[fleet.ids[live], 1] = fleet.x[live], fleet.y[live]
-            track_list.append(full.copy())
+        if rec is not None:
+            rec.positions(fleet, live)
         # lost: the path point is far past the end, so the vehicle went beyond the finish
         # line without crossing it forwards while armed (it will not come back)
         done = live & (hit | (t >= fleet.tmax) | (fleet.varpi > fleet.length + lost_margin))
-        if stopped is not None and undefined.any():
-            stopped[fleet.ids[undefined]] = True
+        if tally.stopped is not None and undefined is not None and undefined.any():
+            tally.stopped[fleet.ids[undefined]] = True
             done |= undefined
         if done.any():
-            t_end[fleet.ids[done & ~hit]] = t
-            live &= ~done
-            n_live = int(np.count_nonzero(live))
-            # finished vehicles ride along (masked) until compacting pays off
-            if n_live < 0.9 * live.size or n_live < 256:
-                fleet.keep(live)
-                live = np.ones(n_live, dtype=bool)
-    tracks = np.stack(track_list) if record else None
-    cross_track = (np.stack(cross_list) if cross_list else np.empty((0, n))) if record else None
-    return FollowResult(error=error, crossed=crossed, time=t_end, tracks=tracks,
-                        cross_track=cross_track, stopped=stopped)
+            live = _retire(fleet, tally, live, done, hit, t)
+    return FollowResult(error=tally.error, crossed=tally.crossed, time=tally.t_end,
+                        tracks=None if rec is None else rec.tracks(),
+                        cross_track=None if rec is None else rec.cross_tracks(n),
+                        stopped=tally.stopped)
+
+
+@dataclass(eq=False)
+class _Tally:
+    """Per-vehicle answers filled as the fleet flies: finish-line error (m), crossed, end
+    time (s), and (positional streams) stopped where the disturbance is undefined."""
+
+    error: np.ndarray
+    crossed: np.ndarray
+    t_end: np.ndarray
+    stopped: np.ndarray | None
+
+    @classmethod
+    def empty(cls, n: int, positional: bool) -> _Tally:
+        """Nothing crossed yet."""
+        return cls(np.full(n, np.nan), np.zeros(n, dtype=bool), np.zeros(n),
+                   np.zeros(n, dtype=bool) if positional else None)
+
+    def crossing(self, fleet: _Fleet, hit: np.ndarray, x_new: np.ndarray, y_new: np.ndarray,
+                 a: np.ndarray, t: float, dt: float) -> None:
+        """Record the vehicles `hit` that crossed the finish line in the last step
+        (crossing interpolated within the step)."""
+        frac, err_h = _crossing(fleet.x[hit], fleet.y[hit], x_new[hit], y_new[hit],
+                                fleet.a_prev[hit], a[hit], fleet.xf[hit], fleet.yf[hit])
+        k = fleet.ids[hit]
+        self.error[k] = err_h
+        self.crossed[k] = True
+        self.t_end[k] = t - dt + frac * dt
+
+
+def _drift(disturbance: DisturbanceStream | PositionalStream, t: float, fleet: _Fleet,
+           live: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+    """The disturbance (m/s) on each vehicle this step; for a positional stream also the
+    live vehicles where it is undefined (their drift set to 0)."""
+    if isinstance(disturbance, PositionalStream):
+        drift = disturbance.at(t, fleet.x, fleet.y, fleet.row)
+        bad = ~np.isfinite(drift).all(axis=1)
+        drift[bad] = 0.0
+        return drift, live & bad
+    return disturbance.next()[fleet.row], None
+
+
+def _retire(fleet: _Fleet, tally: _Tally, live: np.ndarray, done: np.ndarray,
+            hit: np.ndarray, t: float) -> np.ndarray:
+    """Mark `done` vehicles finished at `t` (crossers keep their interpolated time); drop
+    them from the fleet in batches; the new live mask."""
+    tally.t_end[fleet.ids[done & ~hit]] = t
+    live = live & ~done
+    n_live = int(np.count_nonzero(live))
+    # finished vehicles ride along (masked) until compacting pays off
+    if n_live < 0.9 * live.size or n_live < 256:
+        fleet.keep(live)
+        live = np.ones(n_live, dtype=bool)
+    return live
+
+
+@dataclass(eq=False)
+class _Recorder:
+    """Every vehicle's positions and cross-track errors per step (`record=True`)."""
+
+    full: np.ndarray
+    track_list: list[np.ndarray] = field(default_factory=list)
+    cross_list: list[np.ndarray] = field(default_factory=list)
+
+    @classmethod
+    def start(cls, fleet: _Fleet) -> _Recorder:
+        """The start positions recorded."""
+        full = np.stack([fleet.x, fleet.y], axis=-1)
+        return cls(full, [full.copy()])
+
+    def cross_track(self, fleet: _Fleet, live: np.ndarray, cross: np.ndarray, n: int) -> None:
+        """Record this step's cross-track errors (NaN for finished vehicles)."""
+        row = np.full(n, np.nan)
+        row[fleet.ids[live]] = cross[live]
+        self.cross_list.append(row)
+
+    def positions(self, fleet: _Fleet, live: np.ndarray) -> None:
+        """Record the live vehicles' new positions (finished ones stay where they ended)."""
+        self.full[fleet.ids[live], 0], self.full[fleet.ids[live], 1] = (fleet.x[live],
+                                                                        fleet.y[live])
+        self.track_list.append(self.full.copy())
+
+    def tracks(self) -> np.ndarray:
+        """(steps + 1, N, 2) positions (m)."""
+        return np.stack(self.track_list)
+
+    def cross_tracks(self, n: int) -> np.ndarray:
+        """(steps, N) cross-track errors (m)."""
+        return np.stack(self.cross_list) if self.cross_list else np.empty((0, n))
