@@ -411,8 +411,10 @@ def from_xarray(
     comps = _same_grid(comps)
     nodata = None
     if comps[0][0] == "curvilinear":
-        lat, lon, u, v, outside = _regrid(ds, east, comps, warnings)
-        nodata = np.where(outside, NODATA_OUTSIDE, 0).astype(np.int8)
+        lat, lon, u, v, outside, below = _regrid(ds, east, comps, warnings,
+                                                 floors if len(floors) == 2 else [])
+        nodata = np.where(outside, NODATA_OUTSIDE,
+                          np.where(below, NODATA_FLOOR, 0)).astype(np.int8)
     else:
         lat = np.asarray(comps[0][2].values, dtype=float)
         lon_raw = np.asarray(comps[0][3].values, dtype=float)
@@ -513,9 +515,11 @@ def _as_regular(comp: tuple[Any, ...]) -> tuple[Any, ...]:
     return comp
 
 
-def _regrid(ds: Any, east: str, comps: list[Any], warnings: list[str]) -> tuple[
-        np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Regrid curvilinear components (their own 2-D coordinates) to a regular lat/lon grid."""
+def _regrid(ds: Any, east: str, comps: list[Any], warnings: list[str],
+            floors: list[np.ndarray]) -> tuple[
+        np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Regrid curvilinear components (their own 2-D coordinates) to a regular lat/lon grid;
+    floors: per component, where the depth range reaches below the sea floor (or [])."""
     from glideplan.fields.regrid import CurvilinearSource, regrid_curvilinear
 
     sources = []
@@ -542,10 +546,12 @@ def _regrid(ds: Any, east: str, comps: list[Any], warnings: list[str]) -> tuple[
                 vals = np.radians(vals)
             angle = CurvilinearSource(vals[None], np.asarray(la_a.values, dtype=float),
                                       np.asarray(lo_a.values, dtype=float), "angle")
-    out = regrid_curvilinear(sources[0], sources[1], angle=angle, grid_relative=rotate)
+    out = regrid_curvilinear(sources[0], sources[1], angle=angle, grid_relative=rotate,
+                             floor=(floors[0], floors[1]) if floors else (None, None))
     warnings.extend(out.warnings)
     outside = np.zeros(out.u.shape[1:], bool) if out.outside is None else out.outside
-    return out.lat, out.lon, out.u, out.v, outside
+    below = np.zeros(out.u.shape[1:], bool) if out.floor is None else out.floor
+    return out.lat, out.lon, out.u, out.v, outside, below
 
 
 def _engine(path: pathlib.Path) -> str:
