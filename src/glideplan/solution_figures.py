@@ -74,14 +74,40 @@ def min_altitude_figure(solution: Solution, *, max_candidates: int = 6, title: s
     figure's name) and the answer."""
     import matplotlib.pyplot as plt
 
-    from glideplan.planners.min_altitude import dubins_reference
-
     glider = solution.vehicle
     assert isinstance(glider, QuadraticPolarGlider)
     unit = glider.radius_stf
     fig = plt.figure(figsize=(12.5, 6.4), layout="constrained")
     grid = fig.add_gridspec(2, 2, width_ratios=(1.15, 1.0))
-    ax = fig.add_subplot(grid[:, 0])
+    ref = _candidates_panel(fig.add_subplot(grid[:, 0]), solution, glider, max_candidates)
+    if solution.path is not None:
+        _control_panels(fig, grid, solution.path, glider)
+    problem = (
+        f"Minimum altitude loss, {describe_vehicle(glider)}\n"
+        f"start {pose_text(solution.start, 'R_stf', unit)} -> "
+        f"goal {pose_text(solution.goal, 'R_stf', unit)}"
+    )
+    if solution.ok:
+        answer = (
+            f"optimal word {solution.word or '-'}, family {solution.family or '-'}, "
+            f"altitude loss {solution.cost:.4g} m"
+        )
+        if ref is not None and ref.path is not None:
+            answer += f" (Dubins path at v_stf: {ref.cost:.4g} m)"
+    else:
+        answer = f"status {solution.status.value}: {solution.message}"
+    text = f"{problem}\n{answer}"
+    fig.suptitle(f"{title}\n{text}" if title else text, fontsize=10, x=0.01, ha="left")
+    return fig
+
+
+def _candidates_panel(ax: Any, solution: Solution, glider: QuadraticPolarGlider,
+                      max_candidates: int) -> Any:
+    """The candidate paths in units of R_stf (the optimal black), the Dubins path at v_stf
+    (grey, dashed), start and goal; return that Dubins reference (or None)."""
+    from glideplan.planners.min_altitude import dubins_reference
+
+    unit = glider.radius_stf
     feasible = [c for c in solution.candidates if c.path is not None]
     styles = ("--", "-.", ":", (0, (5, 1, 1, 1)))
     for k, cand in enumerate(feasible[:max_candidates]):
@@ -128,45 +154,32 @@ def min_altitude_figure(solution: Solution, *, max_candidates: int = 6, title: s
     ax.set_title("candidate paths, altitude loss in m", fontsize=10)
     ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=2,
               borderaxespad=0.0)
-    if solution.path is not None:
-        smp = solution.path.sample(n=600)
-        ax_u = fig.add_subplot(grid[0, 1])
-        ax_u.plot(smp.t, smp.turn_rate, "b-")
-        for lim in (-glider.u_max, glider.u_max):
-            ax_u.axhline(lim, color="k", ls="--", lw=0.8)
-        for lim, name, va in ((glider.u_max, "u_max", "top"), (-glider.u_max, "-u_max", "bottom")):
-            ax_u.text(0.99, lim, f"{name} ", transform=ax_u.get_yaxis_transform(), ha="right",
-                      va=va, fontsize=7)
-        ax_u.set_ylabel("turn rate u (rad/s)")
-        ax_u.set_title("optimal control history", fontsize=10)
-        ax_u.grid(True, lw=0.4, alpha=0.5)
-        ax_u.tick_params(labelbottom=False)
-        ax_v = fig.add_subplot(grid[1, 1], sharex=ax_u)
-        ax_v.plot(smp.t, ms_to_kmh(smp.speed), "b-")
-        for v, name in ((glider.v_stall, "v_stall"), (glider.v_stf, "v_stf")):
-            ax_v.axhline(ms_to_kmh(v), color="k", ls="--", lw=0.8)
-            ax_v.text(0.99, ms_to_kmh(v), f"{name} ", transform=ax_v.get_yaxis_transform(),
-                      ha="right", va="bottom" if name == "v_stall" else "top", fontsize=7)
-        ax_v.set_xlabel("time t (s)")
-        ax_v.set_ylabel("speed v (km/h)")
-        ax_v.grid(True, lw=0.4, alpha=0.5)
-    problem = (
-        f"Minimum altitude loss, {describe_vehicle(glider)}\n"
-        f"start {pose_text(solution.start, 'R_stf', unit)} -> "
-        f"goal {pose_text(solution.goal, 'R_stf', unit)}"
-    )
-    if solution.ok:
-        answer = (
-            f"optimal word {solution.word or '-'}, family {solution.family or '-'}, "
-            f"altitude loss {solution.cost:.4g} m"
-        )
-        if ref is not None and ref.path is not None:
-            answer += f" (Dubins path at v_stf: {ref.cost:.4g} m)"
-    else:
-        answer = f"status {solution.status.value}: {solution.message}"
-    text = f"{problem}\n{answer}"
-    fig.suptitle(f"{title}\n{text}" if title else text, fontsize=10, x=0.01, ha="left")
-    return fig
+    return ref
+
+
+def _control_panels(fig: Any, grid: Any, path: Any, glider: QuadraticPolarGlider) -> None:
+    """The optimal control history: turn rate (limits +-u_max) above speed (v_stall, v_stf)."""
+    smp = path.sample(n=600)
+    ax_u = fig.add_subplot(grid[0, 1])
+    ax_u.plot(smp.t, smp.turn_rate, "b-")
+    for lim in (-glider.u_max, glider.u_max):
+        ax_u.axhline(lim, color="k", ls="--", lw=0.8)
+    for lim, name, va in ((glider.u_max, "u_max", "top"), (-glider.u_max, "-u_max", "bottom")):
+        ax_u.text(0.99, lim, f"{name} ", transform=ax_u.get_yaxis_transform(), ha="right",
+                  va=va, fontsize=7)
+    ax_u.set_ylabel("turn rate u (rad/s)")
+    ax_u.set_title("optimal control history", fontsize=10)
+    ax_u.grid(True, lw=0.4, alpha=0.5)
+    ax_u.tick_params(labelbottom=False)
+    ax_v = fig.add_subplot(grid[1, 1], sharex=ax_u)
+    ax_v.plot(smp.t, ms_to_kmh(smp.speed), "b-")
+    for v, name in ((glider.v_stall, "v_stall"), (glider.v_stf, "v_stf")):
+        ax_v.axhline(ms_to_kmh(v), color="k", ls="--", lw=0.8)
+        ax_v.text(0.99, ms_to_kmh(v), f"{name} ", transform=ax_v.get_yaxis_transform(),
+                  ha="right", va="bottom" if name == "v_stall" else "top", fontsize=7)
+    ax_v.set_xlabel("time t (s)")
+    ax_v.set_ylabel("speed v (km/h)")
+    ax_v.grid(True, lw=0.4, alpha=0.5)
 
 
 def draw_min_altitude(

@@ -23,12 +23,15 @@ FloatArray = NDArray[np.float64]
 
 
 def iso_times(depart: np.datetime64 | None, t_s: Any) -> list[str | None]:
-    """ISO 8601 UTC (ms, 'Z') of depart + t for each t (s); None each without a departure."""
+    """ISO 8601 UTC (ms, 'Z') of depart + t for each t (s); None each without a departure,
+    and None for a t that is not finite (a waypoint the mission never reaches)."""
     t = np.atleast_1d(np.asarray(t_s, dtype=float))
     if depart is None:
         return [None] * t.size
-    ms = np.round(t * 1e3).astype(np.int64).astype("timedelta64[ms]")
-    return [str(v) + "Z" for v in np.asarray(depart).astype("datetime64[ms]") + ms]
+    fin = np.isfinite(t)
+    ms = np.round(np.where(fin, t, 0.0) * 1e3).astype(np.int64).astype("timedelta64[ms]")
+    when = np.asarray(depart).astype("datetime64[ms]") + ms
+    return [str(v) + "Z" if ok else None for v, ok in zip(when, fin, strict=True)]
 
 
 def _empty() -> FloatArray:

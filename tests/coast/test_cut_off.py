@@ -44,3 +44,62 @@ def test_time_span_stays_time_span_when_the_way_is_open(tmp_path):
     r = route(f, shapes.lat_lon(*start), shapes.lat_lon(*goal), 1.0, cells=40,
               land_clearance_m=1500.0)
     assert r.status == "unreachable" and r.unreachable_reason == "time_span", r.message
+
+
+def _global(tmp_path, land):
+    from glideplan.fields.synthetic import global_dataset
+
+    path = tmp_path / "global.nc"
+    global_dataset(0.5, "0..360", kind="current", land=land).to_netcdf(path)
+    f = open_field(path)
+    assert f.periodic_lon
+    return f
+
+
+def _band_with_strait(strait_cols):
+    """Land at 10..20 N all round the globe but for the strait's longitudes."""
+    def land(lat, lon):
+        band = (lat >= 10.0) & (lat <= 20.0)
+        return band & ~np.isin(np.round(np.mod(lon, 360.0), 6), strait_cols)
+
+    return land
+
+
+def test_a_strait_at_the_seam_of_a_global_file(tmp_path):
+    """The check wraps for a global 0.5 deg file, 0..359.5 E (it returned None for any field
+    closing the circle). The check's metric (`cutoff` docstring: spacings at the field's mean
+    latitude, 0 here): dx = 0.5 deg x 111.2 km = 55.6 km. Strait: the columns 0, 0.5 and
+    1 E, land at 359.5 E (across the seam) and 1.5 E. Its middle column lies 2 dx = 111.2 km
+    from land on both sides; the column at 0 E lies 1 dx from the land at 359.5 E (3 dx from
+    1.5 E: an unwrapped check would call it free at 120 km). A clearance of 80 km leaves the
+    middle free (open: None); 120 km closes it ("clearance": water alone joins start and
+    goal); a band with no strait separates them ("land")."""
+    from glideplan.routing.cutoff import field_cut_off
+
+    f = _global(tmp_path, _band_with_strait([0.0, 0.5, 1.0]))
+    start, goal = (5.0, 0.5), (25.0, 0.5)
+    assert field_cut_off(f, 0.0, start, goal, 80e3) is None
+    assert field_cut_off(f, 0.0, start, goal, 120e3) == "clearance"
+    assert field_cut_off(f, 0.0, (5.0, 180.0), (25.0, 359.9), 120e3) == "clearance"
+    assert field_cut_off(_global(tmp_path, _band_with_strait([])), 0.0, start, goal,
+                         80e3) == "land"
+
+
+def test_a_sea_across_the_seam_is_one_water(tmp_path):
+    """Water only between 355 and 5 E, 10 S..10 N: one sea that the file's seam (0 E) cuts in
+    two columns' worth of halves. Start at 357 E, goal at 3 E: the same water at a 100 km
+    clearance (None; the sea is 20 deg across); a wall of land along 0 E splits it ("land").
+    An unwrapped check would call the two halves two waters ("land") in the first case."""
+    from glideplan.routing.cutoff import field_cut_off
+
+    def sea(lat, lon):
+        lon = np.mod(lon, 360.0)
+        return ~((np.abs(lat) <= 10.0) & ((lon >= 355.0) | (lon <= 5.0)))
+
+    start, goal = (0.0, 357.0), (0.0, 3.0)
+    assert field_cut_off(_global(tmp_path, sea), 0.0, start, goal, 100e3) is None
+
+    def split(lat, lon):
+        return sea(lat, lon) | (np.isclose(np.mod(lon, 360.0), 0.0) & (np.abs(lat) <= 10.0))
+
+    assert field_cut_off(_global(tmp_path, split), 0.0, start, goal, 10e3) == "land"

@@ -222,3 +222,117 @@ def test_final_glide_plan_failure_is_a_status(monkeypatch):
     assert "IPOPT did not converge" in res.message and res.altitude_loss_m is None
     d = res.to_dict()
     assert d["status"] == "solver_failed" and d["ok"] is False
+
+
+# --- every other product command (issue 26: "for every product command, a failure prints
+# valid JSON and exits with the status's code") ---------------------------------------------
+
+PLANS = {
+    "plan wind": ("plan", "wind", "--goal", "400", "300", "90", "--speed", "20", "--radius",
+                  "50", "--wind", "5", "270"),
+    "plan time-optimal": ("plan", "time-optimal", "--goal", "4", "3", "90", "--v-min", "0.3",
+                          "--v-max", "1", "--u-max", "1"),
+    "plan min-altitude": ("plan", "min-altitude", "--goal", "400", "300", "90"),
+    "plan load-factor": ("plan", "load-factor", "--goal", "400", "300", "90"),
+}
+
+
+def _one_failure(run_cli, argv, status, what):
+    """--json: one JSON object with the status, exit = the status's code, one error line
+    naming the product and the status; the human form exits the same."""
+    code, out, err = run_cli(*argv, "--json")
+    assert "Traceback" not in err, err
+    data = json.loads(out)
+    assert data["status"] == status and data["ok"] is False and data["message"], data
+    assert code == Status(status).exit_code == 1, err
+    errors = [line for line in err.splitlines() if line.startswith("glideplan: error:")]
+    assert len(errors) == 1 and f"{what}: {status}: " in errors[0], err
+    code_text, _, err_text = run_cli(*argv)
+    assert code_text == code and "Traceback" not in err_text, err_text
+    return data
+
+
+@pytest.mark.parametrize("name", sorted(PLANS))
+def test_every_plan_command_fails_with_json_and_its_code(name, run_cli, monkeypatch):
+    """Each `plan` planner, its `plan()` patched to the ordinary no_path failure."""
+    monkeypatch.setattr("glideplan.planning.plan", _failed_solution)
+    _one_failure(run_cli, PLANS[name], "no_path", "")
+
+
+# A uniform current of 1 m/s towards the east over a 1 x 1 degree box on the equator: a
+# vehicle of 0.5 m/s bound west cannot stem it (the goal is outside its drift cone), and
+# eastwards it needs D / (V + W) = 0.5 deg x 111.2 km / 1.5 m/s ~ 10 h, far beyond a 0.1 h
+# --max-duration: two closed-form reasons to be unreachable, each named by the product.
+T0 = "2026-03-01T00:00Z"
+
+
+@pytest.fixture(scope="module")
+def current_files(tmp_path_factory):
+    import numpy as np
+
+    from glideplan.fields.synthetic import copernicus_dataset
+
+    d = tmp_path_factory.mktemp("contract_fields")
+    lat = np.arange(-0.5, 0.5 + 1e-9, 0.05)
+    lon = np.arange(0.0, 1.0 + 1e-9, 0.05)
+    times = np.datetime64("2026-03-01T00:00", "ns") + np.arange(25) * np.timedelta64(3600, "s")
+    shape = (times.size, 1, lat.size, lon.size)
+    for i in range(2):
+        copernicus_dataset(lat, lon, times, [0.494], np.ones(shape),
+                           np.zeros(shape)).to_netcdf(d / f"member_{i}.nc")
+    return d
+
+
+ROUTE = ("--from", "0", "0.1", "--to", "0", "0.6", "--speed", "0.5", "--resolution", "2000")
+
+
+def test_route_ensemble_failure(current_files, run_cli):
+    argv = ("route", "--ensemble", str(current_files / "member_*.nc"), *ROUTE, "--workers",
+            "1", "--max-duration", "0.1")
+    data = _one_failure(run_cli, argv, "unreachable", "route")
+    assert data["ensemble"]["p_arrival"] == 0.0
+
+
+def test_route_depart_range_failure(current_files, run_cli):
+    argv = ("route", "--field", str(current_files / "member_0.nc"), "--depart-range", T0,
+            "2026-03-01T04:00Z", "4", *ROUTE, "--workers", "1", "--max-duration", "0.1")
+    data = _one_failure(run_cli, argv, "unreachable", "route")
+    assert all(row["status"] == "unreachable" for row in data["departures"])
+
+
+def test_route_replay_failure(current_files, run_cli):
+    f = str(current_files / "member_0.nc")
+    argv = ("route", "replay", "--truth", f, "--forecasts", f, *ROUTE, "--depart", T0,
+            "--max-duration", "0.1")
+    data = _one_failure(run_cli, argv, "unreachable", "route replay")
+    assert data["reason"] == "max_duration"
+
+
+def test_field_mission_failure(current_files, run_cli, tmp_path):
+    """A field mission whose leg runs against a current faster than the vehicle: the leg's
+    status and reason (outside the drift cone), exit 1; the waypoint never reached has no ETA
+    (null, not "NaTZ")."""
+    route = tmp_path / "r.csv"
+    route.write_text("name,lat,lon\nA,0,0.6\nB,0,0.1\n", encoding="utf-8")
+    argv = ("mission", "plan", str(route), "--speed", "0.5", "--radius", "10", "--field",
+            str(current_files / "member_0.nc"), "--depart", T0)
+    data = _one_failure(run_cli, argv, "unreachable", "mission")
+    assert data["reason"] == "outside_drift_cone" and data["message"].startswith("leg 1 (A -> B)")
+    assert data["waypoints"][1]["eta_s"] is None and data["waypoints"][1]["eta"] is None
+
+
+def test_glide_reach_failure_goes_through_the_contract(run_cli, monkeypatch):
+    """`glide reach` has no failure of its own (the reachable set always exists: it is solved
+    even when empty); a ReachResult whose status is not solved -- the library's answer
+    patched -- is printed and exits like every other product's."""
+    import glideplan.reach
+
+    real = glideplan.reach.glide_reach
+
+    def failed(*args, **kwargs):
+        return dataclasses.replace(real(*args, **kwargs), status=Status.UNREACHABLE,
+                                   message="no landable reachable")
+
+    monkeypatch.setattr(glideplan.reach, "glide_reach", failed)
+    argv = ("glide", "reach", "--example", "ridge", "--resolution", "1500")
+    _one_failure(run_cli, argv, "unreachable", "reach")

@@ -59,6 +59,35 @@ def test_depth_range_below_the_shelf_floor(tmp_path, run_cli):
                    depth_range=(0.0, 200.0))
 
 
+def test_depth_range_below_the_floor_of_a_curvilinear_grid(tmp_path):
+    """NEMO-like grid_U/grid_V files (`nemo_datasets`: 41 x 31 nodes, 2 km, rotated 20 deg
+    about (30, -40); levels 0.494 and 1.54 m) whose second level is NaN on the western half
+    of the grid (x index < 20): a layer 0..1.5 m needs the 1.54 m level, so west of the
+    centre the floor is above the layer and east of it the layer is defined. The point 20 km
+    west of the centre, 10 km north (y = +20 sin 20 + ... inside the 30 km half-height) is
+    below the floor, not land; the point 20 km east has water."""
+    from glideplan.fields.synthetic import nemo_datasets
+
+    grid_u, grid_v = nemo_datasets(u=0.1)
+    paths = []
+    for ds, var, name in ((grid_u, "vozocrtx", "grid_U.nc"), (grid_v, "vomecrty",
+                                                               "grid_V.nc")):
+        vals = ds[var].values.copy()
+        vals[:, 1, :, :20] = np.nan
+        ds[var].values = vals
+        ds.to_netcdf(tmp_path / name)
+        paths.append(tmp_path / name)
+    f = open_field(paths, depth_range=(0.0, 1.5))
+    dlat = math.degrees(10e3 / 6371e3)
+    dlon = math.degrees(20e3 / (6371e3 * math.cos(math.radians(30.0))))
+    assert "sea floor there is shallower than 1.5 m" in f.nan_cause(0.0, 30.0 + dlat,
+                                                                    -40.0 - dlon)
+    assert np.isfinite(f.velocity(0.0, 30.0 - dlat, -40.0 + dlon)[0])
+    # the surface level alone (no depth range): the same points have water
+    g = open_field(paths)
+    assert np.isfinite(g.velocity(0.0, 30.0 + dlat, -40.0 - dlon)[0])
+
+
 def test_point_outside_a_rotated_roms_grid(tmp_path, run_cli):
     """roms_dataset: 41 x 31 nodes, 2 km, xi axis 30 deg CCW from east, about (30, -40). The
     point 45 km east and 40 km south of the centre lies inside the lat/lon box (half-widths

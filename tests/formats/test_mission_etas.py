@@ -33,7 +33,7 @@ def exported(tmp_path_factory):
     plan = plan_mission(read_route(src), speed=SPEED, radius=200.0, headings=36)
     plan = dataclasses.replace(plan, depart=DEPART)
     files, legs = export_mission(plan, d / "out",
-                                 parse_formats("geojson,kml,gpx,csv,slocum,seaglider"),
+                                 parse_formats("geojson,kml,gpx,csv,slocum,seaglider,qgc-plan,qgc-wpl"),
                                  ExportOptions(name="m"))
     lengths = [sum(seg.length for seg in leg.path.segments) for leg in plan.legs]
     eta = np.concatenate([[0.0], np.cumsum(lengths) / SPEED])
@@ -103,6 +103,34 @@ def test_vehicle_files_carry_the_etas_as_comments(exported):
     assert sum(len(check_slocum(pathlib.Path(p))) for p in files["slocum"]) >= len(eta)
     for name, w in zip(("A", "B", "C"), when, strict=True):
         assert f"# {name} ETA +" in text and w in text
+
+
+def test_qgc_plan_carries_the_etas_per_item(exported):
+    """QGC `.plan` has no time field: each SimpleItem carries its ETA in an extra `glideplan`
+    key, which QGroundControl's item reader ignores (it validates only the keys it knows);
+    the file still passes the .plan checks of test_writers (json + FORMATS.md schema) and the
+    QGC WPL file is unchanged (QGC rejects any line that is not 12 fields: no place there)."""
+    from pymavlink import mavwp
+
+    from .test_writers import ITEM_SCHEMA, PLAN_SCHEMA, _check_schema
+
+    _, files, legs, eta = exported
+    doc = json.loads(pathlib.Path(files["qgc-plan"]).read_text(),
+                     parse_constant=lambda c: pytest.fail(f"non-JSON constant {c}"))
+    _check_schema(doc, PLAN_SCHEMA)
+    items = doc["mission"]["items"]
+    for k, item in enumerate(items):
+        _check_schema(item, ITEM_SCHEMA, f"items[{k}]")
+        assert item["doJumpId"] == k + 1 and len(item["params"]) == 7
+    extra = [item["glideplan"] for item in items]
+    assert [x["name"] for x in extra] == list(legs.names)
+    np.testing.assert_allclose([x["eta_s"] for x in extra], legs.eta_s, rtol=1e-12)
+    mission = [extra[i] for i in np.flatnonzero(legs.mission)]
+    np.testing.assert_allclose([x["eta_s"] for x in mission], eta, rtol=1e-9, atol=1e-6)
+    assert all(abs(dt.datetime.fromisoformat(x["eta"]) - _utc(e)) < dt.timedelta(milliseconds=1)
+               for x, e in zip(mission, eta, strict=True))
+    loader = mavwp.MAVWPLoader()
+    assert loader.load(files["qgc-wpl"]) == len(legs.names) + 1
 
 
 @pytest.mark.skipif(shutil.which("gpsbabel") is None, reason="gpsbabel not installed")

@@ -23,6 +23,12 @@ water_v` (HYCOM), `u10/v10` (ERA5/GFS), `u_eastward/v_northward` and `u/v` (ROMS
   nearest the surface (ROMS s-levels: the top one).
 - Curvilinear grids (2-D `lat_rho/lon_rho`, `nav_lat/nav_lon`, staggered `lat_u`, `lat_v`):
   regridded to a regular lat/lon grid (`regrid_curvilinear`), with a warning.
+
+Module size (about 510 lines, a third of them the name tables and this text): every
+convention above is a few lines of detection in one walk over the dataset, kept together so
+a reader sees every rule a file passes through; the depth layer (`fields.vertical`), the
+grid helpers (`fields.io_grids`), the regridding (`fields.regrid`) and the reading notes
+(`fields.read_notes`) live apart.
 """
 from __future__ import annotations
 
@@ -35,7 +41,11 @@ import numpy as np
 
 from glideplan.errors import InvalidParameterError
 from glideplan.fields.field import NODATA_FLOOR, NODATA_OUTSIDE, GriddedField
+from glideplan.fields.io_grids import lon_order as _lon_order
+from glideplan.fields.io_grids import same_grid as _same_grid
 from glideplan.fields.read_notes import SKIPPED_ATTR, quiet_cfgrib, refuse_all_nan
+from glideplan.fields.vertical import DEPTH_NAMES, S_LEVELS, depth_average
+from glideplan.fields.vertical import reduce_vertical as _vertical
 
 __all__ = ["depth_average", "from_xarray", "open_field", "pyproj_before_eccodes"]
 
@@ -81,8 +91,8 @@ _LON_UNITS = ("degrees_east", "degree_east", "degree_e", "degrees_e", "degreee",
 _LENGTH_UNITS = frozenset({"m", "km", "meter", "meters", "metre", "metres", "kilometer",
                            "kilometers", "kilometre", "kilometres"})
 _TIME = ("valid_time", "time", "ocean_time", "time_counter", "t", "MT")
-_DEPTH = ("depth", "lev", "z", "deptht", "depthu", "depthv", "level")
-_S_LEVELS = ("s_rho", "s_w")
+_DEPTH = DEPTH_NAMES
+_S_LEVELS = S_LEVELS
 
 
 def _find_components(ds: Any) -> tuple[str, str]:
@@ -224,134 +234,80 @@ def _merge_expver(d: Any) -> Any:
     return out
 
 
-def depth_average(profile: np.ndarray, depths: np.ndarray, z0: float, z1: float) -> np.ndarray:
-    """Trapezoidal layer mean over [z0, z1] (m, positive down) along axis 0 of `profile`.
-
-    ubar = (1/(z1-z0)) sum_k (z_{k+1} - z_k) (u_k + u_{k+1}) / 2 over the levels inside the
-    layer, with the profile linearly interpolated at z0 and z1. Above the first level z_1 the
-    profile is held at u_1 (to the surface, z0 >= 0): the layer [0, z_1] adds z_1 u_1. NaN
-    anywhere in the layer (below the sea floor, land) gives NaN.
-    """
-    z = np.asarray(depths, dtype=float).reshape(-1)
-    order = np.argsort(z)
-    z = z[order]
-    prof = np.asarray(profile, dtype=float)[order]
-    if not (np.isfinite(z0) and np.isfinite(z1) and z0 < z1):
-        raise InvalidParameterError("depth_range", (z0, z1), "needs Z0 < Z1 (m, positive down)")
-    if z0 < 0.0:
-        raise InvalidParameterError(
-            "depth_range", (z0, z1), "depths are metres below the surface (Z0 >= 0)"
-        )
-    if z1 > z[-1] + 1e-9:
-        raise InvalidParameterError(
-            "depth_range", (z0, z1),
-            f"below the file's deepest level {z[-1]:g} m (depth levels {z[0]:g}..{z[-1]:g} m)",
-        )
-    if z0 < z[0]:  # constant extrapolation to the surface only
-        z = np.concatenate([[z0], z])
-        prof = np.concatenate([prof[:1], prof], axis=0)
-
-    def at(zq: float) -> np.ndarray:
-        k = int(np.clip(np.searchsorted(z, zq, side="right") - 1, 0, z.size - 2))
-        w = (zq - z[k]) / (z[k + 1] - z[k])
-        if w <= 0.0:
-            return prof[k]
-        if w >= 1.0:
-            return prof[k + 1]
-        return (1.0 - w) * prof[k] + w * prof[k + 1]
-
-    inner = (z > z0) & (z < z1)
-    zs = np.concatenate([[z0], z[inner], [z1]])
-    vals = np.concatenate([at(z0)[None], prof[inner], at(z1)[None]], axis=0)
-    dz = np.diff(zs).reshape((-1,) + (1,) * (vals.ndim - 1))
-    return (0.5 * dz * (vals[1:] + vals[:-1])).sum(axis=0) / (z1 - z0)
+def _component(ds: Any, name: str, depth_range: tuple[float, float] | None,
+               info: dict[str, Any], warnings: list[str]) -> tuple[tuple[Any, ...], Any]:
+    """One component: (kind, values (nt, ny, nx) in m/s, lat, lon coordinates, time dimension
+    and values) and its (ny, nx) floor mask (the depth range reaches below the sea floor;
+    None without a depth range). Extra dimensions of size 1 are dropped, larger refused."""
+    d = _merge_expver(ds[name])
+    d = d * _unit_scale(d, name)
+    kind, lat_c, lon_c = _horizontal(ds, d, name)
+    tdim, tvals = _time_axis(ds, d)
+    needed = set(lat_c.dims) | set(lon_c.dims) | ({tdim} if tdim is not None else set())
+    needed |= {dim for dim in d.dims if dim in _S_LEVELS}
+    needed |= {d[n].dims[0] for n in d.coords if d[n].ndim == 1 and (
+        n in _DEPTH or d[n].attrs.get("positive") in ("down", "up")
+        or d[n].attrs.get("axis") == "Z")}
+    extra = [dim for dim in d.dims if dim not in needed]
+    for dim in extra:
+        if d.sizes[dim] != 1:
+            raise InvalidParameterError(
+                "field", f"dimension {dim!r} of size {d.sizes[dim]} in {name!r}",
+                "unexpected extra dimension: select one member first",
+            )
+    d = d.isel({dim: 0 for dim in extra}, drop=True) if extra else d
+    d = _vertical(ds, d, depth_range, info, warnings)
+    lead = [tdim] if tdim is not None else []
+    dims = (*lead, *lat_c.dims) if kind == "curvilinear" else (
+        *lead, lat_c.dims[0], lon_c.dims[0])
+    arr = np.asarray(d.transpose(*dims).values, dtype=float)
+    floor = info.pop("_floor", None)
+    if floor is not None:
+        fl = np.asarray(floor.transpose(*dims).values, dtype=bool)
+        floor = np.asarray(fl.reshape((-1, *arr.shape[-2:])).any(axis=0))
+    if tdim is None:
+        arr = arr[None]
+    return (kind, arr, lat_c, lon_c, tdim, tvals), floor
 
 
-def _lon_order(lon: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(new longitudes ascending, indices into lon): one column per meridian (360 = 0 dropped).
-
-    Global (the columns close the circle): the file's convention (-180..180 if it has negative
-    longitudes, else 0..360). Regional: cut at the largest gap, written -180..180 if it fits,
-    else 0..360, else from the cut (a field across both 0 and 180).
-    """
-    m = np.mod(np.asarray(lon, dtype=float), 360.0)
-    m = np.where(m >= 360.0 - 1e-9, 0.0, m)
-    _, first = np.unique(np.round(m, 9), return_index=True)
-    keep = first[np.argsort(m[first], kind="stable")]
-    ms = m[keep]
-    n = ms.size
-    if n < 2:
-        return np.asarray(lon, dtype=float)[keep], keep
-    dlon = (ms[-1] - ms[0]) / (n - 1)
-    if abs(n * dlon - 360.0) <= 0.5 * dlon:  # global: keep the file's convention
-        if np.min(lon) < 0.0:
-            a = np.mod(ms + 180.0, 360.0) - 180.0
-            o = np.argsort(a, kind="stable")
-            return a[o], keep[o]
-        return ms, keep
-    gaps = np.diff(np.concatenate([ms, [ms[0] + 360.0]]))
-    start = (int(np.argmax(gaps)) + 1) % n
-    idx = np.roll(np.arange(n), -start)
-    rep = ms[idx].copy()
-    rep[1:] += 360.0 * (np.cumsum(np.diff(rep) < 0.0))
-    a = rep - 360.0 * np.floor((rep[0] + 180.0) / 360.0)
-    if a[-1] <= 180.0:
-        return a, keep[idx]
-    b = rep - 360.0 * np.floor(rep[0] / 360.0)
-    return (b if b[-1] < 360.0 else a), keep[idx]
+def _in_time_order(comps: list[Any], names: tuple[str, str]) -> tuple[list[Any], Any]:
+    """Both components on the same times (else refused), sorted ascending (a repeated time
+    refused); the sorted times (or None)."""
+    t_e, t_n = comps[0][5], comps[1][5]
+    if comps[0][4] != comps[1][4] or (t_e is None) != (t_n is None) or (
+            t_e is not None and t_n is not None and not np.array_equal(t_e, t_n)):
+        raise InvalidParameterError("field", names, "the two components have different times")
+    tdim, tvals = comps[1][4], comps[1][5]
+    if tvals is not None and tdim is not None:
+        order = np.argsort(tvals, kind="stable")
+        tvals = tvals[order]
+        if np.any(np.diff(tvals) <= np.timedelta64(0, "ns")):
+            raise InvalidParameterError("field time", "repeated", "two records at the same time")
+        comps = [(k, a[order], la, lo, td, tv) for k, a, la, lo, td, tv in comps]
+    return comps, tvals
 
 
-def _vertical(ds: Any, d: Any, depth_range: tuple[float, float] | None, info: dict[str, Any],
-              warnings: list[str]) -> Any:
-    """Reduce the depth (or ROMS s-level) dimension: layer mean or the level nearest 0 m."""
-    for sname in _S_LEVELS:
-        if sname in d.dims:
-            if depth_range is not None:
-                raise InvalidParameterError(
-                    "depth_range", depth_range,
-                    f"the file has terrain-following levels ({sname}) without fixed depths: "
-                    "interpolate it to depth levels first, or omit the depth range to use the "
-                    "top level",
-                )
-            s = np.asarray(d[sname].values if sname in d.coords else np.arange(d.sizes[sname]),
-                           dtype=float)
-            k = int(np.argmax(s))
-            info["depth_m"] = 0.0
-            info["level"] = f"top {sname} level ({s[k]:g})"
-            return d.isel({sname: k}, drop=True)
-    depth_n = None
-    for n in list(_DEPTH) + [str(c) for c in d.coords]:
-        if n in d.coords and d[n].ndim == 1 and d[n].dims[0] in d.dims and (
-                n in _DEPTH or d[n].attrs.get("positive") in ("down", "up")
-                or d[n].attrs.get("axis") == "Z"):
-            depth_n = n
-            break
-    if depth_n is None:
-        if depth_range is not None:
-            raise InvalidParameterError("depth_range", depth_range,
-                                        "the field has no depth levels")
-        return d
-    depths = np.abs(np.asarray(d[depth_n].values, dtype=float))
-    zdim = d[depth_n].dims[0]
-    d = d.transpose(zdim, ...)
-    if depth_range is None:
-        k = int(np.argmin(depths))
-        info["depth_m"] = float(depths[k])
-        return d.isel({zdim: k}, drop=True)
-    z0, z1 = float(depth_range[0]), float(depth_range[1])
-    vals = depth_average(np.asarray(d.values, dtype=float), depths, z0, z1)
-    info["depth_average_m"] = [z0, z1]
-    # nodes with water at the top level but no layer mean: the range reaches the sea floor
-    top_ok = np.isfinite(np.asarray(d.isel({zdim: int(np.argmin(depths))}).values, dtype=float))
-    info["_floor"] = d.isel({zdim: 0}, drop=True).copy(data=top_ok & ~np.isfinite(vals))
-    top = float(np.min(depths))
-    if np.isfinite(z0) and z0 < top:
-        text = (f"depth range {z0:g}..{z1:g} m starts above the file's first level {top:g} m: "
-                f"the top level's value is used from {z0:g} to {top:g} m (held constant to "
-                "the surface)")
-        if text not in warnings:
-            warnings.append(text)
-    return d.isel({zdim: 0}, drop=True).copy(data=vals)
+def _on_regular_grid(ds: Any, east: str, comps: list[Any], floors: list[np.ndarray],
+                     same: bool, warnings: list[str]) -> tuple[Any, ...]:
+    """lat, lon (ascending; longitudes per `_lon_order`), u, v (nt, nlat, nlon) and the
+    nodata codes (or None): curvilinear components regridded, regular ones reordered."""
+    if comps[0][0] == "curvilinear":
+        lat, lon, u, v, outside, below = _regrid(ds, east, comps, warnings,
+                                                 floors if len(floors) == 2 else [])
+        codes = np.where(outside, NODATA_OUTSIDE,
+                         np.where(below, NODATA_FLOOR, 0)).astype(np.int8)
+        return lat, lon, u, v, codes
+    lat = np.asarray(comps[0][2].values, dtype=float)
+    lon_raw = np.asarray(comps[0][3].values, dtype=float)
+    lon, xo = _lon_order(lon_raw)
+    yo = np.argsort(lat)
+    lat = lat[yo]
+    u, v = (c[1][:, yo][:, :, xo] for c in comps)
+    nodata: np.ndarray | None = None
+    if floors and same and all(f.shape == u.shape[1:] for f in floors):
+        floor = np.logical_or.reduce([f[yo][:, xo] for f in floors])
+        nodata = np.where(floor, NODATA_FLOOR, 0).astype(np.int8)
+    return lat, lon, u, v, nodata
 
 
 def from_xarray(
@@ -365,64 +321,15 @@ def from_xarray(
     warnings: list[str] = []
     comps = []
     floors: list[np.ndarray] = []  # per component: (ny, nx) the depth range reaches the floor
-    tdim, tvals = None, None
     for name in (east, north):
-        d = _merge_expver(ds[name])
-        d = d * _unit_scale(d, name)
-        kind, lat_c, lon_c = _horizontal(ds, d, name)
-        tdim, tvals = _time_axis(ds, d)
-        needed = set(lat_c.dims) | set(lon_c.dims) | ({tdim} if tdim is not None else set())
-        needed |= {dim for dim in d.dims if dim in _S_LEVELS}
-        needed |= {d[n].dims[0] for n in d.coords if d[n].ndim == 1 and (
-            n in _DEPTH or d[n].attrs.get("positive") in ("down", "up")
-            or d[n].attrs.get("axis") == "Z")}
-        extra = [dim for dim in d.dims if dim not in needed]
-        for dim in extra:
-            if d.sizes[dim] != 1:
-                raise InvalidParameterError(
-                    "field", f"dimension {dim!r} of size {d.sizes[dim]} in {name!r}",
-                    "unexpected extra dimension: select one member first",
-                )
-        d = d.isel({dim: 0 for dim in extra}, drop=True) if extra else d
-        d = _vertical(ds, d, depth_range, info, warnings)
-        lead = [tdim] if tdim is not None else []
-        dims = (*lead, *lat_c.dims) if kind == "curvilinear" else (
-            *lead, lat_c.dims[0], lon_c.dims[0])
-        arr = np.asarray(d.transpose(*dims).values, dtype=float)
-        floor = info.pop("_floor", None)
+        comp, floor = _component(ds, name, depth_range, info, warnings)
+        comps.append(comp)
         if floor is not None:
-            fl = np.asarray(floor.transpose(*dims).values, dtype=bool)
-            floors.append(np.asarray(fl.reshape((-1, *arr.shape[-2:])).any(axis=0)))
-        if tdim is None:
-            arr = arr[None]
-        comps.append((kind, arr, lat_c, lon_c, tdim, tvals))
-    t_e, t_n = comps[0][5], comps[1][5]
-    if comps[0][4] != comps[1][4] or (t_e is None) != (t_n is None) or (
-            t_e is not None and t_n is not None and not np.array_equal(t_e, t_n)):
-        raise InvalidParameterError("field", (east, north),
-                                    "the two components have different times")
-    if tvals is not None and tdim is not None:
-        order = np.argsort(tvals, kind="stable")
-        tvals = tvals[order]
-        if np.any(np.diff(tvals) <= np.timedelta64(0, "ns")):
-            raise InvalidParameterError("field time", "repeated", "two records at the same time")
-        comps = [(k, a[order], la, lo, td, tv) for k, a, la, lo, td, tv in comps]
+            floors.append(floor)
+    comps, tvals = _in_time_order(comps, (east, north))
     same = comps[0][2].shape == comps[1][2].shape
     comps = _same_grid(comps)
-    nodata = None
-    if comps[0][0] == "curvilinear":
-        lat, lon, u, v, outside = _regrid(ds, east, comps, warnings)
-        nodata = np.where(outside, NODATA_OUTSIDE, 0).astype(np.int8)
-    else:
-        lat = np.asarray(comps[0][2].values, dtype=float)
-        lon_raw = np.asarray(comps[0][3].values, dtype=float)
-        lon, xo = _lon_order(lon_raw)
-        yo = np.argsort(lat)
-        lat = lat[yo]
-        u, v = (c[1][:, yo][:, :, xo] for c in comps)
-        if floors and same and all(f.shape == u.shape[1:] for f in floors):
-            floor = np.logical_or.reduce([f[yo][:, xo] for f in floors])
-            nodata = np.where(floor, NODATA_FLOOR, 0).astype(np.int8)
+    lat, lon, u, v, nodata = _on_regular_grid(ds, east, comps, floors, same, warnings)
     refuse_all_nan(u, v, source, nodata)
     if tvals is None:
         epoch = None
@@ -469,53 +376,11 @@ def _too_fast(u: Any, v: Any, names: tuple[str, str], medium: str | None,
             "values cm/s labelled m/s?"]
 
 
-def _same_grid(comps: list[Any]) -> list[Any]:
-    """Both components on one regular grid, else both curvilinear (staggered: regridded)."""
-    import xarray as xr
-
-    reg = [_as_regular(c) for c in comps]
-    if all(c[0] == "regular" for c in reg):
-        a, b = reg
-        if a[2].shape == b[2].shape and a[3].shape == b[3].shape and np.allclose(
-                a[2].values, b[2].values, atol=1e-9, rtol=0) and np.allclose(
-                a[3].values, b[3].values, atol=1e-9, rtol=0):
-            return reg
-    out = []
-    for kind, arr, lat_c, lon_c, tdim, tvals in reg:
-        if kind == "regular":  # a staggered regular grid (Arakawa C): regrid it too
-            la2, lo2 = np.meshgrid(np.asarray(lat_c.values, dtype=float),
-                                   np.asarray(lon_c.values, dtype=float), indexing="ij")
-            lat_c = xr.DataArray(la2, dims=("y", "x"), name=lat_c.name or "lat")
-            lon_c = xr.DataArray(lo2, dims=("y", "x"), name=lon_c.name or "lon")
-        out.append(("curvilinear", arr, lat_c, lon_c, tdim, tvals))
-    return out
-
-
-def _as_regular(comp: tuple[Any, ...]) -> tuple[Any, ...]:
-    """A 2-D lat/lon that is a product of 1-D axes (lat along one dimension, lon along the
-    other, to 1e-9 deg) is a regular grid: no regridding."""
-    kind, arr, lat_c, lon_c, tdim, tvals = comp
-    if kind != "curvilinear" or lat_c.dims != lon_c.dims:
-        return comp
-    la, lo = np.asarray(lat_c.values, dtype=float), np.asarray(lon_c.values, dtype=float)
-    for ax in (0, 1):
-        other = 1 - ax
-        lat_axis = np.take(la, 0, axis=other)  # lat varies along `ax` only
-        lon_axis = np.take(lo, 0, axis=ax)  # lon varies along `other` only
-        if np.allclose(la, np.expand_dims(lat_axis, other), atol=1e-9, rtol=0) and np.allclose(
-                lo, np.expand_dims(lon_axis, ax), atol=1e-9, rtol=0):
-            if ax == 1:
-                arr = np.swapaxes(arr, 1, 2)
-            import xarray as xr
-
-            return ("regular", arr, xr.DataArray(lat_axis, dims=("y",)),
-                    xr.DataArray(lon_axis, dims=("x",)), tdim, tvals)
-    return comp
-
-
-def _regrid(ds: Any, east: str, comps: list[Any], warnings: list[str]) -> tuple[
-        np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Regrid curvilinear components (their own 2-D coordinates) to a regular lat/lon grid."""
+def _regrid(ds: Any, east: str, comps: list[Any], warnings: list[str],
+            floors: list[np.ndarray]) -> tuple[
+        np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Regrid curvilinear components (their own 2-D coordinates) to a regular lat/lon grid;
+    floors: per component, where the depth range reaches below the sea floor (or [])."""
     from glideplan.fields.regrid import CurvilinearSource, regrid_curvilinear
 
     sources = []
@@ -542,10 +407,12 @@ def _regrid(ds: Any, east: str, comps: list[Any], warnings: list[str]) -> tuple[
                 vals = np.radians(vals)
             angle = CurvilinearSource(vals[None], np.asarray(la_a.values, dtype=float),
                                       np.asarray(lo_a.values, dtype=float), "angle")
-    out = regrid_curvilinear(sources[0], sources[1], angle=angle, grid_relative=rotate)
+    out = regrid_curvilinear(sources[0], sources[1], angle=angle, grid_relative=rotate,
+                             floor=(floors[0], floors[1]) if floors else (None, None))
     warnings.extend(out.warnings)
     outside = np.zeros(out.u.shape[1:], bool) if out.outside is None else out.outside
-    return out.lat, out.lon, out.u, out.v, outside
+    below = np.zeros(out.u.shape[1:], bool) if out.floor is None else out.floor
+    return out.lat, out.lon, out.u, out.v, outside, below
 
 
 def _engine(path: pathlib.Path) -> str:

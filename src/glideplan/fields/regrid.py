@@ -58,6 +58,7 @@ class RegularGrid:
     v: FloatArray
     warnings: tuple[str, ...]
     outside: NDArray[np.bool_] | None = None  # (nlat, nlon): outside the source grid
+    floor: NDArray[np.bool_] | None = None  # (nlat, nlon): a depth range below the sea floor
 
 
 def _refuse(src: CurvilinearSource, reason: str) -> InvalidParameterError:
@@ -184,33 +185,23 @@ def _lon_frame(lon: FloatArray) -> FloatArray:
     return b if b[-1] < 360.0 else a
 
 
-def regrid_curvilinear(
-    east: CurvilinearSource,
-    north: CurvilinearSource,
-    angle: CurvilinearSource | None = None,
-    grid_relative: bool = False,
-    max_nodes: int = 4_000_000,
-) -> RegularGrid:
-    """Regrid two components to a regular lat/lon grid (module docstring for the method).
-
-    east, north: the components (grid-relative x, y when `grid_relative`); angle: the grid's
-    i-axis angle (rad, CCW from east; ROMS `angle`), computed from east's coordinates when
-    None. max_nodes bounds nlat x nlon (the spacing is coarsened to fit, with a warning).
-    """
-    for src in (east, north) + (() if angle is None else (angle,)):
+def _check_sources(*sources: CurvilinearSource) -> None:
+    """2-D coordinates of one shape, values (nt, ny, nx) on them, at least 2 x 2 nodes."""
+    for src in sources:
         if src.lat.ndim != 2 or src.lat.shape != src.lon.shape:
             raise _refuse(src, f"coordinates of shapes {src.lat.shape} and {src.lon.shape}")
         if src.values.shape[1:] != src.lat.shape:
             raise _refuse(src, f"values {src.values.shape[1:]} on coordinates {src.lat.shape}")
         if min(src.lat.shape) < 2:
             raise _refuse(src, "a single row or column of nodes")
-    ok = np.isfinite(east.lat) & np.isfinite(east.lon)
-    if not np.any(ok):
-        raise _refuse(east, "no finite coordinates")
-    rad = np.radians(east.lon[ok])
-    lon0 = math.degrees(math.atan2(float(np.mean(np.sin(rad))), float(np.mean(np.cos(rad)))))
-    lons = [_unwrap_lon(s.lon, lon0) for s in (east, north)]
-    all_lat = np.concatenate([s.lat[np.isfinite(s.lat)] for s in (east, north)])
+
+
+def _target_axes(east: CurvilinearSource, north_lat: FloatArray, lons: list[FloatArray],
+                 max_nodes: int, notes: list[str]) -> tuple[FloatArray, FloatArray, float, float]:
+    """The regular target axes (lat, lon unwrapped about the grid's mean longitude) and their
+    steps: the native spacing d in latitude and d / cos(lat_c) in longitude, coarsened to
+    max_nodes."""
+    all_lat = np.concatenate([s[np.isfinite(s)] for s in (east.lat, north_lat)])
     all_lon = np.concatenate([x[np.isfinite(x)] for x in lons])
     lat_min, lat_max = float(np.min(all_lat)), float(np.max(all_lat))
     lon_min, lon_max = float(np.min(all_lon)), float(np.max(all_lon))
@@ -223,7 +214,6 @@ def regrid_curvilinear(
     lat_c = 0.5 * (lat_min + lat_max)
     coslat = max(math.cos(math.radians(lat_c)), 0.05)
     dlat, dlon = d, d / coslat
-    notes = []
     nlat = math.floor((lat_max - lat_min) / dlat + 1e-9) + 1
     nlon = math.floor((lon_max - lon_min) / dlon + 1e-9) + 1
     if nlat * nlon > max_nodes:
@@ -237,6 +227,57 @@ def regrid_curvilinear(
                       f"degrees, less than two nodes at its spacing {d:.3g} degrees")
     tlat: FloatArray = lat_min + dlat * np.arange(nlat, dtype=float)
     tlon: FloatArray = lon_min + dlon * np.arange(nlon, dtype=float)
+    return tlat, tlon, dlat, dlon
+
+
+def _rotation(east: CurvilinearSource, angle: CurvilinearSource | None, lon0: float,
+              lon_e: FloatArray, tri_e: _Triangles, tlat: FloatArray, tlon: FloatArray,
+              notes: list[str]) -> tuple[FloatArray, FloatArray]:
+    """cos(alpha), sin(alpha) on the target grid (interpolated, then normalised), alpha from
+    `angle` or from east's coordinates; a note when |alpha| reaches 0.05 deg."""
+    if angle is None:
+        alpha = _grid_angle(east.lat, lon_e)[None]
+        tri_a, src_label = tri_e, f"its coordinates {east.label}"
+    else:
+        alpha = angle.values[:1]
+        tri_a = _Triangles(angle, _unwrap_lon(angle.lon, lon0), tlat, tlon)
+        src_label = "the file's `angle`"
+    c = tri_a(np.cos(alpha))[0]
+    s = tri_a(np.sin(alpha))[0]
+    norm = np.hypot(c, s)
+    biggest = float(np.nanmax(np.abs(np.degrees(alpha)))) if np.any(
+        np.isfinite(alpha)) else 0.0
+    if biggest >= 0.05:
+        notes.append(f"velocities rotated from the grid's axes to east/north by the grid "
+                     f"angle from {src_label} (|angle| up to {biggest:.1f} deg)")
+    return c / norm, s / norm
+
+
+def regrid_curvilinear(
+    east: CurvilinearSource,
+    north: CurvilinearSource,
+    angle: CurvilinearSource | None = None,
+    grid_relative: bool = False,
+    max_nodes: int = 4_000_000,
+    floor: tuple[NDArray[np.bool_] | None, NDArray[np.bool_] | None] = (None, None),
+) -> RegularGrid:
+    """Regrid two components to a regular lat/lon grid (module docstring for the method).
+
+    east, north: the components (grid-relative x, y when `grid_relative`); angle: the grid's
+    i-axis angle (rad, CCW from east; ROMS `angle`), computed from east's coordinates when
+    None. max_nodes bounds nlat x nlon (the spacing is coarsened to fit, with a warning).
+    floor: per component, (ny, nx) True where a depth range reaches below the sea floor; a
+    target node with no value whose triangle has such a corner is `RegularGrid.floor`.
+    """
+    _check_sources(east, north, *(() if angle is None else (angle,)))
+    ok = np.isfinite(east.lat) & np.isfinite(east.lon)
+    if not np.any(ok):
+        raise _refuse(east, "no finite coordinates")
+    rad = np.radians(east.lon[ok])
+    lon0 = math.degrees(math.atan2(float(np.mean(np.sin(rad))), float(np.mean(np.cos(rad)))))
+    lons = [_unwrap_lon(s.lon, lon0) for s in (east, north)]
+    notes: list[str] = []
+    tlat, tlon, dlat, dlon = _target_axes(east, north.lat, lons, max_nodes, notes)
     tri_e = _Triangles(east, lons[0], tlat, tlon)
     u = tri_e(east.values)
     tri_n = tri_e if (north.lat.shape == east.lat.shape and np.array_equal(
@@ -244,32 +285,32 @@ def regrid_curvilinear(
         lons[1], lons[0], equal_nan=True)) else _Triangles(north, lons[1], tlat, tlon)
     v = tri_n(north.values)
     if grid_relative:
-        if angle is None:
-            alpha = _grid_angle(east.lat, lons[0])[None]
-            tri_a, src_label = tri_e, f"its coordinates {east.label}"
-        else:
-            alpha = angle.values[:1]
-            tri_a = _Triangles(angle, _unwrap_lon(angle.lon, lon0), tlat, tlon)
-            src_label = "the file's `angle`"
-        c = tri_a(np.cos(alpha))[0]
-        s = tri_a(np.sin(alpha))[0]
-        norm = np.hypot(c, s)
-        c, s = c / norm, s / norm
+        c, s = _rotation(east, angle, lon0, lons[0], tri_e, tlat, tlon, notes)
         u, v = u * c - v * s, u * s + v * c
-        biggest = float(np.nanmax(np.abs(np.degrees(alpha)))) if np.any(
-            np.isfinite(alpha)) else 0.0
-        if biggest >= 0.05:
-            notes.append(f"velocities rotated from the grid's axes to east/north by the grid "
-                         f"angle from {src_label} (|angle| up to {biggest:.1f} deg)")
     land = np.isnan(u) | np.isnan(v)
     u[land] = np.nan
     v[land] = np.nan
     ny, nx = east.lat.shape
-    text = (f"regridded the curvilinear {ny}x{nx} grid ({east.label}) to a regular {nlat}x{nlon} "
-            f"lat/lon grid, {dlat:.4g} deg latitude x {dlon:.4g} deg longitude (linear in the "
-            f"grid's own cells); NaN outside the source grid and next to land")
+    text = (f"regridded the curvilinear {ny}x{nx} grid ({east.label}) to a regular "
+            f"{tlat.size}x{tlon.size} lat/lon grid, {dlat:.4g} deg latitude x {dlon:.4g} deg "
+            "longitude (linear in the grid's own cells); NaN outside the source grid and next "
+            "to land")
     if notes:
         text += "; " + "; ".join(notes)
     outside = np.isnan(tri_e(np.ones((1, *east.lat.shape)))[0])  # no cell of the source
     return RegularGrid(lat=tlat, lon=_lon_frame(tlon), u=u, v=v, warnings=(text,),
-                       outside=outside)
+                       outside=outside, floor=_floor(floor, (tri_e, tri_n), (east, north),
+                                                     np.all(land, axis=0) & ~outside))
+
+
+def _floor(floor: tuple[NDArray[np.bool_] | None, NDArray[np.bool_] | None],
+           tris: tuple[_Triangles, _Triangles], sources: tuple[CurvilinearSource, ...],
+           nodata: NDArray[np.bool_]) -> NDArray[np.bool_] | None:
+    """Target nodes without data (`nodata`) that a floor node of either component touches."""
+    out = None
+    for mask, tri, src in zip(floor, tris, sources, strict=True):
+        if mask is None or mask.shape != src.lat.shape:
+            continue
+        touched = tri(np.asarray(mask, dtype=float)[None])[0] > 0.0
+        out = touched if out is None else out | touched
+    return None if out is None else out & nodata

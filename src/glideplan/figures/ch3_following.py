@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import pathlib
+from typing import Any
 
 import numpy as np
 
@@ -194,67 +195,108 @@ def fig3_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     fig, axes = pyplot().subplots(1, 3, figsize=(17, 4.8))
     rows = []
     for ax, case in zip(axes[:2], cfg.cases, strict=True):
-        for eps in cfg.eps:
-            r, e = _curves(res.summary, case, eps)
-            (line,) = ax.plot(r, e, "o-", ms=3, lw=1.2, mfc="none", label=f"eps = {eps:g}")
-            rf = (1.0 + eps) ** 2
-            i = int(np.argmin(np.abs(r - rf)))
-            ax.plot(r[i], e[i], "o", color=line.get_color(), ms=7)
-            k = res.knees[case][eps]
-            j = int(np.argmin(np.abs(r - k)))
-            ax.plot(r[j], e[j], "v", color=line.get_color(), ms=8, mfc="none")
-            failures = sum(s["failures"] for s in res.summary
-                           if s["case"] == case and s["eps"] == eps)  # fmt: skip
-            rows.append(compare(f"{case} eps={eps:g}: mean error at R_plan = {r[0]:g}",
-                                float(e[0]), unit="R0", note=f"failures {failures}"))  # fmt: skip
-            rows.append(
-                compare(
-                    f"{case} eps={eps:g}: knee of the curve",
-                    k,
-                    unit="R0",
-                    reference=rf,
-                    reference_source="R0'/R0 = (1 + eps)^2 (3.3); section 3.4 puts the knee "
-                    "near it in the steady case",
-                    note=f"knee - R0' = {k - rf:+.2f} R0",
-                )
-            )
-            if case == "unsteady":
-                rows.append(
-                    compare(
-                        f"unsteady eps={eps:g}: R0' conservative (knee below R0')",
-                        yes_no(k < rf),
-                        CONSERVATIVE,
-                        note="" if k < rf else f"knee {k:.2f} >= R0' {rf:.2f}",
-                    )
-                )
-        limit = float(AXIS_MAX[case].value)
-        top, top_eps, top_r = _largest(res.summary, case)
-        ax.axhline(limit, color="k", ls=":", lw=0.8, label=f"dissertation's axis max {limit:g}")
-        ax.set_title(f"({'a' if case == 'steady' else 'b'}) {case} disturbance"
-                     + (", gust scale 1 (literal)" if case == "unsteady" else ""))  # fmt: skip
-        ax.set_xlabel("planning radius R_plan / R0")
-        ax.set_ylabel("mean final cross-track error / R0")
-        ax.set_ylim(bottom=0.0)
-        ax.legend(fontsize=8)
-        panel = "a" if case == "steady" else "b"
+        rows += _case_panel(ax, res, cfg.eps, case, samples)
+    sweep_rows, tops = _sweep_panel(axes[2], sweep, res, worst, sweep_samples)
+    rows += sweep_rows
+    file = save_png(fig, out_dir / "fig3_4.png")
+    return FigureReport(
+        files=(file.name, str(res.directory / "summary.json")),
+        rows=tuple(rows),
+        notes=(
+            f"{samples} goals per point (full study with --full: 900); the gust-scale sweep "
+            f"runs the eps = {worst:g} curve with {sweep_samples} goals per point at R_plan = 1, "
+            "1.25, ..., 4, the same goals "
+            "and gust realisations for every gust scale. Filled markers: R_plan nearest "
+            "R0' = (1 + eps)^2; "
+            "open triangles: the knee (smallest R_plan within 10% of the curve's drop above its "
+            "minimum). Dryden: 2-D gusts, L = 263 m, V = 20 m/s, RMS f eps v (f = 1 the literal "
+            "reading; the sweep is a sensitivity study, option --gust-scale of `study "
+            "cross-track`), saturated at eps v."
+        ),
+        data={"largest_unsteady": {f: t[0] for f, t in tops.items()}},
+    )
+
+
+def _eps_rows(res: Any, case: str, eps: float, r: np.ndarray, e: np.ndarray) -> list[Any]:
+    """The rows of one curve: its error at the smallest R_plan, its knee against
+    R0' = (1 + eps)^2 (3.3) and, unsteady, whether R0' is conservative."""
+    rf = (1.0 + eps) ** 2
+    k = res.knees[case][eps]
+    failures = sum(s["failures"] for s in res.summary
+                   if s["case"] == case and s["eps"] == eps)  # fmt: skip
+    rows = [compare(f"{case} eps={eps:g}: mean error at R_plan = {r[0]:g}",
+                    float(e[0]), unit="R0", note=f"failures {failures}")]  # fmt: skip
+    rows.append(
+        compare(
+            f"{case} eps={eps:g}: knee of the curve",
+            k,
+            unit="R0",
+            reference=rf,
+            reference_source="R0'/R0 = (1 + eps)^2 (3.3); section 3.4 puts the knee "
+            "near it in the steady case",
+            note=f"knee - R0' = {k - rf:+.2f} R0",
+        )
+    )
+    if case == "unsteady":
         rows.append(
             compare(
-                f"{case}"
-                + (" (literal, gust scale 1)" if case == "unsteady" else "")
-                + f": every mean error within the y axis of Fig 3.4({panel})",
-                yes_no(top <= limit),
-                WITHIN_AXIS[case],
-                note=f"largest {top:.3f} R0 (eps = {top_eps:g}, R_plan = {top_r:g}, "
-                f"{samples} goals)"
-                + ("" if top <= limit else f" exceeds the axis maximum {limit:g}; see the "
-                   "gust-scale sweep below"),
+                f"unsteady eps={eps:g}: R0' conservative (knee below R0')",
+                yes_no(k < rf),
+                CONSERVATIVE,
+                note="" if k < rf else f"knee {k:.2f} >= R0' {rf:.2f}",
             )
-        )  # fmt: skip
-    # the sensitivity sweep of the unsteady case
+        )
+    return rows
+
+
+def _case_panel(ax: Any, res: Any, eps_values: Any, case: str, samples: int) -> list[Any]:
+    """Panel (a) or (b): a curve per eps with R0' (filled) and the knee (open triangle)
+    marked, the dissertation's axis maximum; the rows of each curve and of the panel."""
+    rows = []
+    for eps in eps_values:
+        r, e = _curves(res.summary, case, eps)
+        (line,) = ax.plot(r, e, "o-", ms=3, lw=1.2, mfc="none", label=f"eps = {eps:g}")
+        rf = (1.0 + eps) ** 2
+        i = int(np.argmin(np.abs(r - rf)))
+        ax.plot(r[i], e[i], "o", color=line.get_color(), ms=7)
+        k = res.knees[case][eps]
+        j = int(np.argmin(np.abs(r - k)))
+        ax.plot(r[j], e[j], "v", color=line.get_color(), ms=8, mfc="none")
+        rows += _eps_rows(res, case, eps, r, e)
+    limit = float(AXIS_MAX[case].value)
+    top, top_eps, top_r = _largest(res.summary, case)
+    ax.axhline(limit, color="k", ls=":", lw=0.8, label=f"dissertation's axis max {limit:g}")
+    ax.set_title(f"({'a' if case == 'steady' else 'b'}) {case} disturbance"
+                 + (", gust scale 1 (literal)" if case == "unsteady" else ""))  # fmt: skip
+    ax.set_xlabel("planning radius R_plan / R0")
+    ax.set_ylabel("mean final cross-track error / R0")
+    ax.set_ylim(bottom=0.0)
+    ax.legend(fontsize=8)
+    panel = "a" if case == "steady" else "b"
+    rows.append(
+        compare(
+            f"{case}"
+            + (" (literal, gust scale 1)" if case == "unsteady" else "")
+            + f": every mean error within the y axis of Fig 3.4({panel})",
+            yes_no(top <= limit),
+            WITHIN_AXIS[case],
+            note=f"largest {top:.3f} R0 (eps = {top_eps:g}, R_plan = {top_r:g}, "
+            f"{samples} goals)"
+            + ("" if top <= limit else f" exceeds the axis maximum {limit:g}; see the "
+               "gust-scale sweep below"),
+        )
+    )  # fmt: skip
+    return rows
+
+
+def _sweep_panel(ax: Any, sweep: dict[float, Any], res: Any, worst: float,
+                 sweep_samples: int) -> tuple[list[Any], dict[float, Any]]:
+    """The third panel, the gust-scale sensitivity sweep of the unsteady case: a curve per
+    gust scale f; rows of each curve's largest error and whether it stays within the axis;
+    the largest (error, eps, R_plan) per f."""
     limit = float(AXIS_MAX["unsteady"].value)
     tops = {f: _largest(summary, "unsteady") for f, summary in sweep.items()}
     under = [f for f, t in tops.items() if t[0] <= limit]
-    ax = axes[2]
     for f, summary in sweep.items():
         r, e = _curves(summary, "unsteady", worst)
         ax.plot(r, e, "o-", ms=3, lw=1.2, mfc="none", label=f"f = {f:.3f}")
@@ -265,6 +307,7 @@ def fig3_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.set_ylim(bottom=0.0)
     ax.legend(fontsize=8)
     _, lit_eps, _ = _largest(res.summary, "unsteady")
+    rows = []
     for f, (top, top_eps, top_r) in tops.items():
         label = f"eps = {worst:g}, " + ("literal f = 1" if f == 1.0 else f"sensitivity f = {f:.4f}")
         se = _standard_error(sweep[f], "unsteady", top_eps, top_r)
@@ -298,20 +341,4 @@ def fig3_4(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
                 note=note,
             )
         )
-    file = save_png(fig, out_dir / "fig3_4.png")
-    return FigureReport(
-        files=(file.name, str(res.directory / "summary.json")),
-        rows=tuple(rows),
-        notes=(
-            f"{samples} goals per point (full study with --full: 900); the gust-scale sweep "
-            f"runs the eps = {worst:g} curve with {sweep_samples} goals per point at R_plan = 1, "
-            "1.25, ..., 4, the same goals "
-            "and gust realisations for every gust scale. Filled markers: R_plan nearest "
-            "R0' = (1 + eps)^2; "
-            "open triangles: the knee (smallest R_plan within 10% of the curve's drop above its "
-            "minimum). Dryden: 2-D gusts, L = 263 m, V = 20 m/s, RMS f eps v (f = 1 the literal "
-            "reading; the sweep is a sensitivity study, option --gust-scale of `study "
-            "cross-track`), saturated at eps v."
-        ),
-        data={"largest_unsteady": {f: t[0] for f, t in tops.items()}},
-    )
+    return rows, tops

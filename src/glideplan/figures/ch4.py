@@ -218,46 +218,9 @@ def table_4_3_rows(weak_starts: int = 20) -> tuple[list[Comparison], Any]:
         cand = ours.get(target)
         if cand is not None:
             extremal += 1
-            note = reading
-            if group == "umax":
-                note = (
-                    f"fixed turn rate, speed profile not unique (singular arc); the profile "
-                    f"built is {cand.family} ({cand.info['parameters']['loops']} extra loop)"
-                )
-            if abs(cand.cost - printed.value) > (printed.tolerance or 0.0):
-                note = (note + "; " if note else "") + (
-                    f"ours - printed = {cand.cost - float(printed.value):+.4f} s, the synthesis "
-                    f"path verified by integration"
-                )
-            rows.append(compare(f"{name}: time" + (f" (ours: {target})" if reading else ""),
-                                cand.cost, printed, note=note))  # fmt: skip
-            continue
-        weak = dissertation_minimum(name, weak_starts) if name in WEAK_TYPES else None
-        direct = descent_from(weak) if weak is not None else None
-        if weak is None:
-            note = "no extremal of this type, and (4.27) did not converge"
-            rows.append(compare(f"{name}: time", None, printed, note=note))
-            continue
-        rows.append(
-            compare(
-                f"{name}: minimum of (4.27) in the dissertation's parameterisation",
-                weak.cost,
-                printed,
-                note=f"bounds active there: {', '.join(weak.active) or 'none'}",
-            )
-        )
-        rows.append(
-            compare(
-                f"{name}: a local optimum of the control problem",
-                yes_no(direct is None or direct >= weak.cost - 1e-6),
-                Printed("yes", f"{TABLE_SOURCE} lists {name} as locally optimal", word=True),
-                note="" if direct is None or direct >= weak.cost - 1e-6 else (
-                    f"the direct method started from the (4.27) minimum {weak.cost:.6f} descends "
-                    f"to {direct:.6f}; the minimum sits on a bound ({', '.join(weak.active)}), "
-                    "violates H = 0 and is no extremal"
-                ),
-            )
-        )  # fmt: skip
+            rows.append(_extremal_row(name, group, target, reading, cand, printed))
+        else:
+            rows += _weak_rows(name, printed, weak_starts)
     listed = {_TYPO.get(f"{s} {o}", (f"{s} {o}", ""))[0] for _, s, o, _ in TABLE_4_3}
     extra = [c for t, c in ours.items() if t not in listed]
     for c in extra:
@@ -291,6 +254,53 @@ def table_4_3_rows(weak_starts: int = 20) -> tuple[list[Comparison], Any]:
     rows.append(compare("Dubins at v_max / optimal time", dub / sol.cost, PRINTED_RATIO,
                         unit=""))  # fmt: skip
     return rows, sol
+
+
+def _extremal_row(name: str, group: str, target: str, reading: str, cand: Any,
+                  printed: Printed) -> Comparison:
+    """A printed row our synthesis has as an extremal: its time against the printed one."""
+    note = reading
+    if group == "umax":
+        note = (
+            f"fixed turn rate, speed profile not unique (singular arc); the profile "
+            f"built is {cand.family} ({cand.info['parameters']['loops']} extra loop)"
+        )
+    if abs(cand.cost - printed.value) > (printed.tolerance or 0.0):
+        note = (note + "; " if note else "") + (
+            f"ours - printed = {cand.cost - float(printed.value):+.4f} s, the synthesis "
+            f"path verified by integration"
+        )
+    return compare(f"{name}: time" + (f" (ours: {target})" if reading else ""),
+                   cand.cost, printed, note=note)  # fmt: skip
+
+
+def _weak_rows(name: str, printed: Printed, weak_starts: int) -> list[Comparison]:
+    """A printed row that is no extremal of ours: the minimum of (4.27) in the dissertation's
+    parameterisation, and whether the direct method started there descends (not a local
+    optimum of the control problem)."""
+    weak = dissertation_minimum(name, weak_starts) if name in WEAK_TYPES else None
+    direct = descent_from(weak) if weak is not None else None
+    if weak is None:
+        note = "no extremal of this type, and (4.27) did not converge"
+        return [compare(f"{name}: time", None, printed, note=note)]
+    return [
+        compare(
+            f"{name}: minimum of (4.27) in the dissertation's parameterisation",
+            weak.cost,
+            printed,
+            note=f"bounds active there: {', '.join(weak.active) or 'none'}",
+        ),
+        compare(
+            f"{name}: a local optimum of the control problem",
+            yes_no(direct is None or direct >= weak.cost - 1e-6),
+            Printed("yes", f"{TABLE_SOURCE} lists {name} as locally optimal", word=True),
+            note="" if direct is None or direct >= weak.cost - 1e-6 else (
+                f"the direct method started from the (4.27) minimum {weak.cost:.6f} descends "
+                f"to {direct:.6f}; the minimum sits on a bound ({', '.join(weak.active)}), "
+                "violates H = 0 and is no extremal"
+            ),
+        ),
+    ]  # fmt: skip
 
 
 @reproducible(

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import pathlib
+from typing import Any
 
 import numpy as np
 
@@ -29,9 +30,7 @@ _GRID_TEXT = {
 
 
 def _grid_figure(fid: str, out_dir: pathlib.Path, full: bool) -> FigureReport:
-    from glideplan.planners.min_time.grid import best_time, time_optimal_grid
-    from glideplan.planning import plan
-    from glideplan.plotting import plot_path
+    from glideplan.planners.min_time.grid import time_optimal_grid
 
     plt = pyplot()
     heading, text = _GRID_TEXT[fid]
@@ -39,11 +38,26 @@ def _grid_figure(fid: str, out_dir: pathlib.Path, full: bool) -> FigureReport:
     n = 61 if full else 25
     xs = np.linspace(-3.0, 3.0, n)
     grid = time_optimal_grid(car, xs, xs, heading)
+    fig, axes = plt.subplots(1, 3, figsize=(17, 5.6))
+    _family_panel(plt, axes[0], grid, xs, heading, full)
+    _paths_panel(axes[1], car, heading)
+    ax = axes[2]
+    im = ax.imshow(grid.ratio, origin="lower", extent=(-3, 3, -3, 3), cmap="viridis")
+    fig.colorbar(im, ax=ax, label="Dubins time at v_max / optimal time")
+    ax.set_xlabel("x1 (m)")
+    ax.set_ylabel("y1 (m)")
+    ax.set_title("ratio Dubins(v_max) / optimal")
+    f = save_png(fig, out_dir / f"{fid.replace('.', '_')}_grid.png")
+    rows = _grid_rows(grid, n, heading) + _example_rows(fid, car)
+    return FigureReport(files=(f.name,), rows=tuple(rows), notes=text)
+
+
+def _family_panel(plt: Any, ax: Any, grid: Any, xs: np.ndarray, heading: float,
+                  full: bool) -> None:
+    """The optimal family at each grid goal, one colour per family."""
     fams = sorted({f for f in grid.family.ravel() if f})
     code = np.vectorize(lambda f: fams.index(f) if f else -1)(grid.family)
-    fig, axes = plt.subplots(1, 3, figsize=(17, 5.6))
     cmap = plt.get_cmap("tab20", max(len(fams), 1))
-    ax = axes[0]
     gx, gy = np.meshgrid(xs, xs)
     for i, fam in enumerate(fams):
         m = code == i
@@ -53,7 +67,13 @@ def _grid_figure(fid: str, out_dir: pathlib.Path, full: bool) -> FigureReport:
     ax.set_ylabel("y1 (m)")
     ax.set_title(f"optimal family, psi1 = {heading:.3f} rad")
     ax.legend(fontsize=7, ncol=5, loc="upper center", bbox_to_anchor=(0.5, -0.1))
-    ax = axes[1]
+
+
+def _paths_panel(ax: Any, car: Any, heading: float) -> None:
+    """The optimal paths to a 7 x 7 subset of the goals."""
+    from glideplan.planning import plan
+    from glideplan.plotting import plot_path
+
     sub = np.linspace(-3.0, 3.0, 7)
     for y in sub:
         for x in sub:
@@ -69,13 +89,11 @@ def _grid_figure(fid: str, out_dir: pathlib.Path, full: bool) -> FigureReport:
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.set_title("optimal paths to a 7 x 7 subset")
-    ax = axes[2]
-    im = ax.imshow(grid.ratio, origin="lower", extent=(-3, 3, -3, 3), cmap="viridis")
-    fig.colorbar(im, ax=ax, label="Dubins time at v_max / optimal time")
-    ax.set_xlabel("x1 (m)")
-    ax.set_ylabel("y1 (m)")
-    ax.set_title("ratio Dubins(v_max) / optimal")
-    f = save_png(fig, out_dir / f"{fid.replace('.', '_')}_grid.png")
+
+
+def _grid_rows(grid: Any, n: int, heading: float) -> list[Any]:
+    """Points solved, the Dubins/optimal ratio (>= 1: a lower bound) and, for psi1 = 0 or
+    pi, the symmetry t(x, y) = t(x, -y)."""
     ratio = grid.ratio[np.isfinite(grid.ratio)]
     rows = [
         compare("grid points solved", int(np.isfinite(grid.time).sum()), unit="",
@@ -96,6 +114,15 @@ def _grid_figure(fid: str, out_dir: pathlib.Path, full: bool) -> FigureReport:
                 reference_source="the problem is symmetric about the x axis for psi1 = 0, pi",
             )
         )
+    return rows
+
+
+def _example_rows(fid: str, car: Any) -> list[Any]:
+    """The section's named examples: Fig 4.9's two Dubins goals, Fig 4.11's mirror image."""
+    from glideplan.planners.min_time.grid import best_time
+    from glideplan.planning import plan
+
+    rows = []
     if fid == "fig4.9":
         for g in ((2.0, 2.0, 0.0), (2.0, -2.0, 0.0)):
             t, fam, word = best_time(car, *g)
@@ -121,7 +148,7 @@ def _grid_figure(fid: str, out_dir: pathlib.Path, full: bool) -> FigureReport:
                 f"{b.word if b else '-'} {b.duration if b else math.nan:.6f} s",
             )
         )
-    return FigureReport(files=(f.name,), rows=tuple(rows), notes=text)
+    return rows
 
 
 reproducible_each(

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import pathlib
+from typing import Any
 
 import numpy as np
 
@@ -56,15 +57,7 @@ ASSUMED_CURVE = (
 )
 def fig7_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     """Contours of N = n_tank / n_cycle over displacement 2.5-5 L and depth 30-100 m (7.1)."""
-    from glideplan.design import (
-        FRESH_WATER,
-        FX23DV,
-        M_AIR_KG_PER_MOL,
-        R_GAS_J_PER_MOL_K,
-        SEA_WATER,
-        number_of_dives,
-    )
-    from glideplan.units import inch_to_m, pa_to_psi
+    from glideplan.design import FRESH_WATER, FX23DV, number_of_dives
 
     plt = pyplot()
     env = FRESH_WATER
@@ -83,7 +76,22 @@ def fig7_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     ax.invert_yaxis()
     ax.set_title("Fig 7.3: ideal number of dives, FX23DV, fresh water")
     files = (save_png(fig, out_dir / "fig7_3.png", crop=True).name,)
+    rows = _tank_rows(n13) + _table_7_1_rows() + _section_7_rows()
+    return FigureReport(files=files, rows=tuple(rows), data={"dives_5L_100m": n13})
 
+
+def _tank_rows(n13: float) -> list[Any]:
+    """The tank's air (mol, lb) and the dives at 5 L, 100 m against the printed values."""
+    from glideplan.design import (
+        FRESH_WATER,
+        FX23DV,
+        M_AIR_KG_PER_MOL,
+        R_GAS_J_PER_MOL_K,
+        SEA_WATER,
+        number_of_dives,
+    )
+
+    env = FRESH_WATER
     t_room = env.temperature_k
     n_room = float(FX23DV.moles(t_room))
     n_printed = float(N_TANK.value)
@@ -91,7 +99,7 @@ def fig7_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     n13_sea = float(number_of_dives(FX23DV, 5e-3, 100.0, SEA_WATER))
     n_cycle = 5e-3 * float(env.ambient_pressure_pa(100.0)) / (R_GAS_J_PER_MOL_K * t_room)
     air_lb = n_room * M_AIR_KG_PER_MOL / LB_KG
-    rows = [
+    return [
         compare(
             "air in the FX23DV tank (3442 psi, 183 in^3) at room temperature",
             n_room,
@@ -111,11 +119,19 @@ def fig7_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
             "temperatures",
         ),
     ]  # fmt: skip
+
+
+def _table_7_1_rows() -> list[Any]:
+    """Table 7.1's dives (ideal, and leaving the tank air at p_amb) against the printed."""
+    from glideplan.design import FRESH_WATER, FX23DV, number_of_dives
+
+    env = FRESH_WATER
     ratios = {
         key: float(p.value) / float(number_of_dives(FX23DV, key[0] * 1e-3, key[1], env))
         for key, p in TABLE_7_1.items()
     }
     spread = ", ".join(f"{r:.2f}" for r in ratios.values())
+    rows = []
     for (vol, depth), printed in TABLE_7_1.items():
         ideal = float(number_of_dives(FX23DV, vol * 1e-3, depth, env))
         usable = float(number_of_dives(FX23DV, vol * 1e-3, depth, env, usable_only=True))
@@ -128,6 +144,15 @@ def fig7_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
                 f"cases = {spread}: no fixed per-dive loss or residual tank air explains them",
             )
         )
+    return rows
+
+
+def _section_7_rows() -> list[Any]:
+    """The section's other numbers: the deepest inflation, the piston force at 100 m and the
+    buoyancy transfer rate."""
+    from glideplan.design import FX23DV, SEA_WATER
+    from glideplan.units import inch_to_m, pa_to_psi
+
     z_max = FX23DV.max_inflation_depth_m(SEA_WATER)
     p100 = float(SEA_WATER.ambient_pressure_pa(100.0))
     area = math.pi * float(inch_to_m(8.0)) ** 2 / 4
@@ -136,7 +161,7 @@ def fig7_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
     lung_cc, time_s = float(LUNG.value), float(TRANSFER_TIME.value)
     rate = 2 * lung_cc / time_s  # from -eta to +eta: twice the lung capacity
     rate_printed = float(TRANSFER_RATE.value)
-    rows += [
+    return [
         compare("deepest inflation with a full tank (sea water)", z_max / 1000.0, INFLATION_DEPTH,
                 unit="km"),
         compare(
@@ -155,7 +180,6 @@ def fig7_3(out_dir: pathlib.Path, *, full: bool = False) -> FigureReport:
             f"({lung_cc / time_s:.0f} cc/s)",
         ),
     ]  # fmt: skip
-    return FigureReport(files=files, rows=tuple(rows), data={"dives_5L_100m": n13})
 
 
 @reproducible(

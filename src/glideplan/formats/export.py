@@ -118,7 +118,8 @@ def export_mission(
         elif f == "qgc-plan":
             files[f] = str(write_qgc_plan(legs, out_dir / f"{stem}.plan",
                                           altitude=options.altitude, acceptance_radius=acc,
-                                          cruise_speed=plan.speed))
+                                          cruise_speed=plan.speed,
+                                          depart=plan.depart_time))
         elif f == "slocum":
             files[f] = [str(p) for p in write_slocum_goto(
                 legs, out_dir, goto_number=options.goto_number,

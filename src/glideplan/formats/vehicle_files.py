@@ -9,7 +9,12 @@ within the stated deviation of the planned track. Formats per ../shared/FORMATS.
   target goes to itself; names unique, ASCII.
 - QGC WPL 110: tab-separated, 12 fields; item 0 is home (the first waypoint, frame 0), then
   NAV_WAYPOINT (16) items in frame 3 (altitude relative to home) with p2 the acceptance radius.
-- QGC `.plan` (JSON): the same mission items as SimpleItems; NaN written as null.
+- QGC `.plan` (JSON): the same mission items as SimpleItems; NaN written as null. The format
+  has no time field: each item's ETA (and the list point's name) goes in an extra key
+  `"glideplan": {"name", "eta_s", "eta"}` of the item. QGroundControl's reader
+  (`MissionItem::load` / `SimpleMissionItem::load`) validates only the keys it knows and
+  ignores the rest, so the file still loads (QGC drops the key when it saves the plan again).
+  QGC WPL 110 has no place at all: QGC rejects any line that is not 12 tab-separated fields.
 """
 
 from __future__ import annotations
@@ -154,6 +159,11 @@ def write_seaglider_targets(
     return path
 
 
+def _finite(v: float) -> float | None:
+    """v, or None (JSON null) if it is not finite."""
+    return v if math.isfinite(v) else None
+
+
 def _items(legs: StraightLegList, altitude: float, acceptance_radius: float) -> list[
     tuple[float, float, float, float]
 ]:
@@ -189,11 +199,18 @@ def write_qgc_plan(
     altitude: float = 50.0,
     acceptance_radius: float = 100.0,
     cruise_speed: float = 15.0,
+    depart: np.datetime64 | None = None,
 ) -> pathlib.Path:
-    """QGroundControl `.plan` JSON (mission v2, ArduPilot firmware, fixed wing)."""
+    """QGroundControl `.plan` JSON (mission v2, ArduPilot firmware, fixed wing); each item
+    carries its ETA (s after departure; UTC with `depart`) in its `glideplan` key."""
     lat, lon = _latlon(legs)
     items: list[dict[str, Any]] = []
+    etas = legs.eta_s if legs.eta_s.size else None
+    when = iso_times(depart, etas) if etas is not None else []
     for k, (a, b, alt, acc) in enumerate(_items(legs, altitude, acceptance_radius), start=1):
+        extra = {} if etas is None else {"glideplan": {
+            "name": legs.names[k - 1], "eta_s": _finite(float(etas[k - 1])),
+            "eta": when[k - 1]}}
         items.append({
             "AMSLAltAboveTerrain": None,
             "Altitude": alt,
@@ -204,6 +221,7 @@ def write_qgc_plan(
             "frame": FRAME_RELATIVE_ALT,
             "params": [0, acc, 0, None, a, b, alt],
             "type": "SimpleItem",
+            **extra,
         })
     doc = {
         "fileType": "Plan",

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -115,6 +116,56 @@ def _velocity(problem: FrontProblem, T: FloatArray, t: float, lat: float, lon: f
     return a[k] * n + d[k], math.atan2(n[1], n[0]), k
 
 
+def _dist_to_source(R: float, source: tuple[float, float], la: float, lo: float) -> float:
+    """Local-plane distance (m) from the source to (la, lo) (mid-latitude cosine)."""
+    lat0, lon0 = source
+    x = R * math.cos(math.radians(0.5 * (la + lat0))) * math.radians(lo - lon0)
+    y = R * math.radians(la - lat0)
+    return math.hypot(x, y)
+
+
+def _outward(source: tuple[float, float], la: float, lo: float) -> FloatArray:
+    """Unit vector from the source towards (la, lo) (east, north; east if they coincide)."""
+    lat0, lon0 = source
+    x = math.cos(math.radians(la)) * math.radians(lo - lon0)
+    y = math.radians(la - lat0)
+    nrm = math.hypot(x, y)
+    return np.array([x / nrm, y / nrm]) if nrm > 0 else np.array([1.0, 0.0])
+
+
+def _max_drift(problem: FrontProblem, t_goal: float) -> tuple[float, float]:
+    """(max |b_k|, max |s_k| max |c| at t_goal's level) (m/s): bound the step's ground speed."""
+    bmax = float(np.max(np.hypot(problem.drifts[:, 0], problem.drifts[:, 1])))  # type: ignore[index]
+    cmax = 0.0
+    if problem.drift is not None:
+        lv = problem.drift.level(problem.drift.bracket(t_goal)[0])
+        cmax = float(np.nanmax(np.hypot(lv[0], lv[1]))) if np.any(np.isfinite(lv[0])) else 0.0
+        cmax *= float(np.max(np.abs(problem.drift_scales)))  # type: ignore[arg-type]
+    return bmax, cmax
+
+
+def _join_source(problem: FrontProblem, t0: float, source: tuple[float, float],
+                 arrays: tuple[NDArray[Any], ...]) -> tuple[NDArray[Any], ...]:
+    """Prepend the source: straight from it to the first point at ground velocity gv, with the
+    mode whose speed best matches the water velocity gv - d it needs."""
+    t_arr, la_arr, lo_arr, h_arr, k_arr = arrays
+    g = problem.grid
+    R = g.radius_m
+    lat0, lon0 = source
+    dur = t_arr[0] - t0
+    x = R * math.cos(math.radians(0.5 * (la_arr[0] + lat0))) * math.radians(lo_arr[0] - lon0)
+    y = R * math.radians(la_arr[0] - lat0)
+    gv = np.array([x, y]) / dur
+    fi, fj = g.frac_index(lat0, lon0)
+    d = problem.drift_at(t0, float(fi), float(fj))
+    wv = gv[None, :] - d
+    k = int(np.argmin(np.abs(np.hypot(wv[:, 0], wv[:, 1]) - np.asarray(problem.speeds))))
+    h0 = math.atan2(wv[k, 1], wv[k, 0])
+    return (np.concatenate([[t0], t_arr]), np.concatenate([[lat0], la_arr]),
+            np.concatenate([[lon0], lo_arr]), np.concatenate([[h0], h_arr]),
+            np.concatenate([[k], k_arr]))
+
+
 def backtrack(
     problem: FrontProblem,
     arrival: FloatArray,
@@ -129,44 +180,28 @@ def backtrack(
     g = problem.grid
     R = g.radius_m
     a = np.asarray(problem.speeds)
-    lat0, lon0 = source
+    lon0 = source[1]
     lat, lon = float(goal[0]), float(goal[1])
     lon = lon0 + ((lon - lon0 + 180.0) % 360.0) - 180.0  # unwrapped about the source
     t = float(t_goal)
     ts, las, los, hs, ks = [t], [lat], [lon], [], []
-
-    def dist_to_source(la: float, lo: float) -> float:
-        x = R * math.cos(math.radians(0.5 * (la + lat0))) * math.radians(lo - lon0)
-        y = R * math.radians(la - lat0)
-        return math.hypot(x, y)
-
-    def outward(la: float, lo: float) -> FloatArray:
-        x = math.cos(math.radians(la)) * math.radians(lo - lon0)
-        y = math.radians(la - lat0)
-        nrm = math.hypot(x, y)
-        return np.array([x / nrm, y / nrm]) if nrm > 0 else np.array([1.0, 0.0])
-
-    bmax = float(np.max(np.hypot(problem.drifts[:, 0], problem.drifts[:, 1])))  # type: ignore[index]
-    cmax = 0.0
-    if problem.drift is not None:
-        lv = problem.drift.level(problem.drift.bracket(t_goal)[0])
-        cmax = float(np.nanmax(np.hypot(lv[0], lv[1]))) if np.any(np.isfinite(lv[0])) else 0.0
-        cmax *= float(np.max(np.abs(problem.drift_scales)))  # type: ignore[arg-type]
+    bmax, cmax = _max_drift(problem, t_goal)
+    vmax = float(np.max(a)) + bmax + cmax
     complete = False
     max_steps = 200000
     for _ in range(max_steps):
-        if dist_to_source(lat, lon) <= start_radius_m or t <= t0:
+        if _dist_to_source(R, source, lat, lon) <= start_radius_m or t <= t0:
             complete = True
             break
         coslat = max(math.cos(math.radians(lat)), 1e-6)
         h_loc = min(g.hy, R * coslat * math.radians(g.dlon_deg))
-        ds = min(step_cells * h_loc / (float(np.max(a)) + bmax + cmax), t - t0)
-        v1, hd, k = _velocity(problem, arrival, t, lat, lon, outward(lat, lon))
+        ds = min(step_cells * h_loc / vmax, t - t0)
+        v1, hd, k = _velocity(problem, arrival, t, lat, lon, _outward(source, lat, lon))
         hs.append(hd)
         ks.append(k)
         la1 = lat - ds * math.degrees(v1[1] / R)
         lo1 = lon - ds * math.degrees(v1[0] / (R * coslat))
-        v2, _, _ = _velocity(problem, arrival, t - ds, la1, lo1, outward(la1, lo1))
+        v2, _, _ = _velocity(problem, arrival, t - ds, la1, lo1, _outward(source, la1, lo1))
         coslat2 = max(math.cos(math.radians(0.5 * (lat + la1))), 1e-6)
         lat = lat - 0.5 * ds * math.degrees((v1[1] + v2[1]) / R)
         lon = lon - 0.5 * ds * math.degrees((v1[0] + v2[0]) / (R * coslat2))
@@ -177,26 +212,11 @@ def backtrack(
     while len(hs) < len(ts):
         hs.append(hs[-1] if hs else 0.0)
         ks.append(ks[-1] if ks else 0)
-    t_arr = np.array(ts[::-1])
-    la_arr = np.array(las[::-1])
-    lo_arr = np.array(los[::-1])
-    h_arr = np.array(hs[::-1])
-    k_arr = np.array(ks[::-1], dtype=np.intp)
-    if complete and t_arr[0] > t0 and dist_to_source(la_arr[0], lo_arr[0]) > 0.0:
-        # straight from the source to the first point: ground velocity gv; the mode whose
-        # speed best matches the water velocity it needs
-        dur = t_arr[0] - t0
-        x = R * math.cos(math.radians(0.5 * (la_arr[0] + lat0))) * math.radians(lo_arr[0] - lon0)
-        y = R * math.radians(la_arr[0] - lat0)
-        gv = np.array([x, y]) / dur
-        fi, fj = g.frac_index(lat0, lon0)
-        d = problem.drift_at(t0, float(fi), float(fj))
-        wv = gv[None, :] - d
-        k = int(np.argmin(np.abs(np.hypot(wv[:, 0], wv[:, 1]) - a)))
-        h0 = math.atan2(wv[k, 1], wv[k, 0])
-        t_arr = np.concatenate([[t0], t_arr])
-        la_arr = np.concatenate([[lat0], la_arr])
-        lo_arr = np.concatenate([[lon0], lo_arr])
-        h_arr = np.concatenate([[h0], h_arr])
-        k_arr = np.concatenate([[k], k_arr])
+    arrays: tuple[NDArray[Any], ...] = (
+        np.array(ts[::-1]), np.array(las[::-1]), np.array(los[::-1]), np.array(hs[::-1]),
+        np.array(ks[::-1], dtype=np.intp))
+    if complete and arrays[0][0] > t0 and _dist_to_source(R, source, arrays[1][0],
+                                                          arrays[2][0]) > 0.0:
+        arrays = _join_source(problem, t0, source, arrays)
+    t_arr, la_arr, lo_arr, h_arr, k_arr = arrays
     return Characteristic(t_arr, la_arr, lo_arr, np.unwrap(h_arr), k_arr, complete)

@@ -29,6 +29,7 @@ from numpy.typing import NDArray
 
 from glideplan.errors import InvalidParameterError
 from glideplan.fronts.grid import LatLonGrid
+from glideplan.fronts.stepping import GoalWatch, MayBlock, StepArgs
 
 __all__ = [
     "DriftLevels",
@@ -334,22 +335,6 @@ def _dilate(mask: NDArray[np.bool_], r: int, periodic: bool) -> NDArray[np.bool_
     return out
 
 
-def _bilinear_phi(phi: FloatArray, grid: LatLonGrid, fi: float, fj: float) -> float:
-    ny, nx = phi.shape
-    i = int(np.clip(math.floor(fi), 0, ny - 2))
-    wy = float(np.clip(fi - i, 0.0, 1.0))
-    if grid.periodic:
-        j = math.floor(fj) % nx
-        j1 = (j + 1) % nx
-        wx = fj - math.floor(fj)
-    else:
-        j = int(np.clip(math.floor(fj), 0, nx - 2))
-        j1 = j + 1
-        wx = float(np.clip(fj - j, 0.0, 1.0))
-    return float((1 - wy) * ((1 - wx) * phi[i, j] + wx * phi[i, j1])
-                 + wy * ((1 - wx) * phi[i + 1, j] + wx * phi[i + 1, j1]))
-
-
 def propagate(
     problem: FrontProblem,
     state: FrontState,
@@ -370,129 +355,51 @@ def propagate(
     when its band is empty, or (steady problems) when it advances less than 1e-6 of a cell
     per step over 40/cfl steps. on_step(t, steps, reached_total) is called every step.
     """
-    from glideplan.compute import checkpoint, kernel_section
-    from glideplan.fronts import kernel
-    from glideplan.fronts.kernel import next_active
-
     if not (0.0 < cfl <= 0.9):
         raise InvalidParameterError("cfl", cfl, "must lie in (0, 0.9]")
     g = problem.grid
     ny, nx = g.shape
     phi = np.ascontiguousarray(state.phi, dtype=float).ravel().copy()
     arrival = np.ascontiguousarray(state.arrival, dtype=float).ravel().copy()
-    p1 = phi.copy()
     act = np.ascontiguousarray(state.active, dtype=np.int64)
     t = float(state.t)
     steps = state.steps
-    band = problem.band
-    hx = np.ascontiguousarray(g.hx)
-    hy = float(g.hy)
-    # spacings as the kernel uses them: 1/h, 1/h^2, h/2 per row (x) and for y; 1/min(hx, hy)
-    sp = (1.0 / hx, 1.0 / hx**2, 0.5 * hx, 1.0 / hy, 1.0 / hy**2, 0.5 * hy,
-          1.0 / np.minimum(hx, hy))
-    a = np.ascontiguousarray(problem.speeds)
-    b = np.ascontiguousarray(problem.drifts)
-    s = np.ascontiguousarray(problem.drift_scales)
-    tb = problem.block_times.ravel()
+    args = StepArgs.of(problem)
     drift = problem.drift
-    has_drift = drift is not None
-    dummy = np.zeros((2, 1))
-    # nodes that may ever be blocked: a finite block time, or NaN in a drift level seen so far
-    may_b = tb < np.inf
-    seen_levels: set[int] = set()
+    blocks = MayBlock.of(args.tb)
     mark = np.zeros(ny * nx, dtype=np.int64)
-    stamp = 0
-    may = may_b.astype(np.uint8)
-    import numba
-
-    threads = int(numba.get_num_threads())
-    current = threads
-    steady = (drift is None or drift.steady) and not np.any(np.isfinite(tb) & (tb > t))
+    steady = (drift is None or drift.steady) and not np.any(np.isfinite(args.tb)
+                                                            & (args.tb > t))
     stall_limit = math.ceil(40.0 / cfl)
     stall = 0
     h_min = g.min_spacing_m
     reached_total = int(np.count_nonzero(np.isfinite(arrival)))
-    goal_time: float | None = None
-    gfi = gfj = 0.0
-    if goal is not None:
-        gfi_, gfj_ = g.frac_index(goal[0], goal[1])
-        gfi, gfj = float(gfi_), float(gfj_)
-        if not bool(g.contains(goal[0], goal[1])):
-            raise InvalidParameterError("goal", goal, "lies outside the front's grid")
-        phi_goal_old = _bilinear_phi(phi.reshape(ny, nx), g, gfi, gfj)
-        gi = int(np.clip(round(gfi), 1, ny - 2))
-        gj = round(gfj) % nx if g.periodic else int(np.clip(round(gfj), 1, nx - 2))
-    extra = 0
+    watch = None if goal is None else GoalWatch.at(g, goal, phi.reshape(ny, nx))
     edges_seen = 0
     reason = "t_max"
+    stepper = _Stepper(args, drift, phi, arrival)
     while t < t_max:
-        if has_drift:
-            assert drift is not None
-            lo, hi, w = drift.pair(t)
-            k_lo = drift.bracket(t)[0]
-            for k in (k_lo, min(k_lo + 1, drift.times.size - 1)):
-                if k not in seen_levels:
-                    seen_levels.add(k)
-                    may_b |= ~np.isfinite(drift.level(k)[0])
-                    may = may_b.astype(np.uint8)
-        else:
-            lo = hi = dummy
-            w = 0.0
-        dt_cap = max(t_max - t, 1e-12 * max(abs(t), 1.0))
-        use = threads if act.size >= PARALLEL_MIN_NODES else 1
-        if use != current:
-            numba.set_num_threads(use)
-            current = use
-        checkpoint()  # a cancelled computation (a superseded explorer request) stops here
-        with kernel_section():  # a lock only where the threading layer is not thread-safe
-            dt = kernel.rk_stage(phi, p1, act, t, w, dt_cap, band, ny, nx, g.periodic, *sp, a,
-                                 b, s, arrival, tb, lo, hi, has_drift, cfl, may)
+        if drift is not None:
+            blocks.see(drift, t)
+        dt, reached, dmax = stepper.step(act, t, t_max, cfl, blocks.may)
         if dt < 1e-300:
             reason = "stalled"
             break
-        t1 = t + dt
-        if has_drift:
-            assert drift is not None
-            lo, hi, w1 = drift.pair(t1)
-        else:
-            w1 = 0.0
-        with kernel_section():
-            reached, dmax = kernel.stage_two(phi, p1, act, t, t1, w1, dt, band, ny, nx,
-                                             g.periodic, *sp, a, b, s, arrival, tb, lo, hi,
-                                             has_drift, may)
-        t = t1
+        t = t + dt
         steps += 1
         reached_total += reached
-        stamp += 1
-        act, nband, edges = next_active(phi, act, band, mark, stamp, ny, nx, g.periodic,
-                                        edge_margin)
+        act, nband, edges = stepper.next_active(act, mark, edge_margin)
         edges_seen |= edges
         if on_step is not None:
             on_step(t, steps, reached_total)
         if nband == 0:
             reason = "stalled"
             break
-        if goal is not None:
-            if goal_time is None:
-                pg = _bilinear_phi(phi.reshape(ny, nx), g, gfi, gfj)
-                if pg <= 0.0:
-                    goal_time = (t - dt + dt * phi_goal_old / (phi_goal_old - pg)
-                                 if phi_goal_old > 0 else t)
-                    extra = math.ceil(4.0 / cfl)
-                phi_goal_old = pg
-            else:
-                extra -= 1
-                arr2 = arrival.reshape(ny, nx)
-                rows = slice(gi - 1, gi + 2)
-                cols = [(gj + d) % nx for d in (-1, 0, 1)] if g.periodic else slice(gj - 1,
-                                                                                     gj + 2)
-                around = arr2[rows, cols]
-                blk = tb.reshape(ny, nx)[rows, cols] < t
-                if (extra <= 0 and np.all(np.isfinite(around) | blk)) or extra < -math.ceil(
-                        40.0 / cfl):
-                    reason = "goal"
-                    break
-        if stop_on_edge and edges and goal_time is None:
+        if watch is not None and watch.done(g, phi.reshape(ny, nx), arrival.reshape(ny, nx),
+                                            problem.block_times, t, dt, cfl):
+            reason = "goal"
+            break
+        if stop_on_edge and edges and (watch is None or watch.time is None):
             reason = "edge"
             break
         if steady:
@@ -500,12 +407,85 @@ def propagate(
             if stall > stall_limit:
                 reason = "stalled"
                 break
+    stepper.restore_threads()
+    goal_time = None if watch is None else watch.time
     if goal_time is not None and reason == "t_max":
         reason = "goal"
     names = frozenset(name for bit, name in _EDGE_NAMES if edges_seen & bit)
     arr = arrival.reshape(ny, nx)
     new_state = FrontState(phi.reshape(ny, nx), arr, t, act, steps, state.source,
                            state.start_radius_m)
-    if current != threads:
-        numba.set_num_threads(threads)
     return FrontResult(arr, reason, goal_time, names, new_state, steps, t)
+
+
+class _Stepper:
+    """One TVD-RK2 step of the kernel over the active nodes, in place on phi and arrival;
+    numba's threads set per step (PARALLEL_MIN_NODES) and restored at the end."""
+
+    def __init__(self, args: StepArgs, drift: DriftLevels | None, phi: FloatArray,
+                 arrival: FloatArray) -> None:
+        import numba
+
+        from glideplan.fronts import kernel  # chooses numba's threading layer (first)
+
+        self.args, self.drift, self.phi, self.arrival = args, drift, phi, arrival
+        self.p1 = phi.copy()
+        self.dummy = np.zeros((2, 1))
+        self.threads = int(numba.get_num_threads())
+        self.current = self.threads
+        self.stamp = 0
+        self.kernel = kernel
+
+    def step(self, act: NDArray[np.int64], t: float, t_max: float, cfl: float,
+             may: NDArray[np.uint8]) -> tuple[float, int, float]:
+        """Advance from t: (dt, nodes newly reached, max phi change); dt < 1e-300 = stalled."""
+        import numba
+
+        from glideplan.compute import checkpoint, kernel_section
+
+        kernel = self.kernel
+        x, drift = self.args, self.drift
+        has_drift = drift is not None
+        if drift is not None:
+            lo, hi, w = drift.pair(t)
+        else:
+            lo = hi = self.dummy
+            w = 0.0
+        dt_cap = max(t_max - t, 1e-12 * max(abs(t), 1.0))
+        use = self.threads if act.size >= PARALLEL_MIN_NODES else 1
+        if use != self.current:
+            numba.set_num_threads(use)
+            self.current = use
+        checkpoint()  # a cancelled computation (a superseded explorer request) stops here
+        with kernel_section():  # a lock only where the threading layer is not thread-safe
+            dt = kernel.rk_stage(self.phi, self.p1, act, t, w, dt_cap, x.band, x.ny, x.nx,
+                                 x.periodic, *x.spacings, x.a, x.b, x.s, self.arrival, x.tb,
+                                 lo, hi, has_drift, cfl, may)
+        if dt < 1e-300:
+            return dt, 0, 0.0
+        t1 = t + dt
+        if drift is not None:
+            lo, hi, w1 = drift.pair(t1)
+        else:
+            w1 = 0.0
+        with kernel_section():
+            reached, dmax = kernel.stage_two(self.phi, self.p1, act, t, t1, w1, dt, x.band,
+                                             x.ny, x.nx, x.periodic, *x.spacings, x.a, x.b,
+                                             x.s, self.arrival, x.tb, lo, hi, has_drift, may)
+        return dt, reached, dmax
+
+    def next_active(self, act: NDArray[np.int64], mark: NDArray[np.int64],
+                    edge_margin: int) -> tuple[NDArray[np.int64], int, int]:
+        """The next step's active nodes, the band's size and the edges it touches (bits)."""
+        from glideplan.fronts.kernel import next_active
+
+        self.stamp += 1
+        x = self.args
+        return next_active(self.phi, act, x.band, mark, self.stamp, x.ny, x.nx, x.periodic,
+                           edge_margin)
+
+    def restore_threads(self) -> None:
+        import numba
+
+        if self.current != self.threads:
+            numba.set_num_threads(self.threads)

@@ -12,7 +12,10 @@ ones at the departure's time level; a node is free when its distance to the near
 node (`scipy.ndimage.distance_transform_edt` with the node spacings in metres at the field's
 mean latitude) exceeds the clearance; free water is joined through 8-neighbours. The goal is
 cut off when no free component holds both the start's and the goal's nodes (or their
-neighbours); "clearance" when water alone joins them, "land" when nothing does.
+neighbours); "clearance" when water alone joins them, "land" when nothing does. A global
+field whose columns close the circle (`periodic_lon`) wraps: the distance to land is taken
+across the seam (the field padded with its own columns from the other side, as far as the
+clearance reaches) and components that meet across it are one.
 """
 
 from __future__ import annotations
@@ -27,26 +30,73 @@ from glideplan.routing.sphere import EARTH_RADIUS_M
 __all__ = ["field_cut_off", "nan_time_step"]
 
 
-def _ids(labels: np.ndarray, lat: np.ndarray, lon: np.ndarray, point: tuple[float, float]
-         ) -> set[int]:
-    """Labels (> 0) of the node nearest `point` and its 8 neighbours."""
+def _ids(labels: np.ndarray, lat: np.ndarray, lon: np.ndarray, point: tuple[float, float],
+         periodic: bool = False) -> set[int]:
+    """Labels (> 0) of the node nearest `point` and its 8 neighbours (across the seam when
+    `periodic`)."""
     i = int(np.argmin(np.abs(lat - point[0])))
     lo = lon[0] + np.mod(point[1] - lon[0], 360.0)
-    j = int(np.argmin(np.abs(lon - lo)))
-    near = labels[max(i - 1, 0):i + 2, max(j - 1, 0):j + 2]
+    if periodic:  # the seam: lo past the last column may be nearest the first
+        j = int(np.argmin(np.minimum(np.abs(lon - lo), np.abs(lon + 360.0 - lo))))
+        cols = [(j + d) % lon.size for d in (-1, 0, 1)]
+        near = labels[max(i - 1, 0):i + 2][:, cols]
+    else:
+        j = int(np.argmin(np.abs(lon - lo)))
+        near = labels[max(i - 1, 0):i + 2, max(j - 1, 0):j + 2]
     return set(np.unique(near[near > 0]).tolist())
+
+
+def _distance_to_land(water: np.ndarray, dy: float, dx: float, reach_m: float,
+                      periodic: bool) -> np.ndarray:
+    """Distance (m) from each node to the nearest non-water node (Euclidean, node spacings
+    dy, dx); periodic: through the seam, the field padded with ceil(reach / dx) + 1 of its
+    own columns from the other side."""
+    from scipy.ndimage import distance_transform_edt
+
+    if not periodic:
+        return np.asarray(distance_transform_edt(water, sampling=(dy, dx)))
+    nx = water.shape[1]
+    m = min(nx, math.ceil(reach_m / dx) + 1)
+    padded = np.pad(water, ((0, 0), (m, m)), mode="wrap")
+    return np.asarray(distance_transform_edt(padded, sampling=(dy, dx)))[:, m:m + nx]
+
+
+def _label(mask: np.ndarray, periodic: bool) -> np.ndarray:
+    """8-connected component labels (0 = not in the mask); periodic: components that touch
+    across the seam (last column to first, rows i and i +- 1) get one label."""
+    from scipy.ndimage import label
+
+    labels, n = label(mask, structure=np.ones((3, 3), dtype=bool))
+    if not periodic or n == 0:
+        return np.asarray(labels)
+    parent = np.arange(n + 1)
+
+    def root(a: int) -> int:
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = int(parent[a])
+        return a
+
+    last, first = labels[:, -1], labels[:, 0]
+    ny = labels.shape[0]
+    for d in (-1, 0, 1):
+        rows = np.arange(max(0, -d), min(ny, ny - d))
+        for a, b in zip(last[rows], first[rows + d], strict=True):
+            if a > 0 and b > 0:
+                ra, rb = root(int(a)), root(int(b))
+                if ra != rb:
+                    parent[max(ra, rb)] = min(ra, rb)
+    return np.array([root(k) for k in range(n + 1)])[labels]
 
 
 def field_cut_off(field_: Any, t: float, start: tuple[float, float],
                   goal: tuple[float, float], clearance_m: float) -> str | None:
-    """"clearance", "land" or None (module docstring); None for fields without a land grid
-    and for fields that close the circle in longitude (not decided here)."""
-    from scipy.ndimage import distance_transform_edt, label
-
+    """"clearance", "land" or None (module docstring); None for fields without a land grid."""
     u = getattr(field_, "u", None)
     times = getattr(field_, "times", None)
-    if u is None or times is None or getattr(field_, "periodic_lon", True):
+    if u is None or times is None:
         return None
+    periodic = bool(getattr(field_, "periodic_lon", False))
     k = int(np.clip(np.searchsorted(times, t, side="right") - 1, 0, times.size - 1))
     water = np.isfinite(field_.u[k]) & np.isfinite(field_.v[k])
     if water.all() or not water.any():
@@ -55,13 +105,13 @@ def field_cut_off(field_: Any, t: float, start: tuple[float, float],
     dy = math.radians(float(np.mean(np.diff(lat)))) * EARTH_RADIUS_M
     dx = math.radians(float(np.mean(np.diff(lon)))) * EARTH_RADIUS_M * math.cos(
         math.radians(float(np.mean(lat))))
-    free = water & (distance_transform_edt(water, sampling=(dy, dx)) > clearance_m)
-    eight = np.ones((3, 3), dtype=bool)
-    labels, _ = label(free, structure=eight)
-    if _ids(labels, lat, lon, start) & _ids(labels, lat, lon, goal):
+    free = water & (_distance_to_land(water, dy, dx, clearance_m, periodic) > clearance_m)
+    labels = _label(free, periodic)
+    if _ids(labels, lat, lon, start, periodic) & _ids(labels, lat, lon, goal, periodic):
         return None
-    wet, _ = label(water, structure=eight)
-    return "clearance" if _ids(wet, lat, lon, start) & _ids(wet, lat, lon, goal) else "land"
+    wet = _label(water, periodic)
+    joined = _ids(wet, lat, lon, start, periodic) & _ids(wet, lat, lon, goal, periodic)
+    return "clearance" if joined else "land"
 
 
 def nan_time_step(field_: Any, t0: float, arrival: np.ndarray) -> float | None:

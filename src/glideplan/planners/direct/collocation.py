@@ -178,17 +178,11 @@ DEFAULT_IPOPT = {
 }
 
 
-def _build(
-    system: ControlSystem,
-    scheme: str,
-    n_intervals: int,
-    degree: int,
-    ipopt_options: tuple[tuple[str, object], ...] = (),
-) -> Transcription:
-    import casadi as ca  # heavy: imported when a direct solve is built
-
+def _model(ca: Any, system: ControlSystem) -> tuple[Any, ...]:
+    """CasADi functions of the vehicle: rhs(z, c, Ls, Ts, drift) (scaled z'), kinematics(c)
+    = (speed, turn rate), cost_rate(c), path(c) = g(c) with its bounds (lo, hi arrays), the
+    number of path constraints."""
     m = system.n_controls
-    N = n_intervals
     c = ca.SX.sym("c", m)
     zs = ca.SX.sym("z", N_STATES)
     Ls_sym, Ts_sym = ca.SX.sym("Ls"), ca.SX.sym("Ts")
@@ -219,7 +213,68 @@ def _build(
     pc_lo = np.array([float(lo) for _, lo, _ in pcs])
     pc_hi = np.array([float(hi) for _, _, hi in pcs])
     path = ca.Function("path", [c], [pc_expr])
+    return rhs, kin, cost, path, pc_lo, pc_hi, len(pcs)
 
+
+def _hermite_simpson(ca: Any, rhs: Any, cost: Any, N: int, m: int, T: Any, h: Any, Ls: Any,
+                     Ts: Any, drift: Any) -> tuple[Any, Any, Any, Any, int, int]:
+    """Z (states at N + 1 nodes), U (controls at nodes and midpoints), the Simpson defects
+    and the Simpson quadrature J of the cost; the numbers of state and control points."""
+    ns, nc = N + 1, 2 * N + 1
+    Z = ca.SX.sym("Z", N_STATES, ns)
+    U = ca.SX.sym("U", m, nc)
+    Un, Um = U[:, 0::2], U[:, 1::2]
+    F = T * rhs(Z, Un, Ls, Ts, drift)
+    H3 = ca.repmat(h, N_STATES, 1)
+    Zm = 0.5 * (Z[:, :-1] + Z[:, 1:]) + H3 / 8 * (F[:, :-1] - F[:, 1:])
+    Fm = T * rhs(Zm, Um, Ls, Ts, drift)
+    defects = Z[:, 1:] - Z[:, :-1] - H3 / 6 * (F[:, :-1] + 4 * Fm + F[:, 1:])
+    Lk = cost(Un)
+    Lmid = cost(Um)
+    J = Ts * T * ca.sum2(h / 6 * (Lk[:, :-1] + 4 * Lmid + Lk[:, 1:]))
+    return Z, U, defects, J, ns, nc
+
+
+def _radau(ca: Any, rhs: Any, cost: Any, N: int, m: int, d: int, T: Any, h: Any, Ls: Any,
+           Ts: Any, drift: Any) -> tuple[Any, Any, Any, Any, int, int, np.ndarray]:
+    """Z, U, the Radau defects and quadrature J (degree d per interval); the numbers of state
+    and control points and the Radau nodes in (0, 1]."""
+    radau = np.array(ca.collocation_points(d, "radau"), dtype=float)
+    full = np.concatenate([[0.0], radau])
+    basis = _lagrange_basis(full)
+    # C[r, j] = derivative of the r-th basis polynomial at collocation point j
+    C = np.array([[basis[r].deriv()(radau[j]) for j in range(d)] for r in range(d + 1)])
+    wq = np.array([p.integ()(1.0) - p.integ()(0.0) for p in _lagrange_basis(radau)])
+    ns, nc = 1 + N * d, N * d
+    Z = ca.SX.sym("Z", N_STATES, ns)
+    U = ca.SX.sym("U", m, nc)
+    H3 = ca.repmat(h, N_STATES, 1)
+    cols = []
+    J = ca.SX(0.0)
+    Lall = cost(U)  # 1 x N d
+    for j in range(d):
+        zj = Z[:, j + 1 : j + 2 + (N - 1) * d : d]
+        uj = U[:, j : j + 1 + (N - 1) * d : d]
+        dz = 0
+        for r in range(d + 1):
+            dz = dz + C[r, j] * Z[:, r : r + 1 + (N - 1) * d : d]
+        cols.append(dz - H3 * T * rhs(zj, uj, Ls, Ts, drift))
+        J = J + wq[j] * ca.sum2(h * Lall[:, j : j + 1 + (N - 1) * d : d])
+    return Z, U, ca.horzcat(*cols), Ts * T * J, ns, nc, radau
+
+
+def _build(
+    system: ControlSystem,
+    scheme: str,
+    n_intervals: int,
+    degree: int,
+    ipopt_options: tuple[tuple[str, object], ...] = (),
+) -> Transcription:
+    import casadi as ca  # heavy: imported when a direct solve is built
+
+    m = system.n_controls
+    N = n_intervals
+    rhs, kin, cost, path, pc_lo, pc_hi, npc = _model(ca, system)
     T = ca.SX.sym("T")
     goal = ca.SX.sym("goal", N_STATES)
     frac = ca.SX.sym("frac", N)
@@ -227,52 +282,18 @@ def _build(
     drift = ca.SX.sym("drift", 2)
     h = (frac / ca.sum1(frac)).T  # 1 x N
     radau = np.zeros(0)
-
     if scheme == "hermite-simpson":
-        ns, nc = N + 1, 2 * N + 1
-        Z = ca.SX.sym("Z", N_STATES, ns)
-        U = ca.SX.sym("U", m, nc)
-        Un, Um = U[:, 0::2], U[:, 1::2]
-        F = T * rhs(Z, Un, Ls, Ts, drift)
-        H3 = ca.repmat(h, N_STATES, 1)
-        Zm = 0.5 * (Z[:, :-1] + Z[:, 1:]) + H3 / 8 * (F[:, :-1] - F[:, 1:])
-        Fm = T * rhs(Zm, Um, Ls, Ts, drift)
-        defects = Z[:, 1:] - Z[:, :-1] - H3 / 6 * (F[:, :-1] + 4 * Fm + F[:, 1:])
-        Lk = cost(Un)
-        Lmid = cost(Um)
-        J = Ts * T * ca.sum2(h / 6 * (Lk[:, :-1] + 4 * Lmid + Lk[:, 1:]))
+        Z, U, defects, J, ns, nc = _hermite_simpson(ca, rhs, cost, N, m, T, h, Ls, Ts, drift)
     elif scheme == "radau":
-        d = degree
-        radau = np.array(ca.collocation_points(d, "radau"), dtype=float)
-        full = np.concatenate([[0.0], radau])
-        basis = _lagrange_basis(full)
-        # C[r, j] = derivative of the r-th basis polynomial at collocation point j
-        C = np.array([[basis[r].deriv()(radau[j]) for j in range(d)] for r in range(d + 1)])
-        wq = np.array([p.integ()(1.0) - p.integ()(0.0) for p in _lagrange_basis(radau)])
-        ns, nc = 1 + N * d, N * d
-        Z = ca.SX.sym("Z", N_STATES, ns)
-        U = ca.SX.sym("U", m, nc)
-        H3 = ca.repmat(h, N_STATES, 1)
-        cols = []
-        J = ca.SX(0.0)
-        Lall = cost(U)  # 1 x N d
-        for j in range(d):
-            zj = Z[:, j + 1 : j + 2 + (N - 1) * d : d]
-            uj = U[:, j : j + 1 + (N - 1) * d : d]
-            dz = 0
-            for r in range(d + 1):
-                dz = dz + C[r, j] * Z[:, r : r + 1 + (N - 1) * d : d]
-            cols.append(dz - H3 * T * rhs(zj, uj, Ls, Ts, drift))
-            J = J + wq[j] * ca.sum2(h * Lall[:, j : j + 1 + (N - 1) * d : d])
-        defects = ca.horzcat(*cols)
-        J = Ts * T * J
+        Z, U, defects, J, ns, nc, radau = _radau(ca, rhs, cost, N, m, degree, T, h, Ls, Ts,
+                                                 drift)
     else:  # pragma: no cover - checked by the caller
         raise InvalidParameterError("scheme", scheme, f"must be one of {', '.join(SCHEMES)}")
 
     g_parts = [ca.vec(defects), Z[:, -1] - goal]
     lbg = [np.zeros(defects.numel()), np.zeros(N_STATES)]
     ubg = [np.zeros(defects.numel()), np.zeros(N_STATES)]
-    if pcs:
+    if npc:
         G = path(U)  # npc x nc
         g_parts.append(ca.vec(G))
         lbg.append(np.tile(pc_lo, nc))
@@ -295,21 +316,10 @@ def _build(
     }
     solver = ca.nlpsol(f"direct_{scheme.replace('-', '_')}_{N}", "ipopt", nlp, opts)
     return Transcription(
-        system=system,
-        scheme=scheme,
-        n_intervals=N,
-        degree=degree,
-        solver=solver,
-        n_state_points=ns,
-        n_control_points=nc,
-        lbg=np.concatenate(lbg),
-        ubg=np.concatenate(ubg),
-        rhs=rhs,
-        kinematics=kin,
-        cost_rate=cost,
-        path=path,
-        radau_nodes=radau,
-        objective=objective,
+        system=system, scheme=scheme, n_intervals=N, degree=degree, solver=solver,
+        n_state_points=ns, n_control_points=nc, lbg=np.concatenate(lbg),
+        ubg=np.concatenate(ubg), rhs=rhs, kinematics=kin, cost_rate=cost, path=path,
+        radau_nodes=radau, objective=objective,
     )
 
 

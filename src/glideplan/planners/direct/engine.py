@@ -12,15 +12,22 @@ import numpy as np
 
 from glideplan.errors import InvalidParameterError
 from glideplan.path import Path
-from glideplan.planners.direct.collocation import SCHEMES, Transcription, build_transcription
+from glideplan.planners.direct.collocation import Transcription, build_transcription
+from glideplan.planners.direct.multistart import (
+    Converged,
+    Deadline,
+    Refined,
+    check_options,
+    failed,
+    refine,
+)
 from glideplan.planners.direct.results import DirectResult, StartResult
 from glideplan.planners.direct.system import ControlSystem
 from glideplan.planners.direct.timing import fly_controls, retime
 from glideplan.pose import TWO_PI, Pose, wrap_to_pi
-from glideplan.results import Reason
 from glideplan.segments import Sampled
 from glideplan.solution import Status
-from glideplan.validation import check_integer, check_nonnegative, check_positive
+from glideplan.validation import check_nonnegative, check_positive
 
 __all__ = ["DirectResult", "StartResult", "fly_controls", "retime", "solve_direct"]
 
@@ -56,7 +63,7 @@ class _Problem:
         ipopt_options: tuple[tuple[str, Any], ...],
         smoothing: float,
         retime: bool,
-        clock: _Deadline,
+        clock: Deadline,
         drift: tuple[float, float] = (0.0, 0.0),
     ) -> None:
         self.drift = drift
@@ -257,80 +264,6 @@ class _Problem:
         }
 
 
-class _Deadline:
-    """The wall-clock limit of one `solve_direct` call (None: no limit)."""
-
-    def __init__(self, t_start: float, limit: float | None) -> None:
-        if limit is not None:
-            limit = check_positive("time_limit", limit)
-        self.t_start = t_start
-        self.limit = limit
-
-    def expired(self) -> bool:
-        return self.limit is not None and time.perf_counter() - self.t_start >= self.limit
-
-    def budget(self) -> float | None:
-        """IPOPT wall time (s) for the next solve: the largest limit / 2^j within the time left.
-
-        Powers of two keep the number of distinct (cached) solvers small; the whole call
-        then ends within the limit plus the time to build a solver.
-        """
-        if self.limit is None:
-            return None
-        left = self.limit - (time.perf_counter() - self.t_start)
-        if left <= 0.0:
-            return self.limit * 2.0**-20
-        return self.limit * 2.0 ** -min(20, math.ceil(math.log2(self.limit / left)))
-
-    def failure(
-        self, stats: dict[str, Any], iterations: int, starts: list[StartResult], total: int
-    ) -> DirectResult:
-        """The failed result of a call stopped by the limit."""
-        stats["time_limit_reached"] = True
-        message = (
-            f"time limit of {self.limit:g} s reached "
-            f"({len(starts)} of {total} start(s) solved before it)"
-        )
-        return _failed(stats, iterations, self.t_start, starts, message)
-
-
-def _failed(
-    stats: dict[str, Any],
-    iterations: int,
-    t_start: float,
-    starts: list[StartResult],
-    message: str,
-) -> DirectResult:
-    """A failed `DirectResult` (no path) with the effort spent."""
-    stats.update(iterations=iterations, seconds=time.perf_counter() - t_start)
-    return DirectResult(status=Status.FAILED, path=None, cost=math.inf, stats=stats,
-                        starts=tuple(starts), message=message, reason=Reason.SOLVER)
-
-
-def _check_options(
-    goal: Pose,
-    guesses: Sequence[Path],
-    n_intervals: int,
-    scheme: str,
-    mesh_tol: float,
-    max_refinements: int,
-    output_density: int,
-) -> None:
-    if not isinstance(goal, Pose):
-        raise InvalidParameterError("goal", goal, "must be a Pose")
-    if len(guesses) == 0:
-        raise InvalidParameterError("guesses", guesses, "needs at least one initial-guess Path")
-    for i, g in enumerate(guesses):
-        if not isinstance(g, Path) or not g.duration > 0.0:
-            raise InvalidParameterError(f"guesses[{i}]", g, "must be a Path of positive duration")
-    if scheme not in SCHEMES:
-        raise InvalidParameterError("scheme", scheme, f"must be one of {', '.join(SCHEMES)}")
-    check_integer("n_intervals", n_intervals, 2)
-    check_positive("mesh_tol", mesh_tol)
-    check_integer("max_refinements", max_refinements, 0)
-    check_integer("output_density", output_density, 1)
-
-
 def solve_direct(
     goal: Pose,
     system: ControlSystem,
@@ -395,28 +328,78 @@ def solve_direct(
     Returns:
         A `DirectResult`; failures are reported in `status`, never returned as paths.
     """
-    _check_options(goal, guesses, n_intervals, scheme, mesh_tol, max_refinements, output_density)
+    check_options(goal, guesses, n_intervals, scheme, mesh_tol, max_refinements, output_density)
     Ls = check_positive("length_scale", length_scale)
     Ts = check_positive("time_scale", time_scale)
     opts = tuple(sorted((ipopt_options or {}).items()))
     eps = check_nonnegative("smoothing", smoothing)
     t_start = time.perf_counter()
-    clock = _Deadline(t_start, time_limit)
+    clock = Deadline(t_start, time_limit)
+    prob = _Problem(
+        goal, system, scheme, int(degree), Ls, Ts, opts, eps, bool(retime), clock, _drift(drift)
+    )
+    N = int(n_intervals)
+    prob.transcription(N)
+    t_build = time.perf_counter() - t_start
+    first, starts, iterations = _first_mesh(prob, guesses, N, clock)
+    stats: dict[str, Any] = {
+        "scheme": scheme,
+        "starts_tried": len(starts),
+        "starts_succeeded": len(first),
+        "build_seconds": t_build,
+    }
+    if clock.expired():
+        return clock.failure(stats, iterations, starts, len(guesses))
+    if not first:
+        statuses = ", ".join(sorted({s.status for s in starts}))
+        message = f"no start converged (IPOPT: {statuses})"
+        return failed(stats, iterations, t_start, starts, message)
+
+    # the best starts (within refine_within of the cheapest), refined on finer meshes
+    first.sort(key=lambda c: c.solve.cost)
+    best_first = first[0].solve.cost
+    chosen = [c for c in first if c.solve.cost <= best_first + refine_within * abs(best_first)]
+    chosen = chosen[: max(1, int(max_refined_starts))]
+    finals, iterations = _refine_all(prob, chosen, int(max_refinements), mesh_tol, iterations)
+    if finals is None:
+        return clock.failure(stats, iterations, starts, len(guesses))
+    stats["refined_starts"] = len(chosen)
+    best = min(finals, key=lambda f: f.solve.cost)
+    return _solved(prob, best, starts, stats, int(output_density), mesh_tol,
+                   (iterations, t_start))
+
+
+def _refine_all(prob: _Problem, chosen: list[Converged], max_refinements: int, mesh_tol: float,
+                iterations: int) -> tuple[list[Refined] | None, int]:
+    """Refine each chosen start in turn (`multistart.refine`); None once the time limit
+    stopped one; the IPOPT iterations counted on."""
+    finals: list[Refined] = []
+    for start in chosen:
+        refined = refine(prob, start, max_refinements, mesh_tol, prob.clock)
+        iterations += refined.iterations
+        if refined.timed_out:
+            return None, iterations
+        finals.append(refined)
+    return finals, iterations
+
+
+def _drift(drift: tuple[float, float]) -> tuple[float, float]:
+    """The steady drift (wx, wy) in m/s, checked: a finite pair."""
     try:
         wx, wy = (float(d) for d in drift)
     except (TypeError, ValueError):
         raise InvalidParameterError("drift", drift, "must be a pair (wx, wy) in m/s") from None
     if not (math.isfinite(wx) and math.isfinite(wy)):
         raise InvalidParameterError("drift", drift, "must be finite (m/s)")
-    prob = _Problem(
-        goal, system, scheme, int(degree), Ls, Ts, opts, eps, bool(retime), clock, (wx, wy)
-    )
-    N = int(n_intervals)
-    tr = prob.transcription(N)
-    t_build = time.perf_counter() - t_start
-    fr = np.full(N, 1.0 / N)
+    return wx, wy
 
-    first: list[_Converged] = []
+
+def _first_mesh(prob: _Problem, guesses: Sequence[Path], N: int, clock: Deadline
+                ) -> tuple[list[Converged], list[StartResult], int]:
+    """One IPOPT solve per guess on the first mesh (in order, until the time limit): the
+    starts that converged, every start's result, the IPOPT iterations spent."""
+    fr = np.full(N, 1.0 / N)
+    first: list[Converged] = []
     starts: list[StartResult] = []
     iterations = 0
     for i, guess in enumerate(guesses):
@@ -430,45 +413,28 @@ def solve_direct(
             StartResult(i, res.cost if res.ok else math.inf, res.status, res.iterations, k, label)
         )
         if res.ok:
-            first.append(_Converged(res, k, js, i))
+            first.append(Converged(res, k, js, i))
         if clock.expired():
             break
+    return first, starts, iterations
 
-    stats: dict[str, Any] = {
-        "scheme": scheme,
-        "starts_tried": len(starts),
-        "starts_succeeded": len(first),
-        "build_seconds": t_build,
-    }
-    if clock.expired():
-        return clock.failure(stats, iterations, starts, len(guesses))
-    if not first:
-        statuses = ", ".join(sorted({s.status for s in starts}))
-        message = f"no start converged (IPOPT: {statuses})"
-        return _failed(stats, iterations, t_start, starts, message)
 
-    # the best starts (within refine_within of the cheapest), refined on finer meshes
-    first.sort(key=lambda c: c.solve.cost)
-    best_first = first[0].solve.cost
-    chosen = [c for c in first if c.solve.cost <= best_first + refine_within * abs(best_first)]
-    chosen = chosen[: max(1, int(max_refined_starts))]
-    finals: list[_Refined] = []
-    for start in chosen:
-        refined = _refine(prob, start, int(max_refinements), mesh_tol, clock)
-        iterations += refined.iterations
-        if refined.timed_out:
-            return clock.failure(stats, iterations, starts, len(guesses))
-        finals.append(refined)
-    best = min(finals, key=lambda f: f.solve.cost)
+def _solved(prob: _Problem, best: Refined, starts: list[StartResult], stats: dict[str, Any],
+            output_density: int, mesh_tol: float, effort: tuple[int, float]) -> DirectResult:
+    """The solved `DirectResult` of the best refined start: its path and controls (sampled
+    `output_density` per interval), the effort (IPOPT iterations, seconds since the call's
+    start `effort[1]`) and the mesh history in `stats`, a message if the mesh did not settle
+    and a warning if re-timing failed."""
     best_k = starts[best.index].heading_turns
-    path, controls, out_info = prob.output(best.solve, int(output_density), best_k)
+    path, controls, out_info = prob.output(best.solve, output_density, best_k)
+    refined_starts = stats.pop("refined_starts")
     stats.update(
-        iterations=iterations,
-        seconds=time.perf_counter() - t_start,
+        iterations=effort[0],
+        seconds=time.perf_counter() - effort[1],
         mesh_sizes=best.meshes,
         mesh_costs=best.costs,
         mesh_converged=best.converged,
-        refined_starts=len(chosen),
+        refined_starts=refined_starts,
         best_start=best.index,
         heading_turns=best_k,
         **out_info,
@@ -489,50 +455,3 @@ def solve_direct(
     )
 
 
-@dataclass(frozen=True)
-class _Converged:
-    """A start that converged on the first mesh: its solve, heading branch k (psi(T) =
-    goal.heading + 2 pi k), cost scale and index among the guesses."""
-
-    solve: _Solve
-    turns: int
-    cost_scale: float
-    index: int
-
-
-@dataclass(frozen=True)
-class _Refined:
-    """A converged start after mesh refinement: the last good solve, the mesh sizes and
-    costs along the way, whether the cost settled, the IPOPT iterations spent and whether the
-    time limit stopped it."""
-
-    solve: _Solve
-    meshes: list[int]
-    costs: list[float]
-    converged: bool
-    index: int
-    iterations: int
-    timed_out: bool
-
-
-def _refine(
-    prob: _Problem, start: _Converged, max_refinements: int, mesh_tol: float, clock: _Deadline
-) -> _Refined:
-    """Bisect every mesh interval until the relative cost change is below `mesh_tol`."""
-    cur = start.solve
-    meshes, costs = [cur.transcription.n_intervals], [cur.cost]
-    iterations = 0
-    for _ in range(max_refinements):
-        nxt = prob.refine(cur, start.turns, start.cost_scale)
-        iterations += max(nxt.iterations, 0)
-        if clock.expired():
-            return _Refined(cur, meshes, costs, False, start.index, iterations, True)
-        if not nxt.ok:
-            break
-        change = abs(nxt.cost - cur.cost) / max(abs(nxt.cost), 1e-12)
-        cur = nxt
-        meshes.append(cur.transcription.n_intervals)
-        costs.append(cur.cost)
-        if change < mesh_tol:
-            return _Refined(cur, meshes, costs, True, start.index, iterations, False)
-    return _Refined(cur, meshes, costs, False, start.index, iterations, False)

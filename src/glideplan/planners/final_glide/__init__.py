@@ -119,7 +119,22 @@ def plan_final_glide(
             for g in res.guesses
         ]
     }
-    cands = [
+    cands = _synthesis_candidates(synth, vehicle)
+    if synth:
+        extras["synthesis_cost"] = synth[0].cost
+        extras["synthesis_word"] = synth[0].word
+    if res.path is None:
+        if cands:
+            return PlannerOutput(tuple(cands), stats, "the direct check failed", extras)
+        return PlannerOutput(
+            (), stats, res.direct.message or "IPOPT failed", extras, failure=Status.SOLVER_FAILED
+        )
+    return _with_direct(res, gate, lead, vehicle, mc, cands, stats, extras)
+
+
+def _synthesis_candidates(synth: list[BSBDrift], vehicle: Sailplane) -> list[Candidate]:
+    """The BSB synthesis's paths as feasible candidates (theta, straight speed, lambda)."""
+    return [
         Candidate(
             c.word,
             "BSB",
@@ -130,15 +145,14 @@ def plan_final_glide(
         )
         for c in synth
     ]
-    if synth:
-        extras["synthesis_cost"] = synth[0].cost
-        extras["synthesis_word"] = synth[0].word
-    if res.path is None:
-        if cands:
-            return PlannerOutput(tuple(cands), stats, "the direct check failed", extras)
-        return PlannerOutput(
-            (), stats, res.direct.message or "IPOPT failed", extras, failure=Status.SOLVER_FAILED
-        )
+
+
+def _with_direct(res: Any, gate: Pose, lead: tuple[Any, ...], vehicle: Sailplane, mc: float,
+                 cands: list[Candidate], stats: dict[str, Any],
+                 extras: dict[str, Any]) -> PlannerOutput:
+    """Add the direct method's path (the lead-in straight, then the approach from `gate`) to
+    the candidates, unless its controls miss the goal (re-timing failed): then a warning,
+    and a failure if nothing else is left."""
     seg = res.path.segments[0]
     assert isinstance(seg, DriftingSampled)
     path = res.path.transformed(gate)
@@ -152,7 +166,6 @@ def plan_final_glide(
     # re-timing failed (controls ringing around a turn shorter than a mesh interval) the
     # path misses the goal and is not offered
     miss = float(res.direct.stats.get("endpoint_error", {}).get("position", 0.0))
-    warnings: tuple[str, ...] = ()
     if miss > 1e-6 * max(1.0, vehicle.length_scale):
         warnings = (
             f"the direct method's controls miss the goal by {miss:.3g} m (re-timing failed); "
