@@ -26,8 +26,6 @@ grid, a single time step held constant); `describe()` lists them.
 
 from __future__ import annotations
 
-import bisect
-import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -37,6 +35,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from glideplan.errors import InvalidParameterError
+from glideplan.fields.point import grid_values, interpolate, position_in_frame
 
 __all__ = [
     "AnalyticField",
@@ -140,27 +139,7 @@ class FlowField:
     def _scalar_position(self, t: float, lat: float, lon: float) -> float | None:
         """The longitude in the field's frame when (t, lat, lon) passes `check_time` and
         `check_position` (same tolerances and wrapping), else None (then `velocity` raises)."""
-        if not (math.isfinite(t) and math.isfinite(lat) and math.isfinite(lon)):
-            return None
-        span = self.time_span
-        if span is not None:
-            tol_t = 1e-6 * max(1.0, span[1] - span[0])
-            if t < span[0] - tol_t or t > span[1] + tol_t:
-                return None
-        ext = self.extent
-        if ext is None:
-            return lon
-        tol = 1e-9
-        if lat < ext.lat_min - tol or lat > ext.lat_max + tol:
-            return None
-        if ext.periodic:
-            lo = ext.lon_min + (lon - ext.lon_min) % 360.0
-            return lo - 360.0 if lo >= ext.lon_max else lo
-        centre = 0.5 * (ext.lon_min + ext.lon_max)
-        lo = centre + (lon - centre + 180.0) % 360.0 - 180.0
-        if lo < ext.lon_min - tol or lo > ext.lon_max + tol:
-            return None
-        return lo
+        return position_in_frame(self.extent, self.time_span, t, lat, lon)
 
     @property
     def time_levels(self) -> FloatArray | None:
@@ -393,19 +372,9 @@ class GriddedField(FlowField):
 
     @cached_property
     def _padded(self) -> tuple[FloatArray, NDArray[np.float64]]:
-        """The longitudes and (nt, ny, nx', 2) values the interpolation runs on (see below)."""
-        lon = self.lon
-        if self.periodic_lon:  # one allocation: columns [last, 0 .. nx-1, first]
-            lon = np.concatenate([[lon[-1] - 360.0], lon, [lon[0] + 360.0]])
-            nt, ny, nx = self.u.shape
-            values = np.empty((nt, ny, nx + 2, 2))
-            for k, comp in enumerate((self.u, self.v)):
-                values[:, :, 1:-1, k] = comp
-                values[:, :, 0, k] = comp[:, :, -1]
-                values[:, :, -1, k] = comp[:, :, 0]
-        else:
-            values = np.stack([self.u, self.v], axis=-1)
-        return lon, values
+        """The longitudes and (nt, ny, nx', 2) values the interpolation runs on
+        (`glideplan.fields.point.grid_values`: one wrapped column each side when periodic)."""
+        return grid_values(self.lon, self.u, self.v, self.periodic_lon)
 
     @cached_property
     def _scalar_axes(self) -> tuple[list[float], list[float], list[float]]:
@@ -413,44 +382,13 @@ class GriddedField(FlowField):
         return self.times.tolist(), self.lat.tolist(), self._padded[0].tolist()
 
     def velocity_at(self, t: float, lat: float, lon: float) -> tuple[float, float]:
-        """`velocity` at one point by the same (bi/tri)linear rule as SciPy's interpolator.
-
-        Cell index i = searchsorted(axis, x) - 1 clipped to [0, n - 2] and weight
-        w = (x - axis[i]) / (axis[i+1] - axis[i]) on each axis; the value is the sum over the
-        cell's corners of value x prod(w or 1 - w): a NaN corner gives NaN (land), and a point
-        outside an axis gives NaN, as `RegularGridInterpolator(fill_value=nan)` does.
-        """
+        """`velocity` at one point by the same (bi/tri)linear rule as SciPy's interpolator
+        (`glideplan.fields.point.interpolate`): NaN on land, the same errors outside."""
         lo = self._scalar_position(t, lat, lon)
         if lo is None:
             return super().velocity_at(t, lat, lon)
         times, lats, lons = self._scalar_axes
-        values = self._padded[1]
-        cells = []
-        for axis, x in ((lats, float(lat)), (lons, lo)):
-            if not axis[0] <= x <= axis[-1]:
-                return math.nan, math.nan
-            i = min(max(bisect.bisect_left(axis, x) - 1, 0), len(axis) - 2)
-            cells.append((i, (x - axis[i]) / (axis[i + 1] - axis[i])))
-        (i, wy), (j, wx) = cells
-        if len(times) == 1:
-            block = values[0, i:i + 2, j:j + 2]
-            corners = [(block[a, b], (wy if a else 1.0 - wy) * (wx if b else 1.0 - wx))
-                       for a in (0, 1) for b in (0, 1)]
-        else:
-            tf = float(t)
-            if not times[0] <= tf <= times[-1]:
-                return math.nan, math.nan
-            k = min(max(bisect.bisect_left(times, tf) - 1, 0), len(times) - 2)
-            wt = (tf - times[k]) / (times[k + 1] - times[k])
-            block = values[k:k + 2, i:i + 2, j:j + 2]
-            corners = [(block[c, a, b], (wt if c else 1.0 - wt) * (wy if a else 1.0 - wy)
-                        * (wx if b else 1.0 - wx))
-                       for c in (0, 1) for a in (0, 1) for b in (0, 1)]
-        u = v = 0.0
-        for uv, w in corners:
-            u += float(uv[0]) * w
-            v += float(uv[1]) * w
-        return u, v
+        return interpolate(times, lats, lons, self._padded[1], float(t), float(lat), lo)
 
     @cached_property
     def _interpolator(self) -> Any:
