@@ -2,13 +2,20 @@
 
 `synthesize` walks `CANDIDATE_TYPES` in normalised units and returns every extremal found;
 `plan_time_optimal` is the planner registered for `VariableSpeedCar` with objective "time".
+
+With `COMPILED` (the default) the Gamma_TST and rigid types and the Gamma_umax reach are
+solved by the numba kernels of `compiled` (imported on first use); `COMPILED = False` runs
+the NumPy reference (`solvers`, `fixed_turn_rate`, `dubins_segment_lengths`): the same
+extremals, costs equal to rounding (checked in tests/min_time/test_min_time_compiled.py).
+Candidates carry `LazyPath`s: a path is built when it is first used (the winner, by the
+verification of `plan()`; the others only if asked for).
 """
 
 from __future__ import annotations
 
 import math
 import time
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -17,6 +24,7 @@ import numpy as np
 from glideplan.path import Path
 from glideplan.planners.dubins import WORDS as DUBINS_WORDS
 from glideplan.planners.dubins import dubins_segment_lengths
+from glideplan.planners.dubins_kernel import mod_2pi_snapped, segment_table
 from glideplan.planners.min_time.fixed_turn_rate import cheapest_fixed_turn_rate
 from glideplan.planners.min_time.solvers import Extremal, solve_all
 from glideplan.planners.min_time.table import (
@@ -31,8 +39,11 @@ from glideplan.pose import Pose
 from glideplan.segments import Arc, Segment, Straight
 from glideplan.solution import Candidate, Status
 from glideplan.vehicles.variable_speed_car import VariableSpeedCar
+from glideplan.words import run_word
 
 __all__ = [
+    "COMPILED",
+    "LazyPath",
     "SynthesisResult",
     "extremal_path",
     "normalised_goal",
@@ -42,6 +53,22 @@ __all__ = [
 
 PI = math.pi
 _ZERO = 1e-12
+COMPILED = True  # False: the NumPy reference (the benchmarks' baseline, the tests' reference)
+
+Solver = Callable[[np.ndarray, float, str], list[Extremal]]
+
+
+def _reference_solve(goal: np.ndarray, rho: float, key: str) -> list[Extremal]:
+    return solve_all(goal, rho, (key,))[key]
+
+
+def _solvers() -> tuple[Solver, Callable[[np.ndarray, float], tuple[float, float]] | None]:
+    """The rigid/TST solver and the Gamma_umax reach of the compiled path or the reference."""
+    if COMPILED:
+        from glideplan.planners.min_time import compiled
+
+        return compiled.solve, compiled.reach_distance
+    return _reference_solve, None
 
 
 @dataclass(frozen=True)
@@ -68,13 +95,10 @@ def _dubins_extremals(types: list[CandidateType], goal: np.ndarray, rho: float) 
     Lengths from `glideplan.planners.dubins`; the time of a CCC path at speed rho on radius
     rho equals its total heading change, so every cost below is a time (eq. 4.6).
     """
-    origin = np.zeros(3)
     out: list[Extremal] = []
-    tables = {}
+    tables = _dubins_tables(goal, sorted({rho if t.word == "CCC" else 1.0 for t in types}))
     for ctype in types:
         radius, label = (rho, "C") if ctype.word == "CCC" else (1.0, "B")
-        if radius not in tables:
-            tables[radius] = dubins_segment_lengths(origin, goal, radius)
         row = tables[radius][DUBINS_WORDS.index(ctype.orientation)]
         if np.isnan(row[0]):
             continue
@@ -89,14 +113,31 @@ def _dubins_extremals(types: list[CandidateType], goal: np.ndarray, rho: float) 
     return out
 
 
+def _dubins_tables(goal: np.ndarray, radii: list[float]) -> dict[float, np.ndarray]:
+    """Segment lengths (6, 3) of the six Dubins words from the origin to `goal` per radius.
+
+    The reference calls `dubins_segment_lengths` per radius; the compiled path evaluates
+    both radii in one `segment_table` call with the same normalisation (x / r as x * (1/r)).
+    """
+    if not COMPILED:
+        origin = np.zeros(3)
+        return {r: dubins_segment_lengths(origin, goal, r) for r in radii}
+    r = np.array(radii)
+    inv = 1.0 / r
+    psi = mod_2pi_snapped(np.full(r.shape, goal[2] - 0.0))
+    table = segment_table(goal[0] * inv, goal[1] * inv, psi) * r[:, None, None]
+    return {radius: table[i] for i, radius in enumerate(radii)}
+
+
 def _umax_extremals(types: list[CandidateType], goal: np.ndarray, rho: float) -> list[Extremal]:
     """Gamma_umax: the cheapest fixed-turn-rate path of each orientation (singular speed)."""
     out: list[Extremal] = []
+    reach = _solvers()[1]
     for d in (1, -1):
         of_d = [t for t in types if t.directions[0] == d]
         if not of_d:
             continue
-        found = cheapest_fixed_turn_rate(goal, rho, d)
+        found = cheapest_fixed_turn_rate(goal, rho, d, reach=reach)
         if found is None:
             continue
         moves, cost, loops = found
@@ -140,13 +181,14 @@ def synthesize(
         by_group = {"Dubins": [t for t in by_group["Dubins"] if t.word != "CCC"]}
     found: list[Extremal] = []
     seconds: dict[str, float] = {}
+    solve = _solvers()[0]
     for group, members in by_group.items():
         if not members:
             continue
         t0 = time.perf_counter()
         if group in ("TST", "TTTT"):
             wanted = {id(t) for t in members}
-            found.extend(e for e in solve_all(goal, rho, (group,))[group] if id(e.ctype) in wanted)
+            found.extend(e for e in solve(goal, rho, group) if id(e.ctype) in wanted)
         elif group == "umax":
             found.extend(_umax_extremals(members, goal, rho))
         else:
@@ -154,12 +196,12 @@ def synthesize(
         seconds[group] = time.perf_counter() - t0
     if supplementary and rho < 1.0:
         t0 = time.perf_counter()
-        found.extend(solve_all(goal, rho, ("supplementary",))["supplementary"])
+        found.extend(solve(goal, rho, "supplementary"))
         best = min((e.cost for e in found), default=math.inf)
         m = SUPPLEMENTARY_MAX_INTERIOR + 1
         while m <= MAX_INTERIOR_TURNS and m * PI < best:
             key = f"interior{m}"
-            found.extend(solve_all(goal, rho, (key,))[key])
+            found.extend(solve(goal, rho, key))
             best = min((e.cost for e in found), default=math.inf)
             m += 1
         seconds["supplementary"] = time.perf_counter() - t0
@@ -198,8 +240,7 @@ def extremal_path(ext: Extremal, vehicle: VariableSpeedCar, start: Pose = Pose()
     big, small = vehicle.bang_radius, vehicle.corner_radius
     segments: list[Segment] = []
     pose = start
-    moves = [m for m in ext.moves if m[2] > _ZERO] or [ext.moves[0]]
-    for lab, d, x in moves:
+    for lab, d, x in _flown(ext):
         seg: Segment
         if lab == "S":
             seg = Straight(pose, x * big, vehicle.v_max)
@@ -212,8 +253,55 @@ def extremal_path(ext: Extremal, vehicle: VariableSpeedCar, start: Pose = Pose()
     return Path(tuple(segments), vehicle)
 
 
+def _flown(ext: Extremal) -> list[tuple[str, int, float]]:
+    """The moves that become segments: those longer than zero (else the first one)."""
+    return [m for m in ext.moves if m[2] > _ZERO] or [ext.moves[0]]
+
+
+def _word_family(ext: Extremal, vehicle: VariableSpeedCar) -> tuple[str, str]:
+    """`extremal_path(ext, vehicle)`'s word and family, without building the path."""
+    big, small = vehicle.bang_radius, vehicle.corner_radius
+    moves = _flown(ext)
+    letters = ["S" if lab == "S" else ("L" if d > 0 else "R") for lab, d, _ in moves]
+    weights = [x * big if lab == "S" else (big if lab == "B" else small) * x
+               for lab, _, x in moves]  # fmt: skip
+    return run_word(letters, weights, min_weight=0.0, strict=True), "".join(
+        m[0] for m in moves
+    )
+
+
+class LazyPath(Path):
+    """A `Path` whose segments are built on first use by `build()` (a function returning the
+    full path); pickles and copies as a plain `Path`.
+
+    The synthesis returns ~15 candidates a goal; `plan()` verifies (so builds) the best one,
+    the others are built only when a caller reads them (figures, the explorer's lines).
+    """
+
+    def __init__(self, build: Callable[[], Path], vehicle: Any) -> None:
+        object.__setattr__(self, "vehicle", vehicle)
+        object.__setattr__(self, "_build", build)
+
+    def __getattr__(self, name: str) -> Any:
+        if name != "segments" or "_build" not in self.__dict__:
+            raise AttributeError(name)
+        segments = self.__dict__["_build"]().segments
+        object.__setattr__(self, "segments", segments)
+        return segments
+
+    def transformed(self, frame: Pose, reflect: bool = False) -> Path:
+        return LazyPath(lambda: Path.transformed(self, frame, reflect), self.vehicle)
+
+    def with_vehicle(self, vehicle: Any) -> Path:
+        return LazyPath(lambda: Path(self.segments, vehicle), vehicle)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (Path, (self.segments, self.vehicle))
+
+
 def _candidate(ext: Extremal, vehicle: VariableSpeedCar) -> Candidate:
-    path = extremal_path(ext, vehicle)
+    path = LazyPath(lambda: extremal_path(ext, vehicle), vehicle)
+    word, family = _word_family(ext, vehicle)
     violated = sorted(k for k, ok in ext.conditions.items() if not ok)
     info: dict[str, Any] = {
         "group": ext.ctype.group,
@@ -228,7 +316,7 @@ def _candidate(ext: Extremal, vehicle: VariableSpeedCar) -> Candidate:
         info["violates"] = violated  # strict sub-optimality bounds (4.22), (4.24)
     if ext.ctype.group == "umax":
         info["speed_profile"] = "not unique: every profile of this heading change takes this time"
-    return Candidate(path.word, path.family, ext.cost / vehicle.u_max, path, Status.FEASIBLE, info)
+    return Candidate(word, family, ext.cost / vehicle.u_max, path, Status.FEASIBLE, info)
 
 
 @register_planner(
