@@ -117,12 +117,12 @@ def solve(goal: np.ndarray, rho: float, key: str) -> list[Extremal]:
         rows = np.empty(2 * nb, dtype=np.int64)
         out = np.empty((2 * nb, 5))
         n = _jit.tst(goal, rho, tb.w, tb.geo, tb.lab, tb.dirs, tb.kind, tb.nmov, rows, out)
-        found = []
-        for i in range(n):
-            length, u1, u2, cost, err = (float(v) for v in out[i])
-            found.append(_extremal(tb, int(rows[i]), (u1, u2, PI / 2, PI, length), cost, err,
-                                   {"L": length}, rho))  # fmt: skip
-        return found
+        return [
+            _extremal(tb, row, (u1, u2, PI / 2, PI, length), cost, err, {"L": length}, rho)
+            for row, (length, u1, u2, cost, err) in zip(
+                rows[:n].tolist(), out[:n].tolist(), strict=True
+            )
+        ]
     assert tb.coef is not None and tb.degree is not None
     assert tb.vcx is not None and tb.vcy is not None
     cap = nb * 2 * (tb.coef.shape[1] - 1)
@@ -132,9 +132,7 @@ def solve(goal: np.ndarray, rho: float, key: str) -> list[Extremal]:
                    tb.kind, tb.nmov, rows, out)  # fmt: skip
     found = []
     seen: set[tuple[int, float]] = set()
-    for i in range(n):
-        a, u1, u2, cost, err = (float(v) for v in out[i])
-        row = int(rows[i])
+    for row, (a, u1, u2, cost, err) in zip(rows[:n].tolist(), out[:n].tolist(), strict=True):
         branch = (row, round(a, 9))
         if branch in seen:
             continue

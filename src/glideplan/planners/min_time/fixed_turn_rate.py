@@ -27,7 +27,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from glideplan.planners.min_time.geometry import compose
+from glideplan.planners.min_time.geometry import compose_one
 from glideplan.pose import TWO_PI, wrap_to_pi
 
 __all__ = ["cheapest_fixed_turn_rate", "reach_distance", "support"]
@@ -213,8 +213,8 @@ def cheapest_fixed_turn_rate(
         return None
     total = delta + TWO_PI * k
     out = [(lab, direction, ang) for lab, ang in best]
-    pe, he = compose(out, rho, ())
-    err = max(math.hypot(pe[0] - goal[0], pe[1] - goal[1]), abs(float(wrap_to_pi(he - goal[2]))))
+    px, py, he = compose_one(out, rho)
+    err = max(math.hypot(px - goal[0], py - goal[1]), abs(float(wrap_to_pi(he - goal[2]))))
     if err > 1e-8:
         return None
     return out, total, k

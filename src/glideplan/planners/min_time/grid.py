@@ -85,6 +85,9 @@ def time_optimal_grid(
     xs = check_finite_array("xs", xs).ravel()
     ys = check_finite_array("ys", ys).ravel()
     heading = check_finite("heading", heading)
+    # solve one goal here first: the kernels (numba) and this ratio's tables are loaded once
+    # and the pool's forked workers inherit them instead of each loading them again
+    synthesize(np.array([1.0, 1.0, 1.0]), vehicle.speed_ratio)
     rows = run_batch(
         _row,
         [(vehicle, xs, float(y), heading) for y in ys],

@@ -39,7 +39,6 @@ from glideplan.pose import Pose
 from glideplan.segments import Arc, Segment, Straight
 from glideplan.solution import Candidate, Status
 from glideplan.vehicles.variable_speed_car import VariableSpeedCar
-from glideplan.words import run_word
 
 __all__ = [
     "COMPILED",
@@ -100,20 +99,20 @@ def _dubins_extremals(types: list[CandidateType], goal: np.ndarray, rho: float) 
     for ctype in types:
         radius, label = (rho, "C") if ctype.word == "CCC" else (1.0, "B")
         row = tables[radius][DUBINS_WORDS.index(ctype.orientation)]
-        if np.isnan(row[0]):
+        if math.isnan(row[0]):
             continue
         moves = []
         for letter, length in zip(ctype.orientation, row, strict=True):
             if letter == "S":
-                moves.append(("S", 0, float(length)))
+                moves.append(("S", 0, length))
             else:
-                moves.append((label, 1 if letter == "L" else -1, float(length) / radius))
+                moves.append((label, 1 if letter == "L" else -1, length / radius))
         cost = sum(x for _, _, x in moves)
-        out.append(Extremal(ctype, tuple(moves), cost, {"lengths": [float(v) for v in row]}))
+        out.append(Extremal(ctype, tuple(moves), cost, {"lengths": list(row)}))
     return out
 
 
-def _dubins_tables(goal: np.ndarray, radii: list[float]) -> dict[float, np.ndarray]:
+def _dubins_tables(goal: np.ndarray, radii: list[float]) -> dict[float, list[list[float]]]:
     """Segment lengths (6, 3) of the six Dubins words from the origin to `goal` per radius.
 
     The reference calls `dubins_segment_lengths` per radius; the compiled path evaluates
@@ -121,12 +120,12 @@ def _dubins_tables(goal: np.ndarray, radii: list[float]) -> dict[float, np.ndarr
     """
     if not COMPILED:
         origin = np.zeros(3)
-        return {r: dubins_segment_lengths(origin, goal, r) for r in radii}
+        return {r: dubins_segment_lengths(origin, goal, r).tolist() for r in radii}
     r = np.array(radii)
     inv = 1.0 / r
     psi = mod_2pi_snapped(np.full(r.shape, goal[2] - 0.0))
     table = segment_table(goal[0] * inv, goal[1] * inv, psi) * r[:, None, None]
-    return {radius: table[i] for i, radius in enumerate(radii)}
+    return {radius: table[i].tolist() for i, radius in enumerate(radii)}
 
 
 def _umax_extremals(types: list[CandidateType], goal: np.ndarray, rho: float) -> list[Extremal]:
@@ -259,15 +258,26 @@ def _flown(ext: Extremal) -> list[tuple[str, int, float]]:
 
 
 def _word_family(ext: Extremal, vehicle: VariableSpeedCar) -> tuple[str, str]:
-    """`extremal_path(ext, vehicle)`'s word and family, without building the path."""
+    """`extremal_path(ext, vehicle)`'s word and family, without building the path.
+
+    The word is `Path.word`'s: runs of equal turn letters weighted by segment length
+    (R x for S and B, r x for C), runs of zero length dropped, equal neighbours merged.
+    """
     big, small = vehicle.bang_radius, vehicle.corner_radius
     moves = _flown(ext)
-    letters = ["S" if lab == "S" else ("L" if d > 0 else "R") for lab, d, _ in moves]
-    weights = [x * big if lab == "S" else (big if lab == "B" else small) * x
-               for lab, _, x in moves]  # fmt: skip
-    return run_word(letters, weights, min_weight=0.0, strict=True), "".join(
-        m[0] for m in moves
-    )
+    runs: list[list[Any]] = []
+    for lab, d, x in moves:
+        letter = "S" if lab == "S" else ("L" if d > 0 else "R")
+        weight = x * big if lab == "S" else (big if lab == "B" else small) * x
+        if runs and runs[-1][0] == letter:
+            runs[-1][1] += weight
+        else:
+            runs.append([letter, weight])
+    word: list[str] = []
+    for letter, weight in runs:
+        if weight > 0.0 and (not word or word[-1] != letter):
+            word.append(letter)
+    return "".join(word), "".join(m[0] for m in moves)
 
 
 class LazyPath(Path):
