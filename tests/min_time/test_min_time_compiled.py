@@ -18,9 +18,9 @@ import pytest
 from glideplan import Pose, VariableSpeedCar, plan
 from glideplan.path import Path
 from glideplan.planners.min_time import synthesis
-from glideplan.planners.min_time.synthesis import _word_family
 from glideplan.planners.min_time.fixed_turn_rate import reach_distance
 from glideplan.planners.min_time.geometry import compose
+from glideplan.planners.min_time.synthesis import _word_family
 
 REL = 1e-12
 
