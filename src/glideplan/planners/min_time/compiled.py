@@ -147,3 +147,77 @@ def reach_distance(gp: np.ndarray, delta: float) -> tuple[float, float]:
 
     dist, omega = _jit.reach(float(gp[0]), float(gp[1]), float(delta), _SAMPLES)
     return float(dist), float(omega)
+
+
+def _kernel_costs(goal: np.ndarray, rho: float, key: str) -> tuple[_Tables, np.ndarray, np.ndarray]:
+    """The kernel's rows and (param, u1, u2, cost, end error) of one key, no objects built."""
+    tb = _tables(key, float(rho))
+    nb = len(tb.items)
+    if key == "TST":
+        assert tb.w is not None
+        rows = np.empty(2 * nb, dtype=np.int64)
+        out = np.empty((2 * nb, 5))
+        n = _jit.tst(goal, rho, tb.w, tb.geo, tb.lab, tb.dirs, tb.kind, tb.nmov, rows, out)
+        return tb, rows[:n], out[:n]
+    assert tb.coef is not None and tb.degree is not None
+    assert tb.vcx is not None and tb.vcy is not None
+    cap = nb * 2 * (tb.coef.shape[1] - 1)
+    rows = np.empty(cap, dtype=np.int64)
+    out = np.empty((cap, 5))
+    n = _jit.rigid(goal, rho, tb.coef, tb.degree, tb.vcx, tb.vcy, tb.geo, tb.lab, tb.dirs,
+                   tb.kind, tb.nmov, rows, out)  # fmt: skip
+    return tb, rows[:n], out[:n]
+
+
+def best_extremal(goal: np.ndarray, rho: float, dubins: list[Extremal]) -> Extremal | None:
+    """`synthesize(goal, rho).best` (0 < rho < 1) without the losing candidates' objects.
+
+    The candidates are taken in `synthesize`'s order (TTTT, TST, umax, Dubins, the
+    supplementary types) and a later one wins only when strictly cheaper, as `min` over that
+    list does; a Gamma_umax path is built (and checked) only when it would win. `dubins`:
+    the goal's Gamma_Dubins extremals. Returns None when rigid sequences with more than three
+    interior turns could still win (best cost above 4 pi): the caller runs `synthesize`.
+    """
+    from glideplan.planners.min_time.fixed_turn_rate import fixed_turn_rate_cost
+    from glideplan.planners.min_time.table import SUPPLEMENTARY_MAX_INTERIOR
+
+    goal = np.ascontiguousarray(goal, dtype=float)
+    best_cost, best = math.inf, None
+    for key in ("TTTT", "TST"):
+        tb, rows, out = _kernel_costs(goal, rho, key)
+        if len(rows) and out[:, 3].min() < best_cost:
+            i = int(np.argmin(out[:, 3]))
+            best_cost, best = float(out[i, 3]), (tb, i, rows, out, key)
+    ext: Extremal | None = None
+    for d in (1, -1):  # Gamma_umax: heading change delta + 2 pi k, checked only if cheaper
+        cost = fixed_turn_rate_cost(goal, rho, d, reach=reach_distance)
+        if cost is not None and cost < best_cost:
+            found = _umax(goal, rho, d)  # built and checked (None if it misses the goal)
+            if found is not None:
+                best_cost, best, ext = found.cost, None, found
+    for e in dubins:
+        if e.cost < best_cost:
+            best_cost, best, ext = e.cost, None, e
+    tb, rows, out = _kernel_costs(goal, rho, "supplementary")
+    if len(rows) and out[:, 3].min() < best_cost:
+        i = int(np.argmin(out[:, 3]))
+        best_cost, best = float(out[i, 3]), (tb, i, rows, out, "supplementary")
+    if (SUPPLEMENTARY_MAX_INTERIOR + 1) * PI < best_cost:
+        return None
+    if best is None:
+        return ext
+    tb, i, rows, out, key = best
+    p, u1, u2, cost, err = out[i].tolist()
+    if key == "TST":
+        return _extremal(tb, int(rows[i]), (u1, u2, PI / 2, PI, p), cost, err, {"L": p}, rho)
+    return _extremal(tb, int(rows[i]), (u1, u2, p, PI, 0.0), cost, err, {"a": p}, rho)
+
+
+def _umax(goal: np.ndarray, rho: float, d: int) -> Extremal | None:
+    """The Gamma_umax extremal of `synthesis._umax_extremals` for direction d, if any."""
+    from glideplan.planners.min_time.synthesis import _umax_extremals
+    from glideplan.planners.min_time.table import CANDIDATE_TYPES
+
+    types = [t for t in CANDIDATE_TYPES if t.group == "umax" and t.directions[0] == d]
+    found = _umax_extremals(types, goal, rho)
+    return found[0] if found else None

@@ -30,7 +30,7 @@ import numpy as np
 from glideplan.planners.min_time.geometry import compose_one
 from glideplan.pose import TWO_PI, wrap_to_pi
 
-__all__ = ["cheapest_fixed_turn_rate", "reach_distance", "support"]
+__all__ = ["cheapest_fixed_turn_rate", "fixed_turn_rate_cost", "reach_distance", "support"]
 
 PI = math.pi
 _SAMPLES = 96
@@ -182,13 +182,42 @@ def _representative(
     return best or [("B", 0.0)]
 
 
+Reach = Callable[[np.ndarray, float], tuple[float, float]]
+
+
+def _loops(
+    goal: np.ndarray, rho: float, direction: int, reach: Reach | None
+) -> tuple[float, np.ndarray, np.ndarray, float, int]:
+    """(delta, P_B(delta), g', maximiser omega, extra loops k) of a goal (rho < 1)."""
+    x, y, psi = float(goal[0]), direction * float(goal[1]), direction * float(goal[2])
+    delta = psi % TWO_PI
+    if delta > TWO_PI - 1e-12:
+        delta = 0.0
+    pb = np.array([math.sin(delta), 1.0 - math.cos(delta)])
+    gp = (np.array([x, y]) - rho * pb) / (1.0 - rho)
+    dist, omega = (reach or reach_distance)(gp, delta)
+    k = 0 if dist <= 1e-12 else math.ceil(dist / 2.0 - 1e-12)
+    return delta, pb, gp, omega, k
+
+
+def fixed_turn_rate_cost(
+    goal: np.ndarray, rho: float, direction: int, *, max_loops: int = 6, reach: Reach | None = None
+) -> float | None:
+    """The cost delta + 2 pi k that `cheapest_fixed_turn_rate` returns, without building the
+    path (so without its end check): None when rho >= 1 or more than `max_loops` loops."""
+    if rho >= 1.0:
+        return None
+    delta, _, _, _, k = _loops(goal, rho, direction, reach)
+    return None if k > max_loops else delta + TWO_PI * k
+
+
 def cheapest_fixed_turn_rate(
     goal: np.ndarray,
     rho: float,
     direction: int,
     *,
     max_loops: int = 6,
-    reach: Callable[[np.ndarray, float], tuple[float, float]] | None = None,
+    reach: Reach | None = None,
 ) -> tuple[list[tuple[str, int, float]], float, int] | None:
     """Cheapest path of constant turn direction to `goal`: (moves, cost, loops) or None.
 
@@ -198,14 +227,7 @@ def cheapest_fixed_turn_rate(
     """
     if rho >= 1.0:
         return None
-    x, y, psi = float(goal[0]), direction * float(goal[1]), direction * float(goal[2])
-    delta = psi % TWO_PI
-    if delta > TWO_PI - 1e-12:
-        delta = 0.0
-    pb = np.array([math.sin(delta), 1.0 - math.cos(delta)])
-    gp = (np.array([x, y]) - rho * pb) / (1.0 - rho)
-    dist, omega = (reach or reach_distance)(gp, delta)
-    k = 0 if dist <= 1e-12 else math.ceil(dist / 2.0 - 1e-12)
+    delta, pb, gp, omega, k = _loops(goal, rho, direction, reach)
     if k > max_loops:
         return None
     best = _representative(gp, pb, delta, k, omega)

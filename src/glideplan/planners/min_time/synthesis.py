@@ -88,14 +88,21 @@ def normalised_goal(goal: Pose, vehicle: VariableSpeedCar) -> np.ndarray:
     return np.array([goal.x / scale, goal.y / scale, goal.heading])
 
 
-def _dubins_extremals(types: list[CandidateType], goal: np.ndarray, rho: float) -> list[Extremal]:
+def _dubins_extremals(
+    types: list[CandidateType],
+    goal: np.ndarray,
+    rho: float,
+    tables: dict[float, list[list[float]]] | None = None,
+) -> list[Extremal]:
     """Gamma_Dubins: BSB and BBB at radius 1 (speed 1), CCC at radius rho (speed rho).
 
-    Lengths from `glideplan.planners.dubins`; the time of a CCC path at speed rho on radius
-    rho equals its total heading change, so every cost below is a time (eq. 4.6).
+    Lengths from `glideplan.planners.dubins` (or the given `_dubins_tables`); the time of a
+    CCC path at speed rho on radius rho equals its total heading change, so every cost below
+    is a time (eq. 4.6).
     """
     out: list[Extremal] = []
-    tables = _dubins_tables(goal, sorted({rho if t.word == "CCC" else 1.0 for t in types}))
+    if tables is None:
+        tables = _dubins_tables(goal, sorted({rho if t.word == "CCC" else 1.0 for t in types}))
     for ctype in types:
         radius, label = (rho, "C") if ctype.word == "CCC" else (1.0, "B")
         row = tables[radius][DUBINS_WORDS.index(ctype.orientation)]
@@ -121,11 +128,17 @@ def _dubins_tables(goal: np.ndarray, radii: list[float]) -> dict[float, list[lis
     if not COMPILED:
         origin = np.zeros(3)
         return {r: dubins_segment_lengths(origin, goal, r).tolist() for r in radii}
+    return dubins_tables_many(np.asarray(goal)[None, :], radii)[0]
+
+
+def dubins_tables_many(goals: np.ndarray, radii: list[float]) -> list[dict[float, Any]]:
+    """`_dubins_tables` (compiled path) of many goals (n, 3) in one `segment_table` call."""
     r = np.array(radii)
     inv = 1.0 / r
-    psi = mod_2pi_snapped(np.full(r.shape, goal[2] - 0.0))
-    table = segment_table(goal[0] * inv, goal[1] * inv, psi) * r[:, None, None]
-    return {radius: table[i].tolist() for i, radius in enumerate(radii)}
+    psi = mod_2pi_snapped(np.broadcast_to((goals[:, 2] - 0.0)[:, None], (len(goals), len(r))))
+    table = segment_table(goals[:, :1] * inv, goals[:, 1:2] * inv, psi) * r[:, None, None]
+    rows = table.tolist()
+    return [{radius: row[i] for i, radius in enumerate(radii)} for row in rows]
 
 
 def _umax_extremals(types: list[CandidateType], goal: np.ndarray, rho: float) -> list[Extremal]:
