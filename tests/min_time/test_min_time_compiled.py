@@ -17,10 +17,14 @@ import pytest
 
 from glideplan import Pose, VariableSpeedCar, plan
 from glideplan.path import Path
-from glideplan.planners.min_time import synthesis
+from glideplan.planners.min_time import compiled, synthesis
 from glideplan.planners.min_time.fixed_turn_rate import reach_distance
 from glideplan.planners.min_time.geometry import compose
 from glideplan.planners.min_time.synthesis import _word_family
+
+# `compiled` imports numba: every synthesis below runs the kernels (the first of a process
+# runs the reference unless numba is loaded, see `synthesis`)
+assert compiled.solve is not None
 
 REL = 1e-12
 

@@ -219,5 +219,5 @@ def _umax(goal: np.ndarray, rho: float, d: int) -> Extremal | None:
     from glideplan.planners.min_time.table import CANDIDATE_TYPES
 
     types = [t for t in CANDIDATE_TYPES if t.group == "umax" and t.directions[0] == d]
-    found = _umax_extremals(types, goal, rho)
+    found = _umax_extremals(types, goal, rho, compiled=True)
     return found[0] if found else None

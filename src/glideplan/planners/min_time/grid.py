@@ -96,7 +96,8 @@ def _compiled_row(vehicle: VariableSpeedCar, xs: np.ndarray, y: float,
         ):
             out.append((0.0, "", ""))
             continue
-        best = best_extremal(goal, rho, synthesis._dubins_extremals(_DUBINS, goal, rho, table))
+        dubins = synthesis._dubins_extremals(_DUBINS, goal, rho, table, compiled=True)
+        best = best_extremal(goal, rho, dubins)
         out.append(_summary(best, vehicle) if best is not None else best_time(
             vehicle, float(x), y, heading))  # fmt: skip
     return out
@@ -122,6 +123,8 @@ def time_optimal_grid(
     heading = check_finite("heading", heading)
     # solve one goal here first: the kernels (numba) and this ratio's tables are loaded once
     # and the pool's forked workers inherit them instead of each loading them again
+    if synthesis.COMPILED:
+        from glideplan.planners.min_time import compiled  # noqa: F401  (imports numba)
     synthesize(np.array([1.0, 1.0, 1.0]), vehicle.speed_ratio)
     rows = run_batch(
         _row,

@@ -4,9 +4,11 @@
 `plan_time_optimal` is the planner registered for `VariableSpeedCar` with objective "time".
 
 With `COMPILED` (the default) the Gamma_TST and rigid types and the Gamma_umax reach are
-solved by the numba kernels of `compiled` (imported on first use); `COMPILED = False` runs
-the NumPy reference (`solvers`, `fixed_turn_rate`, `dubins_segment_lengths`): the same
-extremals, costs equal to rounding (checked in tests/min_time/test_min_time_compiled.py).
+solved by the numba kernels of `compiled`; `COMPILED = False` runs the NumPy reference
+(`solvers`, `fixed_turn_rate`, `dubins_segment_lengths`): the same extremals, costs equal
+to rounding (tests/min_time/test_min_time_compiled.py). The first synthesis of a process
+runs the reference unless numba is already imported: a one-off plan (the CLI) does not pay
+numba's import and cache load (~0.4 s of CPU), every later one runs the kernels.
 Candidates carry `LazyPath`s: a path is built when it is first used (the winner, by the
 verification of `plan()`; the others only if asked for).
 """
@@ -14,6 +16,7 @@ verification of `plan()`; the others only if asked for).
 from __future__ import annotations
 
 import math
+import sys
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
@@ -61,12 +64,25 @@ def _reference_solve(goal: np.ndarray, rho: float, key: str) -> list[Extremal]:
     return solve_all(goal, rho, (key,))[key]
 
 
-def _solvers() -> tuple[Solver, Callable[[np.ndarray, float], tuple[float, float]] | None]:
-    """The rigid/TST solver and the Gamma_umax reach of the compiled path or the reference."""
-    if COMPILED:
-        from glideplan.planners.min_time import compiled
+_calls = 0
 
-        return compiled.solve, compiled.reach_distance
+
+def _compiled_now() -> bool:
+    """Whether this synthesis runs the kernels: `COMPILED`, from the second call of the
+    process on (or as soon as numba is imported)."""
+    global _calls
+    _calls += 1
+    return COMPILED and (_calls > 1 or "numba" in sys.modules)
+
+
+def _solvers(
+    compiled: bool,
+) -> tuple[Solver, Callable[[np.ndarray, float], tuple[float, float]] | None]:
+    """The rigid/TST solver and the Gamma_umax reach of the compiled path or the reference."""
+    if compiled:
+        from glideplan.planners.min_time import compiled as kernels
+
+        return kernels.solve, kernels.reach_distance
     return _reference_solve, None
 
 
@@ -93,6 +109,7 @@ def _dubins_extremals(
     goal: np.ndarray,
     rho: float,
     tables: dict[float, list[list[float]]] | None = None,
+    compiled: bool = False,
 ) -> list[Extremal]:
     """Gamma_Dubins: BSB and BBB at radius 1 (speed 1), CCC at radius rho (speed rho).
 
@@ -102,7 +119,8 @@ def _dubins_extremals(
     """
     out: list[Extremal] = []
     if tables is None:
-        tables = _dubins_tables(goal, sorted({rho if t.word == "CCC" else 1.0 for t in types}))
+        radii = sorted({rho if t.word == "CCC" else 1.0 for t in types})
+        tables = _dubins_tables(goal, radii, compiled)
     for ctype in types:
         radius, label = (rho, "C") if ctype.word == "CCC" else (1.0, "B")
         row = tables[radius][DUBINS_WORDS.index(ctype.orientation)]
@@ -119,13 +137,15 @@ def _dubins_extremals(
     return out
 
 
-def _dubins_tables(goal: np.ndarray, radii: list[float]) -> dict[float, list[list[float]]]:
+def _dubins_tables(
+    goal: np.ndarray, radii: list[float], compiled: bool
+) -> dict[float, list[list[float]]]:
     """Segment lengths (6, 3) of the six Dubins words from the origin to `goal` per radius.
 
     The reference calls `dubins_segment_lengths` per radius; the compiled path evaluates
     both radii in one `segment_table` call with the same normalisation (x / r as x * (1/r)).
     """
-    if not COMPILED:
+    if not compiled:
         origin = np.zeros(3)
         return {r: dubins_segment_lengths(origin, goal, r).tolist() for r in radii}
     return dubins_tables_many(np.asarray(goal)[None, :], radii)[0]
@@ -141,10 +161,12 @@ def dubins_tables_many(goals: np.ndarray, radii: list[float]) -> list[dict[float
     return [{radius: row[i] for i, radius in enumerate(radii)} for row in rows]
 
 
-def _umax_extremals(types: list[CandidateType], goal: np.ndarray, rho: float) -> list[Extremal]:
+def _umax_extremals(
+    types: list[CandidateType], goal: np.ndarray, rho: float, compiled: bool = False
+) -> list[Extremal]:
     """Gamma_umax: the cheapest fixed-turn-rate path of each orientation (singular speed)."""
     out: list[Extremal] = []
-    reach = _solvers()[1]
+    reach = _solvers(compiled)[1]
     for d in (1, -1):
         of_d = [t for t in types if t.directions[0] == d]
         if not of_d:
@@ -193,7 +215,8 @@ def synthesize(
         by_group = {"Dubins": [t for t in by_group["Dubins"] if t.word != "CCC"]}
     found: list[Extremal] = []
     seconds: dict[str, float] = {}
-    solve = _solvers()[0]
+    compiled = _compiled_now()
+    solve = _solvers(compiled)[0]
     for group, members in by_group.items():
         if not members:
             continue
@@ -202,9 +225,9 @@ def synthesize(
             wanted = {id(t) for t in members}
             found.extend(e for e in solve(goal, rho, group) if id(e.ctype) in wanted)
         elif group == "umax":
-            found.extend(_umax_extremals(members, goal, rho))
+            found.extend(_umax_extremals(members, goal, rho, compiled))
         else:
-            found.extend(_dubins_extremals(members, goal, rho))
+            found.extend(_dubins_extremals(members, goal, rho, compiled=compiled))
         seconds[group] = time.perf_counter() - t0
     if supplementary and rho < 1.0:
         t0 = time.perf_counter()
