@@ -60,7 +60,8 @@ def _ms(values: list[float]) -> str:
 def _timings(goals: np.ndarray, car: VariableSpeedCar, compiled: bool) -> None:
     """Planner alone and `plan()` with verification, per goal (wall, one core)."""
     synthesis.COMPILED = compiled
-    plan_time_optimal(Problem(Pose(), Pose(1.0, 1.0, 1.0), car, "time"))  # warm the caches
+    for _ in range(2):  # warm the caches (the first synthesis of a process runs NumPy)
+        plan_time_optimal(Problem(Pose(), Pose(1.0, 1.0, 1.0), car, "time"))
     planner_s, plan_s = [], []
     cpu0 = time.process_time()
     for x, y, h in goals:
