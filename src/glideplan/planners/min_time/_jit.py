@@ -22,7 +22,6 @@ the batch runner parallelises over processes); imported lazily (importing it imp
 
 from __future__ import annotations
 
-import cmath
 import math
 
 import numpy as np
@@ -65,20 +64,22 @@ def _compose(lab: np.ndarray, dirs: np.ndarray, kind: np.ndarray, n: int, par: n
     px = 0.0
     py = 0.0
     h = 0.0
+    sh, ch = 0.0, 1.0  # sin and cos of h, kept from one move to the next
     cost = 0.0
     for j in range(n):
         x = par[kind[j]]
         cost += x
         if lab[j] == 0:
-            px = px + x * math.cos(h)
-            py = py + x * math.sin(h)
+            px = px + x * ch
+            py = py + x * sh
             continue
         dr = dirs[j] * (1.0 if lab[j] == 1 else rho)
-        cx = px + dr * -math.sin(h)
-        cy = py + dr * math.cos(h)
+        cx = px + dr * -sh
+        cy = py + dr * ch
         h = h + dirs[j] * x
-        px = cx - dr * -math.sin(h)
-        py = cy - dr * math.cos(h)
+        sh, ch = math.sin(h), math.cos(h)
+        px = cx - dr * -sh
+        py = cy - dr * ch
     return px, py, h, cost
 
 
@@ -156,37 +157,50 @@ def _poly_roots(poly: np.ndarray, z: np.ndarray) -> None:
     settled = False
     for _ in range(100):
         moved = 0.0
-        for i in range(m):
-            zi = z[i]
-            p = poly[0]
-            dp = 0j
+        for i in range(m):  # real arithmetic: numba's complex division is slow
+            zr, zi = z[i].real, z[i].imag
+            pr, pi_ = poly[0].real, poly[0].imag
+            dr = di = 0.0
             for k in range(1, m + 1):
-                dp = dp * zi + p
-                p = p * zi + poly[k]
-            if p == 0:
+                dr, di = dr * zr - di * zi + pr, dr * zi + di * zr + pi_
+                pr, pi_ = pr * zr - pi_ * zi + poly[k].real, pr * zi + pi_ * zr + poly[k].imag
+            if pr == 0.0 and pi_ == 0.0:
                 continue
-            s = 0j
+            den = dr * dr + di * di
+            if den == 0.0:
+                wr, wi = pr, pi_
+            else:
+                wr, wi = (pr * dr + pi_ * di) / den, (pi_ * dr - pr * di) / den  # p / p'
+            sr = si = 0.0
             for j in range(m):
                 if j != i:
-                    s += 1.0 / (zi - z[j])
-            ratio = p / dp if dp != 0 else p
-            step = ratio / (1.0 - ratio * s)
-            z[i] = zi - step
-            moved = max(moved, abs(step) / max(abs(zi), 1e-300))
+                    ur, ui = zr - z[j].real, zi - z[j].imag
+                    q = ur * ur + ui * ui
+                    sr += ur / q
+                    si -= ui / q
+            # step = w / (1 - w s)
+            br, bi = 1.0 - (wr * sr - wi * si), -(wr * si + wi * sr)
+            q = br * br + bi * bi
+            tr, ti = (wr * br + wi * bi) / q, (wi * br - wr * bi) / q
+            z[i] = complex(zr - tr, zi - ti)
+            moved = max(moved, (tr * tr + ti * ti) / max(zr * zr + zi * zi, 1e-300))
         if settled:
             break
-        settled = moved < 1e-12  # cubic convergence: one more sweep reaches rounding
+        settled = moved < 1e-24  # (relative step)^2; cubic convergence: one more sweep
 
 
 @njit(cache=True)
 def _trig(coef: np.ndarray, n: int, a: float) -> tuple[float, float]:
-    """f(a) = c_0 + 2 Re sum_{k>=1} c_k e^{ika} and f'(a) over the first n coefficients."""
+    """f(a) = c_0 + 2 Re sum_{k>=1} c_k e^{ika} and f'(a) over the first n coefficients
+    (e^{ika} by recurrence from e^{ia})."""
+    e1 = complex(math.cos(a), math.sin(a))
+    e = 1.0 + 0j
     s = 0j
     ds = 0j
     for k in range(n):
-        e = cmath.exp(1j * a * k)
         s += e * coef[k]
         ds += 1j * k * e * coef[k]
+        e = e * e1
     return 2.0 * s.real - coef[0].real, 2.0 * ds.real
 
 
