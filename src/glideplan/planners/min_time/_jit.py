@@ -226,6 +226,16 @@ def _roots_in_range(c: np.ndarray, deg: int, poly: np.ndarray, z: np.ndarray,
         for _ in range(3):  # Newton polish on f itself
             f, df = _trig(c, deg + 1, a)
             a = _mod_2pi(a - (f / df if abs(df) > 1e-14 * scale else 0.0))
+        prev = np.inf
+        for _ in range(60):  # then on while the steps shrink: a double root (where Newton
+            f, df = _trig(c, deg + 1, a)  # only halves the error) converges too
+            if not abs(df) > 1e-14 * scale:
+                break
+            step = f / df
+            if not (1e-16 < abs(step) < prev):
+                break
+            a = _mod_2pi(a - step)
+            prev = abs(step)
         if a >= -1e-12 and a <= PI / 2 + 1e-12:
             found[n] = min(max(a, 0.0), PI / 2)
             n += 1
