@@ -27,7 +27,7 @@ import numpy as np
 from glideplan.path import Path
 from glideplan.planners.dubins import WORDS as DUBINS_WORDS
 from glideplan.planners.dubins import dubins_segment_lengths
-from glideplan.planners.dubins_kernel import mod_2pi_snapped, segment_table
+from glideplan.planners.dubins_kernel import mod_2pi_snapped, segment_table, word_segments
 from glideplan.planners.min_time.fixed_turn_rate import cheapest_fixed_turn_rate
 from glideplan.planners.min_time.solvers import Extremal, solve_all
 from glideplan.planners.min_time.table import (
@@ -142,13 +142,21 @@ def _dubins_tables(
 ) -> dict[float, list[list[float]]]:
     """Segment lengths (6, 3) of the six Dubins words from the origin to `goal` per radius.
 
-    The reference calls `dubins_segment_lengths` per radius; the compiled path evaluates
-    both radii in one `segment_table` call with the same normalisation (x / r as x * (1/r)).
+    The reference calls `dubins_segment_lengths` per radius; the compiled path evaluates the
+    same word formulas on floats (`word_segments`), with the same normalisation (x * (1/r)).
     """
     if not compiled:
         origin = np.zeros(3)
         return {r: dubins_segment_lengths(origin, goal, r).tolist() for r in radii}
-    return dubins_tables_many(np.asarray(goal)[None, :], radii)[0]
+    out: dict[float, list[list[float]]] = {}
+    for r in radii:  # scalar word formulas (`dubins_kernel.word_segments`): no array set-up
+        inv = 1.0 / r
+        rows = []
+        for k in range(len(DUBINS_WORDS)):
+            seg = word_segments(k, goal[0] * inv, goal[1] * inv, goal[2] - 0.0)
+            rows.append([math.nan] * 3 if seg is None else [v * r for v in seg])
+        out[r] = rows
+    return out
 
 
 def dubins_tables_many(goals: np.ndarray, radii: list[float]) -> list[dict[float, Any]]:
