@@ -2,8 +2,8 @@
 
 The reference is the NumPy path that the synthesis ran before the kernels (`COMPILED =
 False`: companion-matrix eigenvalues, SciPy's bounded Brent, `dubins_segment_lengths`). Both
-paths evaluate the same closed forms, so every goal must give the same extremals (types, in
-the same order) with costs equal to rounding (1e-12 relative; measured <= 2e-14 on 4,000
+paths evaluate the same closed forms, so every goal must give the same extremals (the same
+types, compared sorted) with costs equal to rounding (1e-12 relative; measured <= 2e-14 on 4,000
 random goals, benchmarks/min_time.py --compare; 414 goals of
 benchmarks/min_time_vs_direct.py --reference-only). Goals: random ones over four speed ratios,
 the goals of tests/min_time, and degenerate ones (pure turns, straight ahead, on the start
