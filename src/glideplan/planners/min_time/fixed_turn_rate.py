@@ -23,13 +23,14 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Callable
 
 import numpy as np
 
-from glideplan.planners.min_time.geometry import compose
+from glideplan.planners.min_time.geometry import compose_one
 from glideplan.pose import TWO_PI, wrap_to_pi
 
-__all__ = ["cheapest_fixed_turn_rate", "reach_distance", "support"]
+__all__ = ["cheapest_fixed_turn_rate", "fixed_turn_rate_cost", "reach_distance", "support"]
 
 PI = math.pi
 _SAMPLES = 96
@@ -138,26 +139,12 @@ def _loop_b_intervals(c: float, beta: float, lo: float, hi: float) -> list[tuple
     return out
 
 
-def cheapest_fixed_turn_rate(
-    goal: np.ndarray, rho: float, direction: int, *, max_loops: int = 6
-) -> tuple[list[tuple[str, int, float]], float, int] | None:
-    """Cheapest path of constant turn direction to `goal`: (moves, cost, loops) or None.
-
-    `goal` is (x, y, heading) in normalised units; right turns are solved as mirrored left
-    turns. Returns None when more than `max_loops` extra loops would be needed or rho >= 1.
-    """
-    if rho >= 1.0:
-        return None
-    x, y, psi = float(goal[0]), direction * float(goal[1]), direction * float(goal[2])
-    delta = psi % TWO_PI
-    if delta > TWO_PI - 1e-12:
-        delta = 0.0
-    pb = np.array([math.sin(delta), 1.0 - math.cos(delta)])
-    gp = (np.array([x, y]) - rho * pb) / (1.0 - rho)
-    dist, omega = reach_distance(gp, delta)
-    k = 0 if dist <= 1e-12 else math.ceil(dist / 2.0 - 1e-12)
-    if k > max_loops:
-        return None
+def _representative(
+    gp: np.ndarray, pb: np.ndarray, delta: float, k: int, omega: float
+) -> list[tuple[str, float]] | None:
+    """The labelled arcs (B or C, heading change) of a left-turn profile reaching g' with k
+    extra loops: a point p of S(delta) (one B or C interval, or the support point of omega)
+    and k loops whose B arcs make up the chord q = g' - p; the shorter of the two orders."""
     # a point p of S(delta) and the loops' chord q = g' - p
     if k == 0:
         p = gp
@@ -192,11 +179,64 @@ def cheapest_fixed_turn_rate(
         if best is None or len(moves) < len(best):
             best = moves
     assert best is not None
-    if not best:
-        best = [("B", 0.0)]
+    return best or [("B", 0.0)]
+
+
+Reach = Callable[[np.ndarray, float], tuple[float, float]]
+
+
+def _loops(
+    goal: np.ndarray, rho: float, direction: int, reach: Reach | None
+) -> tuple[float, np.ndarray, np.ndarray, float, int]:
+    """(delta, P_B(delta), g', maximiser omega, extra loops k) of a goal (rho < 1)."""
+    x, y, psi = float(goal[0]), direction * float(goal[1]), direction * float(goal[2])
+    delta = psi % TWO_PI
+    if delta > TWO_PI - 1e-12:
+        delta = 0.0
+    pb = np.array([math.sin(delta), 1.0 - math.cos(delta)])
+    gp = (np.array([x, y]) - rho * pb) / (1.0 - rho)
+    dist, omega = (reach or reach_distance)(gp, delta)
+    k = 0 if dist <= 1e-12 else math.ceil(dist / 2.0 - 1e-12)
+    return delta, pb, gp, omega, k
+
+
+def fixed_turn_rate_cost(
+    goal: np.ndarray, rho: float, direction: int, *, max_loops: int = 6, reach: Reach | None = None
+) -> float | None:
+    """The cost delta + 2 pi k that `cheapest_fixed_turn_rate` returns, without building the
+    path (so without its end check): None when rho >= 1 or more than `max_loops` loops."""
+    if rho >= 1.0:
+        return None
+    delta, _, _, _, k = _loops(goal, rho, direction, reach)
+    return None if k > max_loops else delta + TWO_PI * k
+
+
+def cheapest_fixed_turn_rate(
+    goal: np.ndarray,
+    rho: float,
+    direction: int,
+    *,
+    max_loops: int = 6,
+    reach: Reach | None = None,
+) -> tuple[list[tuple[str, int, float]], float, int] | None:
+    """Cheapest path of constant turn direction to `goal`: (moves, cost, loops) or None.
+
+    `goal` is (x, y, heading) in normalised units; right turns are solved as mirrored left
+    turns. Returns None when more than `max_loops` extra loops would be needed or rho >= 1.
+    `reach` replaces `reach_distance` (the compiled one: `compiled.reach_distance`).
+    """
+    if rho >= 1.0:
+        return None
+    delta, pb, gp, omega, k = _loops(goal, rho, direction, reach)
+    if k > max_loops:
+        return None
+    best = _representative(gp, pb, delta, k, omega)
+    if best is None:  # pragma: no cover - S(delta) is covered by the two patterns
+        return None
+    total = delta + TWO_PI * k
     out = [(lab, direction, ang) for lab, ang in best]
-    pe, he = compose(out, rho, ())
-    err = max(math.hypot(pe[0] - goal[0], pe[1] - goal[1]), abs(float(wrap_to_pi(he - goal[2]))))
+    px, py, he = compose_one(out, rho)
+    err = max(math.hypot(px - goal[0], py - goal[1]), abs(float(wrap_to_pi(he - goal[2]))))
     if err > 1e-8:
         return None
     return out, total, k

@@ -17,6 +17,7 @@ import numpy as np
 __all__ = [
     "circle_center",
     "compose",
+    "compose_one",
     "normal",
     "rotate",
     "tangent",
@@ -84,3 +85,21 @@ def compose(
         h = h + d * amount
         p = c - d * radius * normal(h)
     return p, h
+
+
+def compose_one(moves: Sequence[tuple[str, int, float]], rho: float) -> tuple[float, float, float]:
+    """`compose(moves, rho, ())` for one chain of float amounts, in Python floats: (x, y, h).
+
+    The same operations in the same order (arc: centre c = p + d r n(h), h += d x,
+    p = c - d r n(h); straight: p += x t(h)).
+    """
+    px = py = h = 0.0
+    for label, d, amount in moves:
+        if label == "S":
+            px, py = px + amount * math.cos(h), py + amount * math.sin(h)
+            continue
+        dr = d * (1.0 if label == "B" else rho)
+        cx, cy = px + dr * -math.sin(h), py + dr * math.cos(h)
+        h = h + d * amount
+        px, py = cx - dr * -math.sin(h), cy - dr * math.cos(h)
+    return px, py, h
