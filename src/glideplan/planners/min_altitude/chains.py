@@ -16,13 +16,11 @@ from glideplan.planners.min_altitude._tasks import (
     _ANGLE_TOL,
     _S_MIN,
     _Found,
+    _saturated_time,
     _Setup,
     _Task,
     _wrap,
 )
-from glideplan.planners.min_altitude.extremals import b_arc_segments
-from glideplan.pose import Pose
-from glideplan.segments import Segment
 
 __all__: list[str] = []
 
@@ -215,15 +213,16 @@ def _chain_found(
 ) -> _Found:
     n, g = task.family.arcs, st.glider
     angles = [a1, *([2.0 * s] * (n - 2)), an]
-    segs: list[Segment] = []
-    pose = Pose()
-    for k, angle in enumerate(angles):
-        segs += b_arc_segments(pose, 1 if k % 2 == 0 else -1, angle, lam, theta, g)
-        pose = segs[-1].end if segs else pose
+    dirs = [1 if k % 2 == 0 else -1 for k in range(n)]
+    stall, phi0 = 0.0, -theta
+    for d, angle in zip(dirs, angles, strict=True):
+        stall += _saturated_time(phi0, d, angle, lam, g)
+        phi0 += d * angle
     info = {
         "lambda": lam,
         "switch_angle": s,
-        "angles": [a * (1 if k % 2 == 0 else -1) for k, a in enumerate(angles)],
-        "saturated_time": float(sum(sg.duration for sg in segs if sg.label != "B")),
+        "angles": [a * d for d, a in zip(dirs, angles, strict=True)],
+        "saturated_time": float(stall),
     }
-    return _Found(segs, cost, info)
+    moves = tuple(("B", d, a) for d, a in zip(dirs, angles, strict=True))
+    return _Found(moves, cost, info, theta=theta)
