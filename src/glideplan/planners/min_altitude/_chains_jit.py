@@ -31,7 +31,7 @@ TWO_PI = 2.0 * math.pi
 # constants vector c: v_ms, v_stall, v_max, a, w_ms, w_stall, w_max, u_max, lam_s, scale
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _g(phi: float, lm: float, t: tuple, c: np.ndarray) -> tuple[float, float, float]:
     """Re G, Im G, W at heading phi for lambda lm with its `_lam_terms` t."""
     p_re, p_im, w, _ = _one(phi, lm, t[0], t[1], t[2], t[3], t[4], c[0], c[1], c[2], c[3],
