@@ -3,9 +3,11 @@
 Random goals uniform in the disc of radius 4 R_stf with uniform headings (DG-1001M). Times
 `synthesize` (every candidate of the sufficient set, paths built) per goal after a warm-up.
 Targets (issue 5): median <= 50 ms and p99 <= 500 ms over 200 goals; issue 28: median <= 10
-ms, p99 <= 20 ms with the same costs. The NumPy heading primitives (the previous kernel, now
-`extremals.COMPILED = False`) are timed on the same goals in the same run as the baseline;
-CPU time per goal (the machine is shared; its load is printed).
+ms, p99 <= 20 ms with the same costs. The NumPy path (`extremals.COMPILED = False`: the
+heading primitives and the chain solver's grid, cell test and Newton polish on NumPy, the
+previous kernels) is timed on the same goals in the same run as the baseline, and every
+goal's candidates (families, words, costs) are compared with it; CPU time per goal (the
+machine is shared; its load is printed).
 
     .venv/bin/python benchmarks/min_altitude.py [--n 200] [--seed 0]
 """
@@ -40,21 +42,37 @@ def random_goals(n: int, seed: int, radius: float) -> list[Pose]:
             for ri, ai, hi in zip(r, a, h, strict=True)]  # fmt: skip
 
 
-def _run(goals: list[Pose], glider, compiled: bool) -> tuple[np.ndarray, np.ndarray]:
-    """CPU ms per goal and best cost, with the compiled or the NumPy heading primitives."""
+def _run(goals: list[Pose], glider, compiled: bool) -> tuple[np.ndarray, np.ndarray, list]:
+    """CPU ms per goal, best cost and the candidates, with the compiled or the NumPy
+    kernels."""
     from glideplan.planners.min_altitude import extremals
 
     extremals.COMPILED = compiled
-    times, costs = [], []
+    times, costs, all_cands = [], [], []
     try:
         for goal in goals:
             t0 = time.process_time()
             cands = synthesize(goal, glider)
             times.append(time.process_time() - t0)
             costs.append(cands[0].cost if cands else math.nan)
+            all_cands.append(cands)
     finally:
         extremals.COMPILED = True
-    return np.array(times) * 1e3, np.array(costs)
+    return np.array(times) * 1e3, np.array(costs), all_cands
+
+
+def _same_candidates(a: list, b: list) -> tuple[int, float]:
+    """Goals whose candidate lists differ in families and words (ties in either order), and
+    the largest relative cost difference over the others."""
+    bad, worst = 0, 0.0
+    for ca, cb in zip(a, b, strict=True):
+        ca, cb = (sorted(cs, key=lambda c: (c.family, c.word, c.cost)) for cs in (ca, cb))
+        if [(c.family, c.word) for c in ca] != [(c.family, c.word) for c in cb]:
+            bad += 1
+            continue
+        for x, y in zip(ca, cb, strict=True):
+            worst = max(worst, abs(x.cost - y.cost) / max(1.0, abs(y.cost)))
+    return bad, worst
 
 
 def main() -> None:
@@ -68,23 +86,19 @@ def main() -> None:
     goals = random_goals(args.n, args.seed, 4.0 * glider.radius_stf)
     synthesize(goals[0], glider)  # warm-up (imports, caches, compiled kernels)
     print(f"load average (1 min): {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
-    t_old, cost_old = _run(goals, glider, compiled=False)
-    times, costs, best = [], [], collections.Counter()
-    for goal in goals:
-        t0 = time.process_time()
-        cands = synthesize(goal, glider)
-        times.append(time.process_time() - t0)
-        costs.append(cands[0].cost if cands else math.nan)
-        best[f"{cands[0].family} {cands[0].word}" if cands else "none"] += 1
-    t = np.array(times) * 1e3
+    t_old, cost_old, cands_old = _run(goals, glider, compiled=False)
+    t, costs, cands_new = _run(goals, glider, compiled=True)
+    best = collections.Counter(f"{c[0].family} {c[0].word}" if c else "none" for c in cands_new)
     median, p99 = float(np.median(t)), float(np.percentile(t, 99))
     print(f"synthesis over {args.n} random goals within 4 R_stf (DG-1001M, one core, CPU time)")
     print(f"  median {median:.1f} ms   p90 {np.percentile(t, 90):.1f} ms   "
           f"p99 {p99:.1f} ms   max {t.max():.1f} ms   mean {t.mean():.1f} ms")  # fmt: skip
-    print(f"  NumPy primitives (before), same goals: median {np.median(t_old):.1f} ms   "
+    print(f"  NumPy path (before), same goals: median {np.median(t_old):.1f} ms   "
           f"p99 {np.percentile(t_old, 99):.1f} ms")
     diff = np.nanmax(np.abs(np.array(costs) - cost_old) / np.abs(cost_old))
-    print(f"  best cost vs NumPy primitives: max relative difference {diff:.1e}")
+    bad, worst = _same_candidates(cands_new, cands_old)
+    print(f"  best cost vs NumPy path: max relative difference {diff:.1e}; all candidates: "
+          f"{bad} goals differ in families/words, costs within {worst:.1e}")
     print(f"  targets: median <= 50 ms {'PASS' if median <= 50 else 'FAIL'}, "
           f"p99 <= 500 ms {'PASS' if p99 <= 500 else 'FAIL'}; issue 28: median <= 10 ms "
           f"{'PASS' if median <= 10 else 'FAIL'}, p99 <= 20 ms "

@@ -1,6 +1,7 @@
 """The compiled (numba) kernels against the NumPy reference kernels they replace.
 
-Reference: `dubins_kernel.flat_word_totals` / `word_totals` (the NumPy kernel, itself checked
+Reference: `dubins_kernel.flat_word_totals` / `word_totals` and `dubins_distance` with
+`dubins.COMPILED = False` (the NumPy kernel, itself checked
 against OMPL and the dissertation in the other Dubins tests), `leg_costs.dubins_length_matrix`
 with the DP's argmin, and `Kernel.primitives` on NumPy for chapter 5. The compiled kernels
 evaluate the same formulas in the same order, so lengths agree to rounding (1e-12 relative)
@@ -16,6 +17,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from glideplan.missions.leg_costs import dubins_dp_step, dubins_length_matrix
+from glideplan.planners import dubins
 from glideplan.planners.dubins import dubins_distance
 from glideplan.planners.dubins_kernel import (
     NUMPY64,
@@ -94,16 +96,60 @@ def test_ties_go_to_the_first_word_as_in_numpy():
     np.testing.assert_array_equal(k, ref_k)
 
 
-def test_compiled_lengths_equal_dubins_distance_on_a_batch():
-    # 5,000 random queries: `dubins_distance` (NumPy) and the compiled kernel
+def _numpy_distance(*args, **kw):
+    """`dubins_distance` on the NumPy kernel (`dubins.COMPILED = False`)."""
+    dubins.COMPILED = False
+    try:
+        return dubins_distance(*args, **kw)
+    finally:
+        dubins.COMPILED = True
+
+
+def test_dubins_distance_runs_the_compiled_kernel_on_a_batch():
+    # 5,000 random queries: `dubins_distance` takes the compiled kernel once numba is loaded
+    # (it is, here) and equals the NumPy kernel's answers to 1e-12 relative (issue 28)
     rng = np.random.default_rng(3)
     n = 5000
     s = np.c_[rng.uniform(-5, 5, (n, 2)), rng.uniform(-4, 4, n)]
     g = np.c_[rng.uniform(-5, 5, (n, 2)), rng.uniform(-4, 4, n)]
-    d, k = dubins_distance(s, g, 1.5, return_index=True)
-    got, got_k = compiled_min_lengths(s, g, np.float64(1.5))
-    np.testing.assert_allclose(got * 1.5, d, rtol=1e-12)
+    assert dubins._use_compiled(n)
+    d, k = _numpy_distance(s, g, 1.5, return_index=True)
+    got, got_k = dubins_distance(s, g, 1.5, return_index=True)
+    np.testing.assert_allclose(got, d, rtol=1e-12)
     assert np.mean(got_k == k) > 0.999
+    raw, raw_k = compiled_min_lengths(s, g, np.float64(1.5))
+    np.testing.assert_array_equal(got, raw * 1.5)
+    np.testing.assert_array_equal(got_k, raw_k)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.lists(st.tuples(pose, special, st.floats(0.0, 1.0)), min_size=1, max_size=40),
+       st.floats(0.3, 3.0))
+def test_dubins_distance_degenerate_cases_as_the_numpy_kernel(rows, r):
+    # coincident poses, pure and full turns, straight ahead/behind (LSL = RSR ties): the
+    # compiled `dubins_distance` gives the NumPy kernel's lengths (1e-12; zero exactly)
+    s = np.array([row[0] for row in rows])
+    g = np.array([_degenerate(kind, p, u) for p, kind, u in rows])
+    g[:, :2] = s[:, :2] + (g[:, :2] - s[:, :2]) * r
+    ref = _numpy_distance(s, g, r)
+    got = dubins_distance(s, g, r)
+    np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-12 * r)
+    assert np.all(got[ref == 0.0] == 0.0)
+
+
+def test_dubins_distance_small_batches_do_not_import_numba():
+    # CLI start-up: without numba loaded, a small batch stays on NumPy; a large one compiles
+    import subprocess
+    import sys
+
+    code = ("import sys, numpy as np\n"
+            "from glideplan.planners.dubins import dubins_distance\n"
+            "dubins_distance(np.zeros(3), np.ones((100, 3)))\n"
+            "print('numba' in sys.modules)")  # fmt: skip
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)  # fmt: skip
+    assert out.stdout.strip() == "False"
+    assert dubins._COMPILED_FROM > 100
 
 
 @settings(max_examples=15, deadline=None)

@@ -80,6 +80,11 @@ def test_fig6_13_rows(reports):
     assert rows["the corner condition becomes active"].ours == "yes"
     assert rows["turn word"].ours == "L-R"
     assert abs(rows["altitude loss (cost)"].ours - 0.20926) < 1e-4
+    # the synthesis's cost beside the direct method's, both computed in the run (issue 28)
+    syn = rows["altitude loss by the synthesis (extremals)"]
+    assert syn.reference == reports[1]["fig6.13"].data["cost"]
+    assert reports[1]["fig6.13"].data["answered_by"] == "synthesis"
+    assert syn.ours <= syn.reference * (1.0 + 1e-4)
 
 
 def test_demo_cases_registered_and_fast():

@@ -125,6 +125,13 @@ def test_the_seed_examples_match_the_independent_collocation(goal, ref, word):
         ((0.071, 0.064, 1.484), 0.25607564),  # LRL where two inflections are born
         ((2.2529393807623883, 1.538660110683944, 2.7094775719810213), 0.17803666),  # RL
         ((0.09495881521509375, 0.10888884466533, 4.731428336896716), 0.25169040),  # RLR
+        # root curves born and dying between two tabulated moduli: no bracket sees them,
+        # Newton shooting from the search rows finds them (direct costs: the quiet-machine
+        # run of benchmarks/load_factor_vs_direct.py, seed 1, random049/166/189/193)
+        ((2.6877175990916644, 0.2562952316225413, 0.9364963505070206), 0.106727),  # RL
+        ((2.9180007964558943, 1.7534626949801124, 2.6490132772286668), 0.194438),  # RL
+        ((0.42629801554088687, -0.03407965055826079, 1.297392092294023), 0.264748),  # LR
+        ((-1.403264851742152, 0.4235861487393766, 2.314008829991801), 0.244368),  # RL
     ],
 )
 def test_hard_random_goals_are_at_or_below_the_direct_method(goal, direct):

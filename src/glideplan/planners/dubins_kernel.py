@@ -353,14 +353,15 @@ def _jit() -> Any:
 
 
 def compiled_min_lengths(
-    start: np.ndarray, goal: np.ndarray, radius: np.ndarray
+    start: np.ndarray, goal: np.ndarray, radius: np.ndarray, *, index: bool = True
 ) -> tuple[np.ndarray, np.ndarray]:
     """Shortest total (units of R) and word index of flat `(m, 3)` poses, compiled.
 
     The same lengths as the minimum of `flat_word_totals` (to ~1e-15 relative; ties to the
     first word); `radius` scalar or `(m,)`. Vectorised polynomial trigonometry, with the
     queries near a snap, a tie or a degenerate case recomputed by the scalar kernel
-    (`planners._dubins_simd`).
+    (`planners._dubins_simd`). With `index=False` the word indices stay floats (no
+    conversion pass over the batch).
     """
     from glideplan.planners import _dubins_simd
 
@@ -370,4 +371,4 @@ def compiled_min_lengths(
     inv = np.ascontiguousarray(np.atleast_1d(1.0 / np.asarray(radius, dtype=float)))
     _dubins_simd.flat_min_lengths(np.ascontiguousarray(start, dtype=float),
                                   np.ascontiguousarray(goal, dtype=float), inv, out, word)
-    return out, word.astype(np.intp)
+    return out, (word.astype(np.intp) if index else word)

@@ -245,22 +245,14 @@ def plan_load_factor(
     """Direct collocation from analytic guesses; the best start, refined, is the answer.
 
     `time_limit`: wall-clock seconds for the direct solve (all starts), or None for no limit.
+    Steps: `_checked_goal` (inputs), `solve_load_factor`, then `_failed_output` or
+    `_solved_output` (the best path with its arc classification and control history).
     """
     glider = problem.vehicle
     assert isinstance(glider, LoadFactorGlider)
-    check_integer("max_starts", max_starts, 1)
-    check_integer("max_iterations", max_iterations, 1)
-    goal = problem.goal
-    if math.hypot(goal.x, goal.y) < 1e-12 and abs(goal.heading) < 1e-12:
-        return PlannerOutput(candidates=(), message="the goal is the start: nothing to fly")
-    distance = math.hypot(goal.x, goal.y) / glider.length_scale
-    if distance > MAX_GOAL_DISTANCE:
-        raise InvalidParameterError(
-            "goal",
-            float(f"{distance:.6g}"),
-            f"distance from the start must be at most {MAX_GOAL_DISTANCE:g} length units "
-            "for the load-factor direct method (farther, its mesh refinement takes minutes)",
-        )
+    early = _checked_goal(problem, max_starts, max_iterations)
+    if early is not None:
+        return early
     res = solve_load_factor(
         glider,
         problem.goal,
@@ -273,37 +265,65 @@ def plan_load_factor(
         ipopt_options={"max_iter": int(max_iterations)},
         time_limit=time_limit,
     )
-    starts = [s.to_dict() for s in res.starts]
     stats = {
         k: v
         for k, v in res.stats.items()
         if isinstance(v, (int, float, str, bool, list, dict, type(None)))
     }
     if not res.ok:
-        cands = tuple(
-            Candidate(s.label, "D", math.inf, None, Status.FAILED, {"ipopt": s.status})
-            for s in res.starts
+        return _failed_output(res, stats)
+    return _solved_output(glider, res, stats, classification_tol)
+
+
+def _checked_goal(problem: Problem, max_starts: int, max_iterations: int) -> PlannerOutput | None:
+    """Validate the direct method's options and goal; the answer when there is nothing to
+    fly (the goal is the start), else None."""
+    check_integer("max_starts", max_starts, 1)
+    check_integer("max_iterations", max_iterations, 1)
+    goal = problem.goal
+    if math.hypot(goal.x, goal.y) < 1e-12 and abs(goal.heading) < 1e-12:
+        return PlannerOutput(candidates=(), message="the goal is the start: nothing to fly")
+    distance = math.hypot(goal.x, goal.y) / problem.vehicle.length_scale
+    if distance > MAX_GOAL_DISTANCE:
+        raise InvalidParameterError(
+            "goal",
+            float(f"{distance:.6g}"),
+            f"distance from the start must be at most {MAX_GOAL_DISTANCE:g} length units "
+            "for the load-factor direct method (farther, its mesh refinement takes minutes)",
         )
-        return PlannerOutput(
-            candidates=cands,
-            stats=stats,
-            message=f"direct method failed: {res.message}",
-            extras={"starts": starts},
-            failure=Status.SOLVER_FAILED,
-            warnings=res.warnings,
-        )
+    return None
+
+
+def _failed_output(res: DirectResult, stats: dict[str, Any]) -> PlannerOutput:
+    """Every start as a failed candidate, with IPOPT's message."""
+    cands = tuple(
+        Candidate(s.label, "D", math.inf, None, Status.FAILED, {"ipopt": s.status})
+        for s in res.starts
+    )
+    return PlannerOutput(
+        candidates=cands,
+        stats=stats,
+        message=f"direct method failed: {res.message}",
+        extras={"starts": [s.to_dict() for s in res.starts]},
+        failure=Status.SOLVER_FAILED,
+        warnings=res.warnings,
+    )
+
+
+def _solved_output(
+    glider: LoadFactorGlider, res: DirectResult, stats: dict[str, Any], classification_tol: float
+) -> PlannerOutput:
+    """The best start's path (word from its arc classification) and the other starts."""
     assert res.path is not None  # a solved DirectResult carries its path
     path = res.path.with_vehicle(glider)
     hist = control_history(glider, path)
     arcs = classify_controls(
         glider, hist["s"], hist["v"], hist["n"], hist["direction"], tol=classification_tol
     )
-    cost = path.cost("altitude")
-    word = arcs.turn_word.replace("-", "") or "S"
     best = Candidate(
-        word,
+        arcs.turn_word.replace("-", "") or "S",
         path.family,
-        cost,
+        path.cost("altitude"),
         path,
         Status.FEASIBLE,
         {"collocation_cost": res.cost, "start": res.stats.get("best_start")},
@@ -330,7 +350,7 @@ def plan_load_factor(
             "bank_deg": np.degrees(hist["bank"]),
             "label": [str(x) for x in arcs.labels],
         },
-        "starts": starts,
+        "starts": [s.to_dict() for s in res.starts],
     }
     return PlannerOutput(
         candidates=(best, *others),

@@ -55,6 +55,7 @@ NODE_STEP = 0.004  # node spacing of the returned path (controls linear between 
 N_ALPHA = 96  # uniform line headings scanned per P (plus refinements near the saddle)
 COST_MARGIN = 0.02  # brackets whose interpolated cost exceeds the best found by this are skipped
 MAX_REFINE = 12
+RESCUE_STARTS = 40  # search rows shot from where the brackets found no extremal below the bound
 
 
 @dataclass(frozen=True)
@@ -137,29 +138,59 @@ def dubins_bound(glider: LoadFactorGlider, goal: Pose) -> tuple[float, str]:
     return best, word
 
 
-def synthesize(glider: LoadFactorGlider, goal: Pose, *, polish: int = 1) -> list[Extremal]:
-    """Extremals from the origin to `goal`, cheapest first (at most `polish`)."""
-    from glideplan.planners.load_factor_kernel import kink_nodes, shoot
-    from glideplan.planners.load_factor_orbits import (
-        brackets,
-        ends,
-        refine,
-        refine_z,
-        search,
-    )
+def synthesize(
+    glider: LoadFactorGlider, goal: Pose, *, polish: int = 1, bound: float = math.inf
+) -> list[Extremal]:
+    """Extremals from the origin to `goal`, cheapest first (at most `polish`).
 
+    The orbit search (`_search`) brackets the extremals between tabulated moduli and solves
+    the cheapest (`_solve_brackets`); where that finds none cheaper than `bound` (an upper
+    bound of the optimum, e.g. `dubins_bound`), Newton shooting from the search's rows
+    (`_rescue`) looks for the extremals whose root curves live between two tabulated moduli.
+    """
     tabs = _tables(glider)
     if tabs is None:
         return []
-    ps, rows_t, off, info, prm = tabs
     gx, gy, gpsi = float(goal.x), float(goal.y), float(goal.heading)
     if gx > 0.0 and abs(gy) <= 1e-12 * gx and abs(math.remainder(gpsi, 2.0 * math.pi)) <= 1e-12:
         # straight ahead: wings-level flight (v = n = 1, the saddle itself), 2 p1 per length
         nd = np.array([[0.0, 0, 0, 0, 0, 0, 0, 1, 0], [gx, 0, 0, 0, gx, gx, 0, 1, 0]])
         return [Extremal(0.0, 0.0, gx, 2.0 * glider.p1 * gx, nd, 0.0, 1.0)]
-    lmax = 2.0 * math.hypot(gx, gy) + 15.0
-    rows = search(rows_t, off, info, ps, TABLE_STEP, prm, gx, gy, gpsi, lmax, N_ALPHA)
-    found: list[np.ndarray] = []
+    rows, lmax = _search(tabs, goal)
+    out: list[Extremal] = []
+    for res in _solve_brackets(rows, tabs, goal, lmax):
+        if len(out) >= polish:
+            break
+        al, p, length, w0 = res[0], res[1], res[2], res[5]
+        ext = _polish(np.array([w0, p * math.sin(al), length]), float(p), glider, goal, tabs)
+        if ext is not None:
+            out.append(ext)
+    if not out or out[0].cost > bound * (1.0 + 1e-9):
+        out += _rescue(rows, tabs, glider, goal, bound)
+    out.sort(key=lambda e: e.cost)
+    return out[: max(1, polish)]
+
+
+def _search(tabs: tuple, goal: Pose) -> tuple[np.ndarray, float]:
+    """Every tabulated modulus's roots of the lateral condition with their along-line
+    mismatch (`load_factor_orbits.search` rows) for extremals up to the length lmax."""
+    from glideplan.planners.load_factor_orbits import search
+
+    ps, rows_t, off, info, prm = tabs
+    lmax = 2.0 * math.hypot(goal.x, goal.y) + 15.0
+    rows = search(rows_t, off, info, ps, TABLE_STEP, prm, float(goal.x), float(goal.y),
+                  float(goal.heading), lmax, N_ALPHA)  # fmt: skip
+    return rows, lmax
+
+
+def _solve_brackets(rows: np.ndarray, tabs: tuple, goal: Pose, lmax: float) -> list[np.ndarray]:
+    """The brackets of the search rows (neighbouring moduli, root ends) solved cheapest
+    first, while within `COST_MARGIN` of the best: (alpha, P, L, C, t, w0, |e2|, ok) rows,
+    distinct, cheapest first."""
+    from glideplan.planners.load_factor_orbits import brackets, ends, refine, refine_z
+
+    ps, _, _, _, prm = tabs
+    gx, gy, gpsi = float(goal.x), float(goal.y), float(goal.heading)
     seeds: list[tuple[float, tuple]] = [
         (c, (rows[int(ia)], rows[int(ib)], ps)) for ia, ib, c in brackets(rows, ps, gpsi, prm)
     ]
@@ -170,6 +201,7 @@ def synthesize(glider: LoadFactorGlider, goal: Pose, *, polish: int = 1) -> list
         c = ra[6] + ra[4] / (ra[4] - rb[4]) * (rb[6] - ra[6]) if ra[4] != rb[4] else ra[6]
         seeds.append((c, (e[0], e[1], e[2] > 0.0, ra, rb)))
     seeds.sort(key=lambda sd: sd[0])
+    found: list[np.ndarray] = []
     for c_est, args in seeds[:MAX_REFINE]:
         if found and c_est > min(f[3] for f in found) * (1.0 + COST_MARGIN):
             break
@@ -185,35 +217,63 @@ def synthesize(glider: LoadFactorGlider, goal: Pose, *, polish: int = 1) -> list
             continue
         found.append(res)
     found.sort(key=lambda f: f[3])
-    out: list[Extremal] = []
-    for res in found:
-        if len(out) >= polish:
-            break
-        al, p, length, w0 = res[0], res[1], res[2], res[5]
-        z0 = np.array([w0, p * math.sin(al), length])
-        z = shoot(z0, gx, gy, gpsi, max(16, math.ceil(length / FINE_STEP)), prm, 4)
-        if z[3] > 1e-7 or not z[2] > 0.0:
+    return found
+
+
+def _polish(
+    z0: np.ndarray, modulus: float, glider: LoadFactorGlider, goal: Pose, tabs: tuple
+) -> Extremal | None:
+    """The extremal from (w0, Py, L) ~ z0 by Newton shooting on the fine step, with its
+    nodes (None if it does not converge)."""
+    from glideplan.planners.load_factor_kernel import kink_nodes, shoot
+
+    prm = tabs[4]
+    gx, gy, gpsi = float(goal.x), float(goal.y), float(goal.heading)
+    z = shoot(z0, gx, gy, gpsi, max(16, math.ceil(z0[2] / FINE_STEP)), prm, 4)
+    if z[3] > 1e-7 or not z[2] > 0.0:
+        return None
+    # the path's nodes: the same RK4 steps as the last Newton iterations
+    # and w (so kappa on the stall boundary) moving at most 0.02 per node (|w'| <= P)
+    n = max(64, math.ceil(z[2] / NODE_STEP), math.ceil(z[2] * modulus / 0.02))
+    z = shoot(z[:3], gx, gy, gpsi, n, prm, 2)
+    if z[3] > 1e-10:
+        return None
+    nd = kink_nodes(z[0], z[1], z[2], n, prm)
+    cost = 2.0 * glider.p1 * float(nd[-1, 4])
+    return Extremal(float(z[0]), float(z[1]), float(z[2]), cost, nd, float(z[3]), modulus)
+
+
+def _rescue(
+    rows: np.ndarray, tabs: tuple, glider: LoadFactorGlider, goal: Pose, bound: float
+) -> list[Extremal]:
+    """Extremals by Newton shooting (table step) from the search rows cheaper than 1.3 x
+    `bound` with the least along-line mismatch (at most `RESCUE_STARTS`), the cheapest
+    polished: for goals whose extremal lies on a root curve born and dying between two
+    tabulated moduli (no bracket sees it)."""
+    from glideplan.planners.load_factor_kernel import g_star, integrate, shoot, w_of_g_star
+
+    ps, _, _, _, prm = tabs
+    gx, gy, gpsi = float(goal.x), float(goal.y), float(goal.heading)
+    c_max = 1.3 * bound / (2.0 * glider.p1)
+    cand = rows[rows[:, 6] < c_max] if math.isfinite(c_max) else rows
+    cand = cand[np.argsort(np.abs(cand[:, 4]), kind="stable")][:RESCUE_STARTS]
+    best: tuple[float, np.ndarray] | None = None
+    for r in cand:
+        p, al = ps[int(r[0])], r[3]
+        s0 = 1.0 if int(r[1]) % 2 == 0 else -1.0
+        z0 = np.array([s0 * w_of_g_star(p * math.cos(al), prm), p * math.sin(al), r[5]])
+        n = max(16, math.ceil(r[5] / TABLE_STEP))
+        z = shoot(z0, gx, gy, gpsi, n, prm, 12)
+        if z[3] > 1e-8 or not z[2] > 0.0:
             continue
-        # the path's nodes: the same RK4 steps as the last Newton iterations
-        # and w (so kappa on the stall boundary) moving at most 0.02 per node (|w'| <= P)
-        n = max(64, math.ceil(z[2] / NODE_STEP), math.ceil(z[2] * p / 0.02))
-        z = shoot(z[:3], gx, gy, gpsi, n, prm, 2)
-        if z[3] > 1e-10:
-            continue
-        nd = kink_nodes(z[0], z[1], z[2], n, prm)
-        out.append(
-            Extremal(
-                float(z[0]),
-                float(z[1]),
-                float(z[2]),
-                2.0 * glider.p1 * float(nd[-1, 4]),
-                nd,
-                float(z[3]),
-                float(p),
-            )
-        )
-    out.sort(key=lambda e: e.cost)
-    return out
+        c = integrate(z[0], z[1], z[2], max(16, math.ceil(z[2] / TABLE_STEP)), prm)[4]
+        if best is None or c < best[0]:
+            best = (c, z[:3].copy())
+    if best is None:
+        return []
+    z = best[1]
+    ext = _polish(z, math.hypot(g_star(z[0], prm), z[1]), glider, goal, tabs)
+    return [] if ext is None else [ext]
 
 
 def _corrected(t: np.ndarray, f: np.ndarray, smooth: np.ndarray) -> np.ndarray:
@@ -294,8 +354,8 @@ def plan_load_factor_synthesis(problem: Problem) -> PlannerOutput:
     assert isinstance(glider, LoadFactorGlider)
     goal = problem.goal
     t0 = time.perf_counter()
-    exts = synthesize(glider, goal)
     bound, bound_word = dubins_bound(glider, goal)
+    exts = synthesize(glider, goal, bound=bound)
     seconds = time.perf_counter() - t0
     check = {"dubins_bound": bound, "dubins_bound_word": bound_word}
     if not exts:

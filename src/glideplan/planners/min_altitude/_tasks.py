@@ -10,7 +10,13 @@ from typing import Any
 
 import numpy as np
 
-from glideplan.planners.min_altitude.extremals import Kernel
+from glideplan.planners.min_altitude.extremals import (
+    Kernel,
+    b_arc_pieces,
+    b_arc_segments,
+    constant_speed_segment,
+    straight_segment,
+)
 from glideplan.planners.min_altitude.families import Family
 from glideplan.pose import Pose, mod_2pi
 from glideplan.segments import Segment
@@ -36,11 +42,48 @@ class _Setup:
 
 @dataclass(frozen=True)
 class _Found:
-    """A solution in the solver's frame: its segments, closed-form cost and parameters."""
+    """A solution in the solver's frame: its moves, closed-form cost and parameters.
 
-    segments: list[Segment]
+    `moves` are ("B", direction, angle), ("S", 0, length) or ("C", direction, angle) pieces
+    from the origin (heading 0); B arcs share `info["lambda"]` and `theta`, C arcs fly at
+    `info["speed"]` with label `label`. The segments are built only for the candidates kept
+    (`segments`), in the solver's frame or its mirror image."""
+
+    moves: tuple[tuple[str, int, float], ...]
     cost: float
     info: dict[str, Any]
+    theta: float = 0.0
+    label: str = ""
+    keep_empty: bool = False  # a zero-length straight is the path (goal on the start)
+
+    @property
+    def letters(self) -> str:
+        """The turn word of the moves of positive length (equal neighbours merged)."""
+        out = ""
+        for kind, direction, amount in self.moves:
+            letter = "S" if kind == "S" else ("L" if direction > 0 else "R")
+            if amount > 0.0 and not out.endswith(letter):
+                out += letter
+        return out
+
+    def segments(self, glider: QuadraticPolarGlider, mirror: bool = False) -> list[Segment]:
+        """The path's segments from the origin; `mirror`: reflected about the x axis."""
+        sign = -1 if mirror else 1
+        segs: list[Segment] = []
+        pose = Pose()
+        for kind, direction, amount in self.moves:
+            if kind == "B":
+                lam, theta = self.info["lambda"], sign * self.theta
+                new = b_arc_segments(pose, sign * direction, amount, lam, theta, glider)
+            elif kind == "S":
+                new = straight_segment(pose, amount, glider, keep_empty=self.keep_empty)
+            else:
+                v = self.info["speed"]
+                new = constant_speed_segment(pose, sign * direction, amount, v, glider,
+                                             self.label)  # fmt: skip
+            segs += new
+            pose = segs[-1].end if segs else pose
+        return segs
 
 
 @dataclass(frozen=True)
@@ -59,6 +102,14 @@ class _Task:
             mirrored = Pose(goal.x, -goal.y, -goal.heading)
             return cls(family, word, True, mirrored, word.translate(_MIRROR))
         return cls(family, word, False, goal, word)
+
+
+def _saturated_time(
+    phi0: float, direction: int, angle: float, lam: float, glider: QuadraticPolarGlider
+) -> float:
+    """Time (s) a B arc (`extremals.b_arc_pieces`) spends at a clipped speed."""
+    pieces = b_arc_pieces(phi0, direction, angle, lam, glider) if angle > 0.0 else []
+    return sum(a1 - a0 for a0, a1, v in pieces if v > 0.0) / glider.u_max
 
 
 def _wrap(angle: np.ndarray | float, low: np.ndarray | float) -> np.ndarray:

@@ -16,13 +16,11 @@ from glideplan.planners.min_altitude._tasks import (
     _ANGLE_TOL,
     _S_MIN,
     _Found,
+    _saturated_time,
     _Setup,
     _Task,
     _wrap,
 )
-from glideplan.planners.min_altitude.extremals import b_arc_segments
-from glideplan.pose import Pose
-from glideplan.segments import Segment
 
 __all__: list[str] = []
 
@@ -116,9 +114,14 @@ def _newton_2d(
 def _solve_chains(
     tasks: list[_Task], st: _Setup, grid: tuple[int, int]
 ) -> list[tuple[_Task, _Found]]:
-    """All chains of all tasks at once: one grid scan and one Newton run (vectorised)."""
+    """All chains of all tasks at once: one grid scan and one Newton run (vectorised NumPy;
+    compiled in one call unless `extremals.COMPILED` is False)."""
     if not tasks:
         return []
+    from glideplan.planners.min_altitude import extremals
+
+    if extremals.COMPILED:
+        return _solve_chains_compiled(tasks, st, grid)
     ns, nt = grid
     n = np.array([task.family.arcs for task in tasks])[:, None, None]
     goals = np.array([task.goal.as_array() for task in tasks])[:, None, None, :]
@@ -162,6 +165,42 @@ def _solve_chains(
     return out
 
 
+def _solve_chains_compiled(
+    tasks: list[_Task], st: _Setup, grid: tuple[int, int]
+) -> list[tuple[_Task, _Found]]:
+    """`_solve_chains` by the compiled kernel (`_chains_jit.solve_chains`): the same grid,
+    cell test, Newton polish and acceptance rules."""
+    from glideplan.planners.min_altitude._chains_jit import solve_chains
+
+    ns, nt = grid
+    k = st.kern
+    consts = np.array([k.v_ms, k.v_stall, k.v_max, k.a, k.w_ms, k.w_stall, k.w_max, k.u_max,
+                       st.lam_s, st.scale])  # fmt: skip
+    rows = solve_chains(
+        np.array([task.family.arcs for task in tasks], dtype=np.int64),
+        np.array([task.goal.as_array() for task in tasks], dtype=float),
+        np.linspace(_S_MIN, math.pi, ns),
+        np.linspace(-0.05, 1.05, nt),
+        consts,
+        np.array([_S_MIN * 0.999, -0.3]),
+        np.array([math.pi, 1.3]),
+    )
+    out: list[tuple[_Task, _Found]] = []
+    seen: set[tuple] = set()
+    for kk, s, t, err, res, an, lam, theta, cost in rows.tolist():
+        if not (err < 1e-9 and -1e-9 <= t <= 1 + 1e-9):
+            continue
+        t = min(max(t, 0.0), 1.0)
+        key = (int(kk), round(s, 7), round(t, 7))
+        if key in seen or res > 1e-9 or not -_ANGLE_TOL <= an <= 2 * s + _ANGLE_TOL:
+            continue
+        seen.add(key)
+        task = tasks[int(kk)]
+        an = min(max(an, 0.0), 2 * s)
+        out.append((task, _chain_found(task, st, s, 2 * s * t, an, lam, theta, cost)))
+    return out
+
+
 def _chain_found(
     task: _Task,
     st: _Setup,
@@ -174,15 +213,16 @@ def _chain_found(
 ) -> _Found:
     n, g = task.family.arcs, st.glider
     angles = [a1, *([2.0 * s] * (n - 2)), an]
-    segs: list[Segment] = []
-    pose = Pose()
-    for k, angle in enumerate(angles):
-        segs += b_arc_segments(pose, 1 if k % 2 == 0 else -1, angle, lam, theta, g)
-        pose = segs[-1].end if segs else pose
+    dirs = [1 if k % 2 == 0 else -1 for k in range(n)]
+    stall, phi0 = 0.0, -theta
+    for d, angle in zip(dirs, angles, strict=True):
+        stall += _saturated_time(phi0, d, angle, lam, g)
+        phi0 += d * angle
     info = {
         "lambda": lam,
         "switch_angle": s,
-        "angles": [a * (1 if k % 2 == 0 else -1) for k, a in enumerate(angles)],
-        "saturated_time": float(sum(sg.duration for sg in segs if sg.label != "B")),
+        "angles": [a * d for d, a in zip(dirs, angles, strict=True)],
+        "saturated_time": float(stall),
     }
-    return _Found(segs, cost, info)
+    moves = tuple(("B", d, a) for d, a in zip(dirs, angles, strict=True))
+    return _Found(moves, cost, info, theta=theta)

@@ -40,6 +40,7 @@ __all__ = [
     "Kernel",
     "b_arc_change",
     "b_arc_change_unclipped",
+    "b_arc_pieces",
     "b_arc_segments",
     "constant_speed_arc_change",
     "straight_change",
@@ -277,6 +278,38 @@ def b_arc_change(
 # ----- segments -----------------------------------------------------------------------------
 
 
+def b_arc_pieces(
+    phi0: float, direction: int, angle: float, lam: float, glider: QuadraticPolarGlider
+) -> list[tuple[float, float, float]]:
+    """The pieces of a B arc from phi0 = psi0 - theta turning `angle` >= 0 in `direction`:
+    (a0, a1, v) with a0, a1 the heading change from the start at the piece's ends and v the
+    clipped speed (v_stall or v_max) of a constant-speed piece, 0.0 where v_ms - lam cos(phi)
+    is inside the speed range. The cuts are the band edges +-phi_s, +-(pi - phi_m) of
+    `Kernel.clip_angles` (modulo 2 pi)."""
+    v_ms, v_stall, v_max = glider.v_ms, glider.v_stall, glider.v_max
+    lo_v, hi_v = v_ms - v_stall, v_max - v_ms
+    phi_s = math.acos(min(max(lo_v / lam, -1.0), 1.0)) if lam > lo_v else 0.0
+    phi_m = math.acos(min(max(hi_v / lam, -1.0), 1.0)) if lam > hi_v else 0.0
+    lo, hi = sorted((phi0, phi0 + direction * angle))
+    bands = ([phi_s, -phi_s] if phi_s > 0.0 else []) + (
+        [math.pi - phi_m, phi_m - math.pi] if phi_m > 0.0 else []
+    )
+    cuts = [
+        c + TWO_PI * k
+        for c in bands
+        for k in range(math.ceil((lo - c) / TWO_PI), math.floor((hi - c) / TWO_PI) + 1)
+    ]
+    # distances along the arc (heading change from the start) at which the law changes
+    marks = sorted({abs(c - phi0) for c in cuts if lo < c < hi})
+    bounds = [0.0, *[m for m in marks if 1e-12 < m < angle - 1e-12], angle]
+    pieces = []
+    for a0, a1 in itertools.pairwise(bounds):
+        v_free = v_ms - lam * math.cos(phi0 + direction * 0.5 * (a0 + a1))
+        v = v_stall if v_free < v_stall else (v_max if v_free > v_max else 0.0)
+        pieces.append((a0, a1, v))
+    return pieces
+
+
 def b_arc_segments(
     start: Pose,
     direction: int,
@@ -295,33 +328,15 @@ def b_arc_segments(
     """
     if angle <= 0.0:
         return []
-    kern = Kernel.of(glider)
-    phi_s, phi_m = (float(q) for q in kern.clip_angles(np.asarray(lam, dtype=float)))
-    phi0 = start.heading - theta
-    lo, hi = sorted((phi0, phi0 + direction * angle))
-    bands = ([phi_s, -phi_s] if phi_s > 0.0 else []) + (
-        [math.pi - phi_m, phi_m - math.pi] if phi_m > 0.0 else []
-    )
-    cuts = [
-        c + TWO_PI * k
-        for c in bands
-        for k in range(math.ceil((lo - c) / TWO_PI), math.floor((hi - c) / TWO_PI) + 1)
-    ]
-    # distances along the arc (heading change from the start) at which the law changes
-    marks = sorted({abs(c - phi0) for c in cuts if lo < c < hi})
-    bounds = [0.0, *[m for m in marks if 1e-12 < m < angle - 1e-12], angle]
+    u, v_ms = glider.u_max, glider.v_ms
     segments: list[Segment] = []
     pose = start
-    for a0, a1 in itertools.pairwise(bounds):
-        mid = phi0 + direction * 0.5 * (a0 + a1)
-        v_free = kern.v_ms - lam * math.cos(mid)
-        piece = a1 - a0
+    for a0, a1, v in b_arc_pieces(start.heading - theta, direction, angle, lam, glider):
         seg: Segment
-        if v_free < kern.v_stall or v_free > kern.v_max:
-            v = kern.v_stall if v_free < kern.v_stall else kern.v_max
-            seg = Arc(pose, piece, v / kern.u_max, direction, v, SATURATED_LABEL)
+        if v > 0.0:
+            seg = Arc(pose, a1 - a0, v / u, direction, v, SATURATED_LABEL)
         else:
-            seg = HeadingSpeedArc(pose, piece, direction, kern.u_max, kern.v_ms, lam, theta, label)
+            seg = HeadingSpeedArc(pose, a1 - a0, direction, u, v_ms, lam, theta, label)
         segments.append(seg)
         pose = seg.end
     return segments

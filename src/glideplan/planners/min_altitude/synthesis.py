@@ -32,26 +32,23 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
+from typing import NamedTuple
 
 import numpy as np
 
 from glideplan.path import Path
 from glideplan.planners.min_altitude._tasks import (
     _ANGLE_TOL,
+    _MIRROR,
     _Found,
+    _saturated_time,
     _Setup,
     _Task,
     _wrap,
 )
 from glideplan.planners.min_altitude.chains import _newton_2d, _solve_chains
-from glideplan.planners.min_altitude.extremals import (
-    b_arc_segments,
-    constant_speed_segment,
-    straight_segment,
-)
 from glideplan.planners.min_altitude.families import FAMILIES, Family
 from glideplan.pose import TWO_PI, Pose
-from glideplan.segments import Segment
 from glideplan.solution import Candidate, Status
 from glideplan.vehicles.quadratic_polar_glider import QuadraticPolarGlider
 
@@ -81,22 +78,35 @@ def synthesize(
     """
     st = _Setup.of(glider)
     tasks = [_Task.of(fam, word, goal) for fam in families for word in fam.words]
-    out: list[Candidate] = []
+    found: list[_Pending] = []
     for solver in dict.fromkeys(task.family.solver for task in tasks):
         group = [task for task in tasks if task.family.solver == solver]
-        for task, found in _SOLVERS[solver](group, st, grid):
-            if not found.segments:
-                continue
-            path = Path(tuple(found.segments), glider)
-            if task.reflect:
-                path = path.reflected()
-            info = {"orientation": task.word, **found.info}
-            if task.reflect and "angles" in info:  # solvers report the L-first mirror image
-                info["angles"] = [-a for a in info["angles"]]
-            out.append(
-                Candidate(path.word, task.family.name, found.cost, path, Status.FEASIBLE, info)
-            )
-    return _unique(out)
+        for task, f in _SOLVERS[solver](group, st, grid):
+            letters = f.letters
+            if letters or f.keep_empty:
+                word = letters.translate(_MIRROR) if task.reflect else letters
+                found.append(_Pending(word, task.family.name, f.cost, task, f))
+    # the segments are built for the candidates kept only, directly in the goal's frame
+    return tuple(_candidate(p, glider) for p in _unique(found))
+
+
+class _Pending(NamedTuple):
+    """A solution before its path is built: turn word, family, cost (m) and the solver's."""
+
+    word: str
+    family: str
+    cost: float
+    task: _Task
+    found: _Found
+
+
+def _candidate(p: _Pending, glider: QuadraticPolarGlider) -> Candidate:
+    """The candidate of a solution, its path built (mirrored for a mirrored task)."""
+    path = Path(tuple(p.found.segments(glider, mirror=p.task.reflect)), glider)
+    info = {"orientation": p.task.word, **p.found.info}
+    if p.task.reflect and "angles" in info:  # solvers report the L-first mirror image
+        info["angles"] = [-a for a in info["angles"]]
+    return Candidate(p.word, p.family, p.cost, path, Status.FEASIBLE, info)
 
 
 def _each(
@@ -110,16 +120,16 @@ def _each(
     return run
 
 
-def _unique(cands: list[Candidate]) -> tuple[Candidate, ...]:
+def _unique(cands: list[_Pending]) -> list[_Pending]:
     """Sort by cost and keep one of each path (same turn word and cost); a path that two
     families produce (e.g. a B arc with lambda = 0 is a B_ms arc) keeps the constant-speed
     family, else the one with fewer arcs."""
 
-    def preference(c: Candidate) -> tuple[int, int]:
+    def preference(c: _Pending) -> tuple[int, int]:
         return (0 if c.family.startswith(("Bms", "Bstall")) else 1, len(c.family))
 
     cands.sort(key=lambda c: c.cost)
-    kept: list[Candidate] = []
+    kept: list[_Pending] = []
     for c in cands:
         for i, k in enumerate(kept):
             if k.word == c.word and abs(k.cost - c.cost) <= 1e-9 * max(1.0, c.cost):
@@ -128,99 +138,110 @@ def _unique(cands: list[Candidate]) -> tuple[Candidate, ...]:
                 break
         else:
             kept.append(c)
-    return tuple(kept)
+    return kept
 
 
 # ----- BSB: all roots of a quartic in e^{i alpha} -------------------------------------------
 
 
 def _solve_bsb(goal: Pose, st: _Setup, fam: Family, word: str) -> list[_Found]:
-    from scipy.optimize import newton  # imported where used (start-up time)
-
-    g, kern, lam, u = st.glider, st.kern, st.lam_s, st.glider.u_max
-    sa = 1.0 if word[0] == "L" else -1.0
+    """BSB of orientation `word` (first turn L): every root alpha of the quartic."""
     sg = 1.0 if word[2] == "L" else -1.0
+    coeffs = _bsb_coefficients(goal, st, sg)
+    if not any(coeffs):  # the goal is the start: nothing to fly
+        return [_Found((("S", 0, 0.0),), 0.0, {"lambda": st.lam_s}, keep_empty=True)]
+    out: list[_Found] = []
+    for a0 in _bsb_angles(coeffs, st):
+        found = _bsb_found(a0, goal, st, sg)
+        if found is not None:
+            out.append(found)
+    return out
+
+
+def _bsb_coefficients(goal: Pose, st: _Setup, sg: float) -> tuple[float, ...]:
+    """(c0, c1, s1, c2, s2) of g(alpha) = c0 + c1 cos a + s1 sin a + c2 cos 2a + s2 sin 2a,
+    the imaginary part of (x1 + i y1) e^{-i alpha} = L - (1/u) [(P(pi) - P(pi - alpha)) +
+    sg (P(pi + gamma) - P(pi))] with gamma = psi1 - alpha (first turn L)."""
+    g, u, sa = st.glider, st.glider.u_max, 1.0
     x1, y1, p1 = goal.x, goal.y, goal.heading
-    vms, q = g.v_ms, lam / 4.0
-    # (x1 + i y1) e^{-i alpha} = L - (1/u) [sa (P(pi) - P(pi - alpha)) + sg (P(pi + gamma) - P(pi))]
-    # with gamma = psi1 - alpha; its imaginary part is
-    # g(alpha) = c0 + c1 cos a + s1 sin a + c2 cos 2a + s2 sin 2a = 0.
+    vms, q = g.v_ms, st.lam_s / 4.0
     c0 = (sa - sg) * (vms + q) / u
     c1 = y1 + (-sa * vms + sg * vms * math.cos(p1)) / u
     s1 = -x1 + sg * vms * math.sin(p1) / u
     c2 = (-sa + sg * math.cos(2 * p1)) * q / u
     s2 = sg * q * math.sin(2 * p1) / u
-    coeffs = np.array(
+    return c0, c1, s1, c2, s2
+
+
+def _bsb_angles(coeffs: tuple[float, ...], st: _Setup) -> list[float]:
+    """The distinct roots alpha in [0, 2 pi) of g: roots z = e^{i alpha} of the quartic
+    z^2 g (all of them, `numpy.roots`), those on the unit circle polished by Newton's method
+    on g (a failure leaves a residual, checked); alpha within 1e-9 of 0 or 2 pi is 0."""
+    c0, c1, s1, c2, s2 = coeffs
+    poly = np.array(
         [(c2 - 1j * s2) / 2, (c1 - 1j * s1) / 2, c0, (c1 + 1j * s1) / 2, (c2 + 1j * s2) / 2]
     )
-    big = np.max(np.abs(coeffs))
-    if big == 0.0:  # the goal is the start: nothing to fly
-        return [_Found(straight_segment(Pose(), 0.0, g, keep_empty=True), 0.0, {"lambda": lam})]
-    coeffs = np.where(np.abs(coeffs) < 1e-14 * big, 0.0, coeffs)
-    nz = np.flatnonzero(coeffs)
-    roots = np.roots(coeffs[nz[0] :]) if nz.size > 1 else np.array([])
+    big = np.max(np.abs(poly))
+    poly = np.where(np.abs(poly) < 1e-14 * big, 0.0, poly)
+    nz = np.flatnonzero(poly)
+    roots = np.roots(poly[nz[0] :]) if nz.size > 1 else np.array([])
 
     def gfun(a: float) -> tuple[float, float]:
-        val = c0 + c1 * math.cos(a) + s1 * math.sin(a) + c2 * math.cos(2 * a) + s2 * math.sin(2 * a)
-        der = (
-            -c1 * math.sin(a)
-            + s1 * math.cos(a)
-            - 2 * c2 * math.sin(2 * a)
-            + 2 * s2 * math.cos(2 * a)
-        )
-        return val, der
+        ca, sa, c2a, s2a = math.cos(a), math.sin(a), math.cos(2 * a), math.sin(2 * a)
+        return (c0 + c1 * ca + s1 * sa + c2 * c2a + s2 * s2a,
+                -c1 * sa + s1 * ca - 2 * c2 * s2a + 2 * s2 * c2a)  # fmt: skip
 
-    out: list[_Found] = []
     seen: list[float] = []
     for z in roots:
         if not abs(abs(z) - 1.0) < 1e-4:
             continue
-        # polish the polynomial root (SciPy's Newton; a failure leaves a residual, checked)
-        a0 = float(
-            newton(
-                lambda a: gfun(a)[0],
-                float(np.angle(z)),
-                fprime=lambda a: gfun(a)[1],
-                tol=1e-15,
-                maxiter=20,
-                disp=False,
-            )
-        )
+        a0 = _newton_1d(gfun, float(np.angle(z)))
         if abs(gfun(a0)[0]) > 1e-9 * st.scale:
             continue
         a0 = float(_wrap(a0, 0.0))
         if a0 > TWO_PI - _ANGLE_TOL or a0 < _ANGLE_TOL:
             a0 = 0.0
-        if any(abs(a0 - b) < 1e-10 for b in seen):
-            continue
-        seen.append(a0)
-        alpha = a0 if (sa > 0 or a0 == 0.0) else a0 - TWO_PI
-        gamma = float(_wrap(p1 - alpha, 0.0))
-        if gamma > TWO_PI - _ANGLE_TOL or gamma < _ANGLE_TOL:
-            gamma = 0.0
-        if sg < 0 and gamma > 0.0:
-            gamma -= TWO_PI
-        P, W, _ = kern.primitives(np.array([math.pi - alpha, math.pi, math.pi + gamma]), lam)
-        rest = (sa * (P[1] - P[0]) + sg * (P[2] - P[1])) / u
-        e = complex(math.cos(alpha), -math.sin(alpha))
-        length = ((x1 + 1j * y1) * e).real + rest.real
-        if length < -1e-9 * st.scale:
-            continue
-        length = max(length, 0.0)
-        theta = alpha - math.pi  # the straight is flown at heading theta + pi
-        cost = (sa * (W[1] - W[0]) + sg * (W[2] - W[1])) / u + length * g.w_stf / g.v_stf
-        segs = b_arc_segments(Pose(), int(sa), abs(alpha), lam, theta, g)
-        pose = segs[-1].end if segs else Pose()
-        segs += straight_segment(pose, length, g)
-        pose = segs[-1].end if segs else pose
-        segs += b_arc_segments(pose, int(sg), abs(gamma), lam, theta, g)
-        info = {
-            "lambda": lam,
-            "angles": [alpha, gamma],
-            "straight_length": length,
-        }
-        out.append(_Found(segs, float(cost), info))
-    return out
+        if not any(abs(a0 - b) < 1e-10 for b in seen):
+            seen.append(a0)
+    return seen
+
+
+def _newton_1d(fun: Callable[[float], tuple[float, float]], x: float) -> float:
+    """Newton's method from x (value and derivative from `fun`): at most 20 steps, stopped
+    when a step is <= 1e-15, at a zero value or a zero derivative (SciPy's `newton`)."""
+    for _ in range(20):
+        val, der = fun(x)
+        if val == 0.0 or der == 0.0:
+            return x
+        nxt = x - val / der
+        if abs(nxt - x) <= 1e-15:
+            return nxt
+        x = nxt
+    return x
+
+
+def _bsb_found(a0: float, goal: Pose, st: _Setup, sg: float) -> _Found | None:
+    """The BSB path whose first arc turns alpha = a0 (L): the last arc closes the heading,
+    the straight's length follows from the component along it (None if negative)."""
+    g, lam, u = st.glider, st.lam_s, st.glider.u_max
+    alpha = a0
+    gamma = float(_wrap(goal.heading - alpha, 0.0))
+    if gamma > TWO_PI - _ANGLE_TOL or gamma < _ANGLE_TOL:
+        gamma = 0.0
+    if sg < 0 and gamma > 0.0:
+        gamma -= TWO_PI
+    P, W, _ = st.kern.primitives(np.array([math.pi - alpha, math.pi, math.pi + gamma]), lam)
+    rest = ((P[1] - P[0]) + sg * (P[2] - P[1])) / u
+    e = complex(math.cos(alpha), -math.sin(alpha))
+    length = ((goal.x + 1j * goal.y) * e).real + rest.real
+    if length < -1e-9 * st.scale:
+        return None
+    length = max(length, 0.0)
+    cost = ((W[1] - W[0]) + sg * (W[2] - W[1])) / u + length * g.w_stf / g.v_stf
+    moves = (("B", 1, abs(alpha)), ("S", 0, length), ("B", int(sg), abs(gamma)))
+    info = {"lambda": lam, "angles": [alpha, gamma], "straight_length": length}
+    # the straight is flown at heading theta + pi
+    return _Found(moves, float(cost), info, theta=alpha - math.pi)
 
 
 # ----- a single B arc --------------------------------------------------------------------------
@@ -276,11 +297,10 @@ def _single_b(goal: Pose, st: _Setup, a1: float) -> list[_Found]:
             continue
         if any(abs(f.info["lambda"] - lam) < 1e-9 * (1 + lam) for f in out):
             continue
-        segs = b_arc_segments(Pose(), 1, a1, lam, theta, g)
         _, W, _ = kern.primitives(np.array([-theta, a1 - theta]), lam)
-        stall = sum(sg.duration for sg in segs if sg.label != "B")
+        stall = _saturated_time(-theta, 1, a1, lam, g)
         info = {"lambda": lam, "angles": [a1], "saturated_time": stall}
-        out.append(_Found(segs, float((W[1] - W[0]) / u), info))
+        out.append(_Found((("B", 1, a1),), float((W[1] - W[0]) / u), info, theta=theta))
     return out
 
 
@@ -312,19 +332,17 @@ def _solve_constant_speed(goal: Pose, st: _Setup, fam: Family, word: str) -> lis
             return []
         if n == 4 and a1 + an >= math.pi:
             return []
-    segs: list[Segment] = []
-    pose = Pose()
-    for k, angle in enumerate(angles):
-        segs += constant_speed_segment(pose, 1 if k % 2 == 0 else -1, angle, v, g, label)
-        pose = segs[-1].end if segs else pose
-    if not segs or Path(tuple(segs)).end.distance_to(goal) > 1e-9 * st.scale:
-        return []
     cost = sum(angles) / g.u_max * float(g.sink_rate(v, 0.0))
     info = {
         "speed": v,
         "angles": [a * (1 if k % 2 == 0 else -1) for k, a in enumerate(angles)],
     }
-    return [_Found(segs, cost, info)]
+    moves = tuple(("C", 1 if k % 2 == 0 else -1, a) for k, a in enumerate(angles))
+    found = _Found(moves, cost, info, label=label)
+    segs = found.segments(g)
+    if not segs or Path(tuple(segs)).end.distance_to(goal) > 1e-9 * st.scale:
+        return []
+    return [found]
 
 
 _SOLVERS: dict[str, Callable[[list[_Task], _Setup, tuple[int, int]], list]] = {
