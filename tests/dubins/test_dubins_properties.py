@@ -101,7 +101,12 @@ def test_time_objective_is_ompl_length_over_speed_and_flies(start, goal, r, spee
     car = DubinsCar(speed, r)
     t = plan(Pose(*start), Pose(*goal), car, "time")
     assert t.ok
-    assert abs(t.cost * speed - _ompl_length(start, goal, r)) <= OMPL_ACCURACY * r
+    turn = abs(math.remainder(goal[2] - start[2], 2.0 * math.pi))
+    if not (math.dist(start[:2], goal[:2]) < OMPL_ACCURACY * r and turn < OMPL_ACCURACY):
+        # (else the distance is discontinuous: a heading change eps in place needs a full
+        # loop, ~2 pi R, and OMPL snaps eps below its DUBINS_EPS to 0 -- found by Hypothesis:
+        # goal (0, 0, 2.16e-7), R = 1; the flight below still checks the path)
+        assert abs(t.cost * speed - _ompl_length(start, goal, r)) <= OMPL_ACCURACY * r
     (x, y, h), seconds = _fly(t.path, speed)
     # DOP853 at rtol 1e-12 over a few steps per segment; |pose| <= ~60 R: error << 1e-8 R
     assert math.hypot(x - goal[0], y - goal[1]) <= 1e-8 * max(1.0, r)
