@@ -5,9 +5,10 @@ per pose sets its heading); every change goes into an `ExploreState`, the URL qu
 (with the zoom, `view=x0,y0,x1,y1`, kept by the browser), and the state is planned:
 
 - synthesis planners (milliseconds) at once, in the input's own callback, their answer (cost
-  strip, path, poses) sent as one patch, the candidates' lines and table 30 ms later in a
-  second one (the browser paints the answer first); texts go through `FastHtml` (one
-  innerHTML, no re-layout of the page);
+  strip, path, poses, the candidates' lines and table, the address) sent as one patch: one
+  redraw per change (a second message for the candidates was a second redraw, competing
+  with the next change); texts go through `FastHtml` (one innerHTML, no re-layout of the
+  page);
 - direct methods (seconds) on a worker thread (latest state wins), the shown answer marked
   stale ("computing") meanwhile.
 
@@ -53,7 +54,7 @@ from glideplan.explore.layout import (  # the page's styles and shared pieces, o
     _parse_view,
     _TextInput,
 )
-from glideplan.explore.solve import View, partition_image, solve_view, with_candidates
+from glideplan.explore.solve import View, partition_image, solve_view
 from glideplan.explore.state import (
     ExploreState,
     format_pose,
@@ -75,11 +76,10 @@ __all__ = ["Explorer", "create_page"]
 VIEWPORT_TEMPLATE = """{% extends base %}
 {% block preamble %}{{ super() }}
 <meta name="viewport" content="width=device-width, initial-scale=1">
-{% endblock %}"""
-# The candidates' lines and table follow an answer after this pause (ms) unless a newer
-# change came meanwhile: 30 ms let a change typed or dragged 40-60 ms after the last wait
-# for the last one's candidates (server 5 ms, browser lines and table), p90 +40-100 ms.
-CANDIDATES_DELAY_MS = 120
+{% endblock %}"""# A synthesis planned on the worker thread (one that may fall back to a direct method) is
+# shown stale ("computing") only when its answer takes longer than this (ms): a 50 ms answer
+# then costs one message and one redraw, not two.
+BUSY_AFTER_MS = 250
 
 
 def _download_button(callback: Callable[[], Any], filename: str, label: str) -> Any:
@@ -293,8 +293,8 @@ class Explorer(SessionWorker):
         self.state = state
         if self._dragging is None:  # the browser is moving the point itself
             self._draw_poses()
-        if self.sync or self.entry.slow or self._doc is None:
-            self._push_url()  # else with the candidates, after the answer
+        if self.sync or self.entry.background or self._doc is None:
+            self._push_url()  # else with the answer, in the same message
         self.solve()
 
     def set_goal(self, x: float, y: float, heading_deg: float | None = None) -> None:
@@ -516,22 +516,27 @@ class Explorer(SessionWorker):
     def solve(self) -> None:
         """Plan the current state: at once for the synthesis planners (milliseconds; the
         answer goes out with the input's echo in one message), on the worker thread for
-        the direct methods (seconds; the old answer is shown as stale meanwhile)."""
-        if self.sync or not self.entry.slow:
-            view, part = self._compute(self.state, candidates=self.sync or self._doc is None)
+        the direct methods (seconds; the old answer is shown as stale meanwhile) and for a
+        synthesis that may fall back to one (shown stale after BUSY_AFTER_MS)."""
+        if self.sync or not self.entry.background:
+            # the answer, its candidates and the address in one message: one redraw
+            view, part = self._compute(self.state)
             self._apply(view, part)
-            if self._doc is not None and not view.candidates_pending:
+            if self._doc is not None:
                 self._push_url()
-            if view.candidates_pending and self._doc is not None:
-                # the answer goes out now; its candidates in a later message, once the
-                # input rests for CANDIDATES_DELAY_MS (while a goal is dragged or typed, each
-                # change's answer is painted without waiting for the previous candidates)
-                self._doc.add_timeout_callback(
-                    lambda: self._held(self._add_candidates), CANDIDATES_DELAY_MS
-                )
             return
-        self._show_busy(True)
+        if self.entry.slow:
+            self._show_busy(True)
+        elif self._doc is not None:  # a synthesis (tens of ms): stale only if it takes longer
+            state = self.state
+            self._doc.add_timeout_callback(
+                lambda: self._held(lambda: self._busy_if_pending(state)), BUSY_AFTER_MS
+            )
         self._submit("glideplan-explore")
+
+    def _busy_if_pending(self, state: ExploreState) -> None:
+        if self.state == state and (self.view is None or self.view.state != state):
+            self._show_busy(True)
 
     def _failed(self, state: ExploreState, message: str) -> tuple[View, Any]:
         return (View(state, None, {"": message}), None)
@@ -539,22 +544,8 @@ class Explorer(SessionWorker):
     def _deliver(self, answer: tuple[View, Any]) -> None:
         self._apply(*answer)
 
-    def _add_candidates(self) -> None:
-        """The shown answer's candidates: lines, table and the view fitted to them."""
-        view = self.view
-        if view is None or not view.candidates_pending or view.state != self.state:
-            return
-        self._push_url()
-        self.view = view = with_candidates(view)
-        self.figs.show_candidates(view, self.state.candidates)
-        self.table.object = table_html(view.candidates or empty_candidates())
-        if self._dragging is None:
-            self._expand_ranges(view)
-
-    def _compute(
-        self, state: ExploreState, candidates: bool = True
-    ) -> tuple[View, dict[str, Any] | None]:
-        view = solve_view(self.catalog, state, candidates)
+    def _compute(self, state: ExploreState) -> tuple[View, dict[str, Any] | None]:
+        view = solve_view(self.catalog, state)
         part = None
         if state.partition and view.request is not None:
             req = view.request

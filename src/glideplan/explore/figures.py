@@ -368,9 +368,13 @@ class PlanFigures:
         cands = view.candidates or empty_candidates()
         if self.cand_src.selected.indices:
             self.cand_src.selected.indices = []
-        self.cand_src.data = columns({k: v for k, v in cands.items() if k != "cost"} | {
-            "cost": np.asarray(cands["cost"], dtype=float)
-        })
+        # lists, not arrays: a few hundred numbers inline in the message's JSON instead of
+        # one binary frame pair per line (29 websocket frames per change before)
+        self.cand_src.data = columns(
+            {k: v for k, v in cands.items() if k not in ("xs", "ys", "cost")}
+            | {k: [np.asarray(a, dtype=float).tolist() for a in cands[k]] for k in ("xs", "ys")}
+            | {"cost": [float(c) for c in cands["cost"]]}
+        )
         if self.cand_renderer.visible != visible:
             self.cand_renderer.visible = visible
 

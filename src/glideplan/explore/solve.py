@@ -78,6 +78,18 @@ class View:
         return str(s.status.value) + (f": {s.message}" if not s.ok and s.message else "")
 
     @property
+    def method_text(self) -> str:
+        """The method that answered: the planner's own, or the direct method where a
+        synthesis found no candidate (its answer's `answered_by`); '' without an answer."""
+        if self.entry is None or self.solution is None:
+            return ""
+        extras = getattr(self.solution, "extras", None) or {}
+        answered = str(extras.get("answered_by", self.entry.method))
+        if answered != self.entry.method:
+            return f"{answered} ({self.entry.method}: no candidate)"
+        return answered
+
+    @property
     def endpoint_text(self) -> str:
         err = self.solution.endpoint_error if self.ok else None
         if err is None:
