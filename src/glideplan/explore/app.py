@@ -76,7 +76,8 @@ __all__ = ["Explorer", "create_page"]
 VIEWPORT_TEMPLATE = """{% extends base %}
 {% block preamble %}{{ super() }}
 <meta name="viewport" content="width=device-width, initial-scale=1">
-{% endblock %}"""# A synthesis planned on the worker thread (one that may fall back to a direct method) is
+{% endblock %}"""
+# A synthesis planned on the worker thread (one that may fall back to a direct method) is
 # shown stale ("computing") only when its answer takes longer than this (ms): a 50 ms answer
 # then costs one message and one redraw, not two.
 BUSY_AFTER_MS = 250
