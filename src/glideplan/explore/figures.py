@@ -17,7 +17,7 @@ from bokeh.plotting import figure
 from glideplan.explore.solve import View
 from glideplan.plotting import wind_label
 
-__all__ = ["ASPECT_JS", "PlanFigures", "columns", "equal_scales", "follow_url"]
+__all__ = ["ASPECT_JS", "PlanFigures", "columns", "equal_scales", "follow_url", "sticky_range"]
 
 BLUE = "#1f5fa8"
 START = "#2e8540"
@@ -125,6 +125,31 @@ def columns(data: dict[str, Any]) -> dict[str, Any]:
     if len(lengths) > 1:
         return {k: [] for k in data}
     return {k: [] if isinstance(v, np.ndarray) and v.size == 0 else v for k, v in data.items()}
+
+
+def sticky_range(
+    shown: tuple[Any, Any] | None, values: Any, zero: bool = False, fill: float = 0.0
+) -> tuple[float, float]:
+    """An axis range for `values`: `shown` while it holds them and they fill at least `fill`
+    of it, else round bounds (steps of a fifth of a decade) around them and `shown` with 5 %
+    room (`shown` None: around them alone); from 0 when `zero` (a time axis)."""
+    v = np.asarray(values, dtype=float)
+    v = v[np.isfinite(v)]
+    if v.size == 0:
+        return (0.0, 1.0) if shown is None else (float(shown[0]), float(shown[1]))
+    lo, hi = (0.0 if zero else float(v.min())), float(v.max())
+    if shown is not None:
+        s0, s1 = float(shown[0]), float(shown[1])
+        if s0 <= lo and hi <= s1 and (hi - lo) >= fill * (s1 - s0):
+            return s0, s1
+        if (hi - lo) >= fill * (max(hi, s1) - min(lo, s0)):
+            lo, hi = min(lo, s0), max(hi, s1)
+    span = hi - lo if hi > lo else max(abs(hi), 1.0)
+    pad = 0.05 * span
+    step = 0.2 * 10.0 ** math.floor(math.log10(span + 2 * pad))
+    start = 0.0 if zero else math.floor((lo - pad) / step) * step
+    end = math.ceil((hi + pad) / step) * step
+    return float(f"{start:.12g}"), float(f"{end:.12g}")
 
 
 class PlanFigures:
@@ -272,8 +297,11 @@ class PlanFigures:
         # replaces the address (Panel's Location pushes history entries on every drag).
         follow_url(fig)
         self.prof_src = ColumnDataSource({"t": [], "speed": [], "second": [], "third": []})
-        self.speed_fig = self._profile_figure("speed", "speed (m/s)", BLUE)
-        x_range = self.speed_fig.x_range
+        # explicit ranges, set with the data and kept while they hold it (`sticky_range`):
+        # auto-ranging moved the axes on every answer, and each move re-laid out and
+        # repainted the three plots (2.7 paints and ~3 layouts of each per change)
+        x_range = Range1d(start=0.0, end=1.0)
+        self.speed_fig = self._profile_figure("speed", "speed (m/s)", BLUE, x_range)
         self.second_fig = self._profile_figure("second", "turn rate (deg/s)", "#8e44ad", x_range)
         self.third_fig = self._profile_figure("third", "load factor n (g)", "#d35400", x_range)
         for f in (self.speed_fig, self.second_fig, self.third_fig):
@@ -291,6 +319,8 @@ class PlanFigures:
         """A small plot of the profile column `key` against time (shared time axis)."""
         extra = {} if x_range is None else {"x_range": x_range}
         fig = figure(
+            y_range=Range1d(start=0.0, end=1.0),
+            min_border_left=56,  # tick labels of any width: the plot's frame does not move
             height=150,
             sizing_mode="stretch_width",
             min_width=200,
@@ -368,11 +398,18 @@ class PlanFigures:
         cands = view.candidates or empty_candidates()
         if self.cand_src.selected.indices:
             self.cand_src.selected.indices = []
-        # lists, not arrays: a few hundred numbers inline in the message's JSON instead of
-        # one binary frame pair per line (29 websocket frames per change before)
+        # lists, not arrays: the numbers inline in the message's JSON instead of one binary
+        # frame pair per line (29 websocket frames per change before), to 6 significant
+        # digits of the largest coordinate (sub-pixel; 17 digits made 90 kB per change)
+        lines = [np.asarray(a, dtype=float) for k in ("xs", "ys") for a in cands[k]]
+        top = max((float(np.abs(a).max()) for a in lines if a.size), default=1.0)
+        decimals = max(0, 5 - math.floor(math.log10(top))) if top > 0 else 6
         self.cand_src.data = columns(
             {k: v for k, v in cands.items() if k not in ("xs", "ys", "cost")}
-            | {k: [np.asarray(a, dtype=float).tolist() for a in cands[k]] for k in ("xs", "ys")}
+            | {
+                k: [np.round(np.asarray(a, dtype=float), decimals).tolist() for a in cands[k]]
+                for k in ("xs", "ys")
+            }
             | {"cost": [float(c) for c in cands["cost"]]}
         )
         if self.cand_renderer.visible != visible:
@@ -393,6 +430,23 @@ class PlanFigures:
             "second": prof["second"],
             "third": third if third is not None else np.full_like(prof["t"], np.nan),
         })
+        # the axes grow to hold the answers of one vehicle (speeds, turn rates and load
+        # factors stay within its limits) and start again for another; time from 0, shrunk
+        # when a path fills less than a quarter of it
+        key = (view.state.planner, tuple(sorted(view.state.values.items())))
+        same = key == getattr(self, "_profile_key", None)
+        self._profile_key = key
+        ranges = [(self.speed_fig.x_range, prof["t"], True, 0.25)] + [
+            (f.y_range, values, False, 0.0)
+            for f, values in zip((self.speed_fig, self.second_fig, self.third_fig),
+                                 (prof["speed"], prof["second"], third), strict=True)
+            if values is not None
+        ]
+        for rng, values, zero, fill in ranges:
+            shown = (rng.start, rng.end) if same else None
+            lo, hi = sticky_range(shown, values, zero=zero, fill=fill)
+            if (lo, hi) != (rng.start, rng.end):
+                rng.update(start=lo, end=hi)
         if self.second_fig.yaxis[0].axis_label != view.profile_labels[1]:
             self.second_fig.yaxis.axis_label = view.profile_labels[1]
         if self.third_fig.visible != (third is not None):
