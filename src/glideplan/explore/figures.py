@@ -172,6 +172,19 @@ class PlanFigures:
         self.labels_src = ColumnDataSource({"x": [], "y": [], "name": [], "c": []})
         self.wind_src = ColumnDataSource({"x_start": [], "y_start": [], "x_end": [], "y_end": []})
         self.wind_label = ColumnDataSource({"x": [], "y": [], "text": []})
+        self._add_answer_layers(fig)
+        self._add_pose_layers(fig)
+        self._add_partition_legend(fig)
+        self.fig = fig
+        equal_scales(fig, self.x_range, self.y_range)
+        # The page's URL follows the state: the server sets the figure's tag, the browser
+        # replaces the address (Panel's Location pushes history entries on every drag).
+        follow_url(fig)
+        self._add_profiles()
+
+    def _add_answer_layers(self, fig: Any) -> None:
+        """The partition map, the candidates (with their hover), the air-relative and the
+        optimal paths."""
         self.part_renderer = fig.image_rgba(
             "image", x="x", y="y", dw="dw", dh="dh", source=self.part_src
         )
@@ -212,6 +225,10 @@ class PlanFigures:
             line_width=3.5,
             legend_label="optimal path",
         )
+
+    def _add_pose_layers(self, fig: Any) -> None:
+        """The heading handles' segments, the wind arrow and its label, the draggable start
+        and goal (the drag tool active) with their names, and the legend's style."""
         fig.segment("x0", "y0", "x1", "y1", source=self.heading_src, line_color="c", line_width=2)
         body: dict[str, Any] = {"line_color": WIND, "line_width": 3}  # the stubs lag the runtime
         wind = Arrow(
@@ -261,7 +278,9 @@ class PlanFigures:
         self.legend.background_fill_alpha = 0.8
         self.legend.label_text_font_size = "11px"
         self.legend.click_policy = "hide"
-        # the partition map's legend: one coloured square per word (no labels on the map)
+
+    def _add_partition_legend(self, fig: Any) -> None:
+        """The partition map's legend: one coloured square per word (no labels on the map)."""
         from glideplan.explore.solve import _WORD_COLOURS
 
         swatches = [
@@ -291,11 +310,10 @@ class PlanFigures:
             spacing=4,
         )
         fig.add_layout(self.part_legend)
-        self.fig = fig
-        equal_scales(fig, self.x_range, self.y_range)
-        # The page's URL follows the state: the server sets the figure's tag, the browser
-        # replaces the address (Panel's Location pushes history entries on every drag).
-        follow_url(fig)
+
+    def _add_profiles(self) -> None:
+        """The controls along the path: speed, turn rate (or bank) and load factor against
+        time, on one time axis."""
         self.prof_src = ColumnDataSource({"t": [], "speed": [], "second": [], "third": []})
         # explicit ranges, set with the data and kept while they hold it (`sticky_range`):
         # auto-ranging moved the axes on every answer, and each move re-laid out and
