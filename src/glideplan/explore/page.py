@@ -12,6 +12,7 @@ import panel as pn
 from glideplan.explore.app import Explorer
 from glideplan.explore.catalog import Catalog, build_catalog
 from glideplan.explore.layout import MAP_MODES, ROOT_CSS
+from glideplan.explore.state import state_to_query
 
 __all__ = ["create_page"]
 
@@ -98,7 +99,9 @@ def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Vi
             page = Explorer(catalog, q)
         page.on_mode = lambda key: switch(key)
         if isinstance(page, Explorer):
-            page.on_switch = lambda st: history.push(f"?planner={st.planner}")
+            # the entry holds the new planner's whole link: its answer (and the address it
+            # sets) comes in the same message as the switch, before this entry is pushed
+            page.on_switch = lambda st: history.push("?" + state_to_query(catalog, st))
         pages["current"] = page
         root.objects = [page.layout, history.pane]
         page.push_url()
