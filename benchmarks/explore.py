@@ -1,8 +1,9 @@
 """Benchmark: `glideplan explore`, server-side time from a changed goal to updated figure data.
 
 The issue's budget (median): <= 50 ms for Dubins and wind, <= 150 ms for minimum time,
-minimum altitude and the load-factor synthesis (issue 28: "interactive"). Measured in one process on the page's own code path: an `Explorer` (the
-page object of one browser session, planning synchronously) receives a goal as a drag does
+minimum altitude and the load-factor synthesis (issue 28: "interactive"). Measured in one
+process on the page's own code path: an `Explorer` (the page object of one browser session,
+planning synchronously) receives a goal as a drag does
 (`set_goal`), plans it with `plan()` (verification by integration included), samples the
 optimal path and every candidate, and writes the Bokeh data sources and the text panes. The
 time of `plan()` alone on the same goals is shown beside it, so that the page's own overhead
