@@ -25,6 +25,7 @@ from typing import Any
 import panel as pn
 
 from glideplan.explore.catalog import Parameter
+from glideplan.explore.layout import NOT_BUSY
 from glideplan.validation import PHYSICAL_RANGES
 
 __all__ = [
@@ -71,18 +72,22 @@ class _FloatInput(pn.widgets.FloatInput):
     """A spinner whose change reaches the server at once (Panel waits 50 ms by default)."""
 
     _debounce = 0
+    _busy__ignore = NOT_BUSY
 
 
 class _IntInput(pn.widgets.IntInput):
     _debounce = 0
+    _busy__ignore = NOT_BUSY
 
 
 class _Select(pn.widgets.Select):
     _debounce = 0
+    _busy__ignore = NOT_BUSY
 
 
 class _Checkbox(pn.widgets.Checkbox):
     _debounce = 0
+    _busy__ignore = NOT_BUSY
 
 
 def _choices() -> Mapping[str, tuple[str, ...]]:
