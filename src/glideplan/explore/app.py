@@ -310,8 +310,6 @@ class Explorer(PoseHandles, SessionWorker):
             return
         if event.new != self.state.planner:
             self._locked(lambda: self._switch_planner(event.new))
-            if self.on_switch is not None:
-                self._locked(lambda: self.on_switch(self.state) if self.on_switch else None)
 
     def _switch_planner(self, key: str) -> None:
         """Another planner: its inputs and defaults, the start and goal kept (as entered)."""
@@ -325,6 +323,8 @@ class Explorer(PoseHandles, SessionWorker):
             candidates=old.candidates,
             partition=old.partition,
         )
+        if self.on_switch is not None:  # the new history entry, before the answer's address
+            self.on_switch(self.state)  # (same message, in this order) replaces its query
         self._set_inputs_from_state()
         self._set_planner_inputs()
         self._reset_ranges()
