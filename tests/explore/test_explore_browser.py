@@ -691,8 +691,11 @@ def test_latency_benchmark_runs(dubins_page: Any):
     spec.loader.exec_module(bench)
     _wait_result(dubins_page)
     goals = bench.goal_texts(4.0, 3.0, 90.0, 1.0, 4)
-    ms = bench.measure(dubins_page, goals, warm=1)
+    ms, cost = bench.measure(dubins_page, goals, warm=1)
     assert len(ms) == 3 and all(0 < m < 10_000 for m in ms)
+    # per-change costs read: CPU of this process's threads (here the server is another
+    # process), Chromium's own counters
+    assert cost["server_cpu_ms"] >= 0 and cost["TaskDuration"] > 0 and cost["LayoutCount"] >= 0
     _wait_result(dubins_page)
     deadline = time.monotonic() + 10.0  # the address follows the answer (with its candidates)
     while _query(dubins_page)["goal"] != goals[-1] and time.monotonic() < deadline:
