@@ -96,20 +96,16 @@ def _free_port() -> int:
 
 
 def server_cpu_s() -> float:
-    """CPU seconds of every thread of this process except the main one (the server's
-    IO loop, its worker threads and numba's; the main thread drives the browser)."""
+    """CPU seconds of this process except its main thread (which only drives the browser):
+    the server's IO loop, its worker threads (also those that have ended) and numba's."""
+    import resource
+
+    use = resource.getrusage(resource.RUSAGE_SELF)
     main = threading.main_thread().native_id
-    total = 0
-    for task in os.listdir("/proc/self/task"):
-        if int(task) == main:
-            continue
-        try:
-            with open(f"/proc/self/task/{task}/stat") as f:
-                fields = f.read().rpartition(")")[2].split()
-        except OSError:  # the thread ended meanwhile
-            continue
-        total += int(fields[11]) + int(fields[12])  # utime, stime (clock ticks)
-    return total / os.sysconf("SC_CLK_TCK")
+    with open(f"/proc/self/task/{main}/stat") as f:
+        fields = f.read().rpartition(")")[2].split()
+    main_s = (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")  # utime, stime
+    return use.ru_utime + use.ru_stime - main_s
 
 
 BROWSER_METRICS = ("ScriptDuration", "RecalcStyleDuration", "LayoutDuration", "LayoutCount",
