@@ -49,7 +49,7 @@ from glideplan.explore.layout import (  # the page's styles and shared pieces, o
     _TextInput,
 )
 from glideplan.explore.plane_poses import PoseHandles, _with_pose
-from glideplan.explore.solve import View, partition_image, solve_view
+from glideplan.explore.solve import View, partition_image, solve_view, with_candidates
 from glideplan.explore.state import (
     ExploreState,
     initial_state,
@@ -65,6 +65,10 @@ __all__ = ["Explorer", "create_page"]
 # shown stale ("computing") only when its answer takes longer than this (ms): a 50 ms answer
 # then costs one message and one redraw, not two.
 BUSY_AFTER_MS = 250
+# Answers with at most this many candidates carry them (Dubins and wind: 6, ~1.3 ms CPU);
+# more candidates follow in a second message once the input rests CANDIDATES_DELAY_MS.
+INLINE_CANDIDATES = 8
+CANDIDATES_DELAY_MS = 120
 
 
 def _download_button(callback: Callable[[], Any], filename: str, label: str) -> Any:
@@ -379,11 +383,21 @@ class Explorer(PoseHandles, SessionWorker):
         the direct methods (seconds; the old answer is shown as stale meanwhile) and for a
         synthesis that may fall back to one (shown stale after BUSY_AFTER_MS)."""
         if self.sync or not self.entry.background:
-            # the answer, its candidates and the address in one message: one redraw
-            view, part = self._compute(self.state)
+            # the answer, its candidates and the address in one message (one redraw), unless
+            # the candidates are many (minimum time's 13: sampling and sending them cost
+            # ~10 ms before the cost could show): those follow once the input rests
+            view, part = self._compute(self.state, candidates=self.sync or self._doc is None)
+            if view.candidates_pending and view.solution is not None and (
+                len(view.solution.candidates) <= INLINE_CANDIDATES
+            ):
+                view = with_candidates(view)
             self._apply(view, part)
             if self._doc is not None:
                 self._push_url()
+            if view.candidates_pending and self._doc is not None:
+                self._doc.add_timeout_callback(
+                    lambda: self._held(self._add_candidates), CANDIDATES_DELAY_MS
+                )
             return
         if self.entry.slow:
             self._show_busy(True)
@@ -404,8 +418,21 @@ class Explorer(PoseHandles, SessionWorker):
     def _deliver(self, answer: tuple[View, Any]) -> None:
         self._apply(*answer)
 
-    def _compute(self, state: ExploreState) -> tuple[View, dict[str, Any] | None]:
-        view = solve_view(self.catalog, state)
+    def _add_candidates(self) -> None:
+        """The shown answer's candidates: lines, table and the view fitted to them."""
+        view = self.view
+        if view is None or not view.candidates_pending or view.state != self.state:
+            return  # a newer change came meanwhile: its own candidates will follow
+        self.view = view = with_candidates(view)
+        self.figs.show_candidates(view, self.state.candidates)
+        self.table.object = table_html(view.candidates or empty_candidates())
+        if self._dragging is None:
+            self._expand_ranges(view)
+
+    def _compute(
+        self, state: ExploreState, candidates: bool = True
+    ) -> tuple[View, dict[str, Any] | None]:
+        view = solve_view(self.catalog, state, candidates)
         part = None
         if state.partition and view.request is not None:
             req = view.request
