@@ -20,7 +20,6 @@ box (controls left of the strip and the plot, or above them below 760 px). Impor
 from __future__ import annotations
 
 import html
-import io
 import threading
 from collections.abc import Callable
 from dataclasses import replace
@@ -30,7 +29,7 @@ import panel as pn
 from bokeh.events import Pan, PanEnd, PanStart
 
 from glideplan.explore.catalog import Catalog, PlannerEntry, build_catalog, planner_key
-from glideplan.explore.downloads import path_csv, solution_json, solution_png
+from glideplan.explore.downloads import DownloadFiles
 from glideplan.explore.figures import (
     PlanFigures,
     empty_candidates,
@@ -78,7 +77,7 @@ def _download_button(callback: Callable[[], Any], filename: str, label: str) -> 
     )
 
 
-class Explorer(PoseHandles, SessionWorker):
+class Explorer(PoseHandles, DownloadFiles, SessionWorker):
     """One page: widgets, figures and the state they show (see the module docstring).
 
     `sync=True` plans in the calling thread and applies at once (benchmarks and tests
@@ -487,28 +486,6 @@ class Explorer(PoseHandles, SessionWorker):
         self._keep_view = False
         if self.entry.slow:
             self.plot_pane.loading = False
-
-    # ----- downloads --------------------------------------------------------------------------
-    def _problem(self) -> tuple[Any, dict[str, str]]:
-        """The shown solution and the messages of the shown state (for the downloads)."""
-        if self.view is None:
-            return None, {"": "no answer yet"}
-        errors = dict(self.view.errors)
-        if self.view.solution is None and not errors:
-            errors[""] = self.view.status or "no solution"
-        return self.view.solution, errors
-
-    def _json_file(self) -> io.StringIO:
-        solution, errors = self._problem()
-        return io.StringIO(solution_json(solution, errors))
-
-    def _csv_file(self) -> io.StringIO:
-        solution, errors = self._problem()
-        return io.StringIO(path_csv(solution, errors))
-
-    def _png_file(self) -> io.BytesIO:
-        solution, errors = self._problem()
-        return io.BytesIO(solution_png(solution, errors))
 
 
 def create_page(*args: Any, **kw: Any) -> Any:
