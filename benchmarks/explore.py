@@ -1,8 +1,9 @@
 """Benchmark: `glideplan explore`, server-side time from a changed goal to updated figure data.
 
-The issue's budget (median): <= 50 ms for Dubins and wind, <= 150 ms for minimum time and
-minimum altitude. Measured in one process on the page's own code path: an `Explorer` (the
-page object of one browser session, planning synchronously) receives a goal as a drag does
+The issue's budget (median): <= 50 ms for Dubins and wind, <= 150 ms for minimum time,
+minimum altitude and the load-factor synthesis (issue 28: "interactive"). Measured in one
+process on the page's own code path: an `Explorer` (the page object of one browser session,
+planning synchronously) receives a goal as a drag does
 (`set_goal`), plans it with `plan()` (verification by integration included), samples the
 optimal path and every candidate, and writes the Bokeh data sources and the text panes. The
 time of `plan()` alone on the same goals is shown beside it, so that the page's own overhead
@@ -27,6 +28,7 @@ CASES = (
     ("wind", "planner=wind&goal=4,3,90&speed=1&radius=1&wind=0.5,30", 1.0, 50.0),
     ("time-optimal", "planner=time-optimal&goal=2,1,90&v_min=0.3&v_max=1&u_max=1", 1.0, 150.0),
     ("min-altitude", "planner=min-altitude&goal=400,300,90", 139.47, 150.0),
+    ("load-factor", "planner=load-factor&goal=3,2,60", 0.5, 150.0),  # ch. 6 synthesis
 )
 
 

@@ -27,7 +27,7 @@ MODES = {
     "time-optimal": "planner=time-optimal&goal=0.5,1.5,200&v_min=0.3&v_max=1&u_max=1",
     "min-altitude": "planner=min-altitude&goal=300,-250,180",
     "min-altitude-direct": "planner=min-altitude-direct&goal=300,-250,180",
-    "load-factor": "planner=load-factor&goal=3,2,60&max_starts=1",
+    "load-factor": "planner=load-factor&goal=3,2,60",
     "route": ROUTE,
     "mission": "planner=mission",
     "reach": REACH,

@@ -68,7 +68,7 @@ def test_widget_kinds(catalog):
     assert isinstance(_widgets(glide["turning_polar"])[0], pn.widgets.Checkbox)
     assert _widgets(glide["turning_polar"])[0].value is True
     assert isinstance(_widgets(glide["approach"])[0], pn.widgets.Checkbox)
-    lf, _ = _controls(catalog, "load-factor")
+    lf, _ = _controls(catalog, "load-factor-direct")
     assert list(_widgets(lf["scheme"])[0].options) == list(SCHEMES)
     assert list(_widgets(lf["formulation"])[0].options) == list(FORMULATIONS)
     direct, _ = _controls(catalog, "min-altitude-direct")

@@ -26,6 +26,7 @@ CLI_COMMANDS = {
     "min-altitude": "min-altitude",
     "min-altitude-direct": "min-altitude",
     "load-factor": "load-factor",
+    "load-factor-direct": "load-factor",
 }
 
 
@@ -297,3 +298,28 @@ def test_cli_refuses_missing_field_and_route_files(cli_error, tmp_path):
     missing = tmp_path / "nope.nc"
     assert "--field" in cli_error("explore", "--no-show", "--field", str(missing))
     assert "--route" in cli_error("explore", "--no-show", "--route", str(tmp_path / "r.gpx"))
+
+
+def test_load_factor_page_is_the_synthesis(catalog):
+    """`planner=load-factor` is `plan load-factor --method synthesis` (the same cost as
+    plan() with method "synthesis", exactly: the same call), says which method answered,
+    and the direct method is `load-factor-direct`; the registered name still opens it."""
+    from dataclasses import replace
+    from types import SimpleNamespace
+
+    from glideplan.explore.texts import strip_html
+    from glideplan.vehicles.load_factor_glider import LoadFactorGlider
+
+    assert catalog.get("load-factor").method == "synthesis"
+    assert catalog.get("load-factor-direct").method == "direct"
+    assert catalog.get("load-factor-synthesis").key == "load-factor"
+    assert catalog.get("load-factor").background and not catalog.get("load-factor").slow
+    view = solve_view(catalog, state_from_query(catalog, "planner=load-factor&goal=3,2,60"))
+    ref = plan(Pose(0, 0, 0), Pose(3, 2, math.radians(60)), LoadFactorGlider(), "altitude",
+               "synthesis")
+    assert view.ok and view.solution.cost == ref.cost
+    assert view.method_text == "synthesis"
+    assert 'gp-method">synthesis<' in strip_html(view)
+    # where the synthesis found no candidate its answer says the direct method answered
+    fallback = replace(view, solution=SimpleNamespace(extras={"answered_by": "direct"}))
+    assert fallback.method_text == "direct (synthesis: no candidate)"

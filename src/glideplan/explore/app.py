@@ -5,9 +5,10 @@ per pose sets its heading); every change goes into an `ExploreState`, the URL qu
 (with the zoom, `view=x0,y0,x1,y1`, kept by the browser), and the state is planned:
 
 - synthesis planners (milliseconds) at once, in the input's own callback, their answer (cost
-  strip, path, poses) sent as one patch, the candidates' lines and table 30 ms later in a
-  second one (the browser paints the answer first); texts go through `FastHtml` (one
-  innerHTML, no re-layout of the page);
+  strip, path, poses, the candidates' lines and table, the address) sent as one patch: one
+  redraw per change (a second message for the candidates was a second redraw, competing
+  with the next change); texts go through `FastHtml` (one innerHTML, no re-layout of the
+  page);
 - direct methods (seconds) on a worker thread (latest state wins), the shown answer marked
   stale ("computing") meanwhile.
 
@@ -19,26 +20,19 @@ box (controls left of the strip and the plot, or above them below 760 px). Impor
 from __future__ import annotations
 
 import html
-import io
-import math
 import threading
 from collections.abc import Callable
 from dataclasses import replace
 from typing import Any
 
-import numpy as np
 import panel as pn
 from bokeh.events import Pan, PanEnd, PanStart
 
 from glideplan.explore.catalog import Catalog, PlannerEntry, build_catalog, planner_key
-from glideplan.explore.downloads import path_csv, solution_json, solution_png
+from glideplan.explore.downloads import DownloadFiles
 from glideplan.explore.figures import (
-    GOAL,
-    POINT_COLUMNS,
-    START,
     PlanFigures,
     empty_candidates,
-    empty_points,
 )
 from glideplan.explore.inputs import InputControl, build_input
 from glideplan.explore.layout import (  # the page's styles and shared pieces, one place
@@ -53,12 +47,11 @@ from glideplan.explore.layout import (  # the page's styles and shared pieces, o
     _parse_view,
     _TextInput,
 )
+from glideplan.explore.plane_poses import PoseHandles, _with_pose
 from glideplan.explore.solve import View, partition_image, solve_view, with_candidates
 from glideplan.explore.state import (
     ExploreState,
-    format_pose,
     initial_state,
-    parse_pose_text,
     state_from_query,
     state_to_query,
 )
@@ -67,18 +60,13 @@ from glideplan.explore.worker import SessionWorker
 
 __all__ = ["Explorer", "create_page"]
 
-# The page's frame: a viewport tag for phones and the layout's media rules. Wide screens
-# put the controls (320 px) left of the result strip and the plot, whose height is the
-# window's less the header and the strip (so the x axis stays above the fold); below
-# 760 px (a phone) the strip and the plot come first, about as tall as wide, the controls
-# below them (flex `order`).
-VIEWPORT_TEMPLATE = """{% extends base %}
-{% block preamble %}{{ super() }}
-<meta name="viewport" content="width=device-width, initial-scale=1">
-{% endblock %}"""
-# The candidates' lines and table follow an answer after this pause (ms) unless a newer
-# change came meanwhile: 30 ms let a change typed or dragged 40-60 ms after the last wait
-# for the last one's candidates (server 5 ms, browser lines and table), p90 +40-100 ms.
+# A synthesis planned on the worker thread (one that may fall back to a direct method) is
+# shown stale ("computing") only when its answer takes longer than this (ms): a 50 ms answer
+# then costs one message and one redraw, not two.
+BUSY_AFTER_MS = 250
+# Answers with at most this many candidates carry them (Dubins and wind: 6, ~1.3 ms CPU);
+# more candidates follow in a second message once the input rests CANDIDATES_DELAY_MS.
+INLINE_CANDIDATES = 8
 CANDIDATES_DELAY_MS = 120
 
 
@@ -89,7 +77,7 @@ def _download_button(callback: Callable[[], Any], filename: str, label: str) -> 
     )
 
 
-class Explorer(SessionWorker):
+class Explorer(PoseHandles, DownloadFiles, SessionWorker):
     """One page: widgets, figures and the state they show (see the module docstring).
 
     `sync=True` plans in the calling thread and applies at once (benchmarks and tests
@@ -293,8 +281,8 @@ class Explorer(SessionWorker):
         self.state = state
         if self._dragging is None:  # the browser is moving the point itself
             self._draw_poses()
-        if self.sync or self.entry.slow or self._doc is None:
-            self._push_url()  # else with the candidates, after the answer
+        if self.sync or self.entry.background or self._doc is None:
+            self._push_url()  # else with the answer, in the same message
         self.solve()
 
     def set_goal(self, x: float, y: float, heading_deg: float | None = None) -> None:
@@ -325,8 +313,6 @@ class Explorer(SessionWorker):
             return
         if event.new != self.state.planner:
             self._locked(lambda: self._switch_planner(event.new))
-            if self.on_switch is not None:
-                self._locked(lambda: self.on_switch(self.state) if self.on_switch else None)
 
     def _switch_planner(self, key: str) -> None:
         """Another planner: its inputs and defaults, the start and goal kept (as entered)."""
@@ -340,6 +326,8 @@ class Explorer(SessionWorker):
             candidates=old.candidates,
             partition=old.partition,
         )
+        if self.on_switch is not None:  # the new history entry, before the answer's address
+            self.on_switch(self.state)  # (same message, in this order) replaces its query
         self._set_inputs_from_state()
         self._set_planner_inputs()
         self._reset_ranges()
@@ -387,151 +375,41 @@ class Explorer(SessionWorker):
             )
         )
 
-    # ----- dragging ---------------------------------------------------------------------------
-    def _poses(self) -> dict[str, tuple[float, float, float] | None]:
-        out: dict[str, tuple[float, float, float] | None] = {}
-        for name in ("start", "goal"):
-            try:
-                p = parse_pose_text(getattr(self.state, name), name)
-                out[name] = (p.x, p.y, p.heading)
-            except ValueError:
-                out[name] = None
-        return out
-
-    def _handle_length(self) -> float:
-        x0, x1, _, _ = self.figs.box()
-        return 0.12 * (x1 - x0)
-
-    def _draw_poses(self) -> None:
-        poses = self._poses()
-        h = self._handle_length()
-        pts = empty_points()
-        labels: dict[str, list[Any]] = {"x": [], "y": [], "name": [], "c": []}
-        seg: dict[str, list[Any]] = {"x0": [], "y0": [], "x1": [], "y1": [], "c": []}
-        last = getattr(self, "_last_poses", {})
-        for name, colour in (("start", START), ("goal", GOAL)):
-            # an unreadable pose keeps its last point: the sources keep their length (the
-            # draggable points' renderer threw BokehJS's "RangeError: Offset is outside the
-            # bounds of the DataView" on every later change once rows went missing)
-            p = poses[name] if poses[name] is not None else last.get(name)
-            if p is None or not all(math.isfinite(v) for v in p):
-                continue
-            last[name] = p
-            hx, hy = p[0] + h * math.cos(p[2]), p[1] + h * math.sin(p[2])
-            for row in (
-                (p[0], p[1], name, "pose", colour, colour, 15),
-                (hx, hy, name, "handle", colour, "white", 11),
-            ):
-                for k, v in zip(POINT_COLUMNS, row, strict=True):
-                    pts[k].append(v)
-            for k, v in zip(("x", "y", "name", "c"), (p[0], p[1], name, colour), strict=True):
-                labels[k].append(v)
-            for k, v in zip(
-                ("x0", "y0", "x1", "y1", "c"), (p[0], p[1], hx, hy, colour), strict=True
-            ):
-                seg[k].append(v)
-        self._last_poses = last
-        self._drawn = {
-            (n, r): (x, y)
-            for x, y, n, r in zip(pts["x"], pts["y"], pts["name"], pts["role"], strict=True)
-        }
-        self._syncing = True
-        try:
-            self.figs.points_src.data = pts
-            self.figs.labels_src.data = labels
-            self.figs.heading_src.data = seg
-        finally:
-            self._syncing = False
-
-    def _snap(self, v: float) -> float:
-        q = 10.0 ** math.floor(math.log10(max(self.entry.length_scale, 1e-12))) * 1e-3
-        return float(f"{round(v / q) * q:.10g}")
-
-    def _on_pan_start(self, event: Any) -> None:
-        """Which point a drag holds: the drawn point nearest the pointer (within 3% of the view)."""
-        x0, x1, _, _ = self.figs.box()
-        best = min(
-            self._drawn.items(),
-            key=lambda kv: math.dist(kv[1], (event.x, event.y)),
-            default=None,
-        )
-        if best is not None and math.dist(best[1], (event.x, event.y)) <= 0.03 * (x1 - x0):
-            (name, role), (px, py) = best
-            self._dragging = (name, role, px - event.x, py - event.y)
-
-    def _on_pan(self, event: Any) -> None:
-        if self._dragging is None:
-            return
-        name, role, dx, dy = self._dragging
-        self._drag_to(name, role, event.x + dx, event.y + dy)
-
-    def _on_pan_end(self, event: Any) -> None:
-        self._dragging = None
-
-    def _drag_to(self, name: str, role: str, x: float, y: float) -> None:
-        p = self._poses()[name]
-        if role == "pose" or p is None:
-            self._move_pose(name, x, y, None)
-        else:
-            self._move_pose(name, p[0], p[1], math.degrees(math.atan2(y - p[1], x - p[0])))
-
-    def _move_pose(self, name: str, x: float, y: float, heading_deg: float | None) -> None:
-        old = self._poses()[name]
-        if heading_deg is None:
-            heading_deg = math.degrees(old[2]) if old is not None else 0.0
-        text = format_pose(self._snap(x), self._snap(y), round(heading_deg, 2))
-        self._syncing = True
-        try:
-            self.pose_inputs[name].value = text
-        finally:
-            self._syncing = False
-        self.set_state(_with_pose(self.state, name, text))
-
-    def _on_points(self, attr: str, old: Any, new: Any) -> None:
-        """A drag ended: a moved pose keeps its heading, a moved handle turns its pose."""
-        if self._syncing:
-            return
-        if self._dragging is not None:
-            # the drop: live updates moved the state, but the browser's points are the truth
-            self._dragging = None
-        rows = zip(
-            new.get("x", []),
-            new.get("y", []),
-            new.get("name", []),
-            new.get("role", []),
-            strict=False,
-        )
-        moved = [
-            (n, r, float(x), float(y))
-            for x, y, n, r in rows
-            if (n, r) in self._drawn and math.dist((x, y), self._drawn[(n, r)]) > 1e-12
-        ]
-        if len(new.get("x", [])) != len(self._drawn) or not moved:
-            self._draw_poses()  # a deleted point comes back
-            return
-        name, role, x, y = next((m for m in moved if m[1] == "pose"), moved[0])
-        self._drag_to(name, role, x, y)
-
     # ----- solving ----------------------------------------------------------------------------
     def solve(self) -> None:
         """Plan the current state: at once for the synthesis planners (milliseconds; the
         answer goes out with the input's echo in one message), on the worker thread for
-        the direct methods (seconds; the old answer is shown as stale meanwhile)."""
-        if self.sync or not self.entry.slow:
+        the direct methods (seconds; the old answer is shown as stale meanwhile) and for a
+        synthesis that may fall back to one (shown stale after BUSY_AFTER_MS)."""
+        if self.sync or not self.entry.background:
+            # the answer, its candidates and the address in one message (one redraw), unless
+            # the candidates are many (minimum time's 13: sampling and sending them cost
+            # ~10 ms before the cost could show): those follow once the input rests
             view, part = self._compute(self.state, candidates=self.sync or self._doc is None)
+            if view.candidates_pending and view.solution is not None and (
+                len(view.solution.candidates) <= INLINE_CANDIDATES
+            ):
+                view = with_candidates(view)
             self._apply(view, part)
-            if self._doc is not None and not view.candidates_pending:
+            if self._doc is not None:
                 self._push_url()
             if view.candidates_pending and self._doc is not None:
-                # the answer goes out now; its candidates in a later message, once the
-                # input rests for CANDIDATES_DELAY_MS (while a goal is dragged or typed, each
-                # change's answer is painted without waiting for the previous candidates)
                 self._doc.add_timeout_callback(
                     lambda: self._held(self._add_candidates), CANDIDATES_DELAY_MS
                 )
             return
-        self._show_busy(True)
+        if self.entry.slow:
+            self._show_busy(True)
+        elif self._doc is not None:  # a synthesis (tens of ms): stale only if it takes longer
+            state = self.state
+            self._doc.add_timeout_callback(
+                lambda: self._held(lambda: self._busy_if_pending(state)), BUSY_AFTER_MS
+            )
         self._submit("glideplan-explore")
+
+    def _busy_if_pending(self, state: ExploreState) -> None:
+        if self.state == state and (self.view is None or self.view.state != state):
+            self._show_busy(True)
 
     def _failed(self, state: ExploreState, message: str) -> tuple[View, Any]:
         return (View(state, None, {"": message}), None)
@@ -543,8 +421,7 @@ class Explorer(SessionWorker):
         """The shown answer's candidates: lines, table and the view fitted to them."""
         view = self.view
         if view is None or not view.candidates_pending or view.state != self.state:
-            return
-        self._push_url()
+            return  # a newer change came meanwhile: its own candidates will follow
         self.view = view = with_candidates(view)
         self.figs.show_candidates(view, self.state.candidates)
         self.table.object = table_html(view.candidates or empty_candidates())
@@ -610,165 +487,10 @@ class Explorer(SessionWorker):
         if self.entry.slow:
             self.plot_pane.loading = False
 
-    # ----- view range -------------------------------------------------------------------------
-    def _points(self) -> np.ndarray:
-        pts = [p[:2] for p in self._poses().values() if p is not None]
-        return np.array(pts, dtype=float).reshape(-1, 2)
 
-    def _reset_ranges(self) -> None:
-        """A square view around the start and goal with room for turns."""
-        pts = self._points()
-        scale = self.entry.length_scale
-        if pts.size == 0:
-            pts = np.zeros((1, 2))
-        lo, hi = pts.min(axis=0) - 3.0 * scale, pts.max(axis=0) + 3.0 * scale
-        self.figs.set_square(lo, hi)
+def create_page(*args: Any, **kw: Any) -> Any:
+    """The page of one session (`glideplan.explore.page.create_page`, kept here for old
+    imports)."""
+    from glideplan.explore.page import create_page as page
 
-    def _expand_ranges(self, view: View) -> None:
-        """Grow the view (square, 8 % margin) to hold everything drawn: the path, the air
-        path, the shown candidates and the poses."""
-        parts = [(view.path["x"], view.path["y"])]
-        if view.air_path is not None:
-            parts.append((view.air_path["x"], view.air_path["y"]))
-        if self.state.candidates and view.candidates:
-            parts += list(zip(view.candidates["xs"], view.candidates["ys"], strict=True))
-        pts = self._points()
-        parts.append((pts[:, 0], pts[:, 1]))
-        xs = np.concatenate([np.asarray(p[0], dtype=float) for p in parts])
-        ys = np.concatenate([np.asarray(p[1], dtype=float) for p in parts])
-        keep = np.isfinite(xs) & np.isfinite(ys)
-        xs, ys = xs[keep], ys[keep]
-        if len(xs) == 0:
-            return
-        bx0, bx1, by0, by1 = self.figs.box()
-        lo = np.array([min(xs.min(), bx0), min(ys.min(), by0)])
-        hi = np.array([max(xs.max(), bx1), max(ys.max(), by1)])
-        inside = xs.min() >= bx0 and xs.max() <= bx1 and ys.min() >= by0 and ys.max() <= by1
-        if not inside:
-            pad = 0.08 * float(np.max(hi - lo))
-            self.figs.set_square(lo - pad, hi + pad)
-            self._draw_poses()
-
-    # ----- downloads --------------------------------------------------------------------------
-    def _problem(self) -> tuple[Any, dict[str, str]]:
-        """The shown solution and the messages of the shown state (for the downloads)."""
-        if self.view is None:
-            return None, {"": "no answer yet"}
-        errors = dict(self.view.errors)
-        if self.view.solution is None and not errors:
-            errors[""] = self.view.status or "no solution"
-        return self.view.solution, errors
-
-    def _json_file(self) -> io.StringIO:
-        solution, errors = self._problem()
-        return io.StringIO(solution_json(solution, errors))
-
-    def _csv_file(self) -> io.StringIO:
-        solution, errors = self._problem()
-        return io.StringIO(path_csv(solution, errors))
-
-    def _png_file(self) -> io.BytesIO:
-        solution, errors = self._problem()
-        return io.BytesIO(solution_png(solution, errors))
-
-
-def _with_pose(state: ExploreState, name: str, text: str) -> ExploreState:
-    return replace(state, start=text) if name == "start" else replace(state, goal=text)
-
-
-_HISTORY_JS = """
-if (!window._gp_popstate) {  // Back/Forward between planners: load that page
-  window._gp_popstate = true;
-  window.addEventListener('popstate', () => window.location.reload());
-}
-const q = cb_obj.tags[0];
-if (q) window.history.pushState(null, '', window.location.pathname + q);
-"""
-
-
-class _History:
-    """One browser history entry per planner switch: `push(query)` adds it (the page's own
-    address updates then replace it as the user edits, drags and zooms); Back reloads the
-    previous planner's page."""
-
-    def __init__(self) -> None:
-        from bokeh.models import CustomJS
-        from bokeh.models.widgets import Div
-
-        self.model = Div(text="", visible=False, tags=[])
-        self.model.js_on_change("tags", CustomJS(code=_HISTORY_JS))
-        self.pane = pn.pane.Bokeh(self.model, visible=False, margin=0)
-        self.count = 0
-
-    def push(self, query: str) -> None:
-        self.count += 1
-        self.model.tags = [query, self.count]
-
-    def arm(self) -> None:
-        """Listen for Back/Forward (once the page has loaded), adding no entry."""
-        self.push("")
-
-
-def create_page(catalog: Catalog | None = None, **map_kw: Any) -> pn.viewable.Viewable:
-    """The page of one session, its state read from the URL query (`planner=route` is the
-    route map; `map_kw` go to it: the field file of `explore --field`)."""
-    args = pn.state.session_args or {}
-    query = {
-        k: v[0].decode() if isinstance(v[0], bytes) else str(v[0]) for k, v in args.items() if v
-    }
-    catalog = catalog or build_catalog()
-    from glideplan.explore.worker import local_dist
-
-    local_dist(pn.state.curdoc)  # before any model is made: every style sheet local
-    root = pn.Column(sizing_mode="stretch_width", margin=0, stylesheets=[ROOT_CSS])
-    pages: dict[str, Any] = {}
-
-    history = _History()
-
-    def switch(key: str) -> None:
-        show(key, {"planner": key})
-        history.push(f"?planner={key}")
-
-    def show(mode: str, q: dict[str, str]) -> None:
-        if "current" in pages:  # the page left behind: its running work is cancelled
-            pages["current"]._closed = True
-        if mode == "route":
-            from glideplan.explore.route_page import RoutePage
-
-            page: Any = RoutePage(q, field_path=map_kw.get("field_path"))
-        elif mode == "mission":
-            from glideplan.explore.mission_page import MissionPage
-
-            page = MissionPage(q, route_path=map_kw.get("route_path"))
-        elif mode == "reach":
-            from glideplan.explore.reach_page import ReachPage
-
-            page = ReachPage(q)
-        else:
-            page = Explorer(catalog, q)
-        page.on_mode = lambda key: switch(key)
-        if isinstance(page, Explorer):
-            page.on_switch = lambda st: history.push(f"?planner={st.planner}")
-        pages["current"] = page
-        root.objects = [page.layout, history.pane]
-        page.push_url()
-
-    asked = query.get("planner", "")
-    show(asked if asked in MAP_MODES.values() else "plane", query)
-    def loaded() -> None:
-        from glideplan.explore.worker import local_styles, resend_data
-
-        pages["current"].push_url()
-        page = pages["current"]  # an answer whose delivery was lost, held as the others
-        page._held(page.deliver_pending)
-        resend_data(pn.state.curdoc)  # an answer that came while the page was built
-        history.arm()
-        local_styles(pn.state.curdoc)
-
-    pn.state.onload(loaded)
-    doc = pn.state.curdoc
-    if doc is not None:
-        import jinja2
-
-        doc.template = jinja2.Template(VIEWPORT_TEMPLATE)
-    return root
+    return page(*args, **kw)

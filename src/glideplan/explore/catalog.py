@@ -51,8 +51,24 @@ LABELS: Mapping[str, str] = {
     "time-optimal-direct": "Variable speed: minimum time, direct method (ch. 4)",
     "min-altitude": "Glider, quadratic polar: minimum altitude loss, synthesis (ch. 5)",
     "min-altitude-direct": "Glider, quadratic polar: minimum altitude loss, direct method (ch. 5)",
-    "load-factor": "Glider, speed and load factor: minimum altitude loss, direct method (ch. 6)",
+    "load-factor": "Glider, speed and load factor: minimum altitude loss, synthesis (ch. 6)",
+    "load-factor-direct": (
+        "Glider, speed and load factor: minimum altitude loss, direct method (ch. 6)"
+    ),
 }
+# The page's key of a registered planner where it differs from the registered name: the
+# load-factor page is the chapter 6 synthesis (`plan load-factor --method synthesis`, the
+# direct method answering where it finds no candidate), its direct method is
+# `load-factor-direct`, as `time-optimal-direct` and `min-altitude-direct`. Links naming the
+# registered synthesis (`planner=load-factor-synthesis`) still open it.
+PAGE_KEYS: Mapping[str, str] = {
+    "load-factor-synthesis": "load-factor",
+    "load-factor": "load-factor-direct",
+}
+_ALIASES: Mapping[str, str] = {"load-factor-synthesis": "load-factor"}
+# Syntheses that fall back to a direct method (seconds) where they find no candidate: they
+# are planned on the page's worker thread, so that a fallback never stalls the page.
+_FALLS_BACK = frozenset({"load-factor"})
 # Fields entered in degrees at the page's edge (radians inside).
 _DEGREE_FIELDS = frozenset({"bank_max"})
 # Units shown in the page's labels, by the last part of a field's name ("" = a pure number).
@@ -224,6 +240,12 @@ class PlannerEntry:
         return self.method != "synthesis"
 
     @property
+    def background(self) -> bool:
+        """Planned on the page's worker thread: a direct method, or a synthesis that may fall
+        back to one."""
+        return self.slow or self.key in _FALLS_BACK
+
+    @property
     def length_scale(self) -> float:
         v = self.default_vehicle
         return float(v.length_scale) if v is not None else 1.0
@@ -270,6 +292,7 @@ class Catalog:
 
     def get(self, key: str) -> PlannerEntry:
         k = planner_key(key)
+        k = _ALIASES.get(k, k) if k not in self.keys else k
         for e in self.entries:
             if e.key == k:
                 return e
@@ -468,7 +491,8 @@ def build_catalog(
         specs = registered_planners()
     by_name: dict[str, list[Any]] = {}
     for s in specs:
-        by_name.setdefault(planner_key(s.name), []).append(s)
+        name = planner_key(s.name)
+        by_name.setdefault(PAGE_KEYS.get(name, name), []).append(s)
     entries: list[PlannerEntry] = []
     for name, group in by_name.items():
         for s in group:

@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["path_csv", "solution_json", "solution_png"]
+__all__ = ["DownloadFiles", "path_csv", "solution_json", "solution_png"]
 
 _CSV_SAMPLES = 400
 
@@ -83,3 +83,32 @@ def solution_png(solution: Any, errors: Mapping[str, str] | None = None) -> byte
     buf = io.BytesIO()
     save_figure(fig, buf, crop=False)  # the library's one saver (its dpi and layout)
     return buf.getvalue()
+
+
+class DownloadFiles:
+    """The download buttons' files of a page showing `view` (a `solve.View`, or None): the
+    solution JSON (as `plan --json`), the path CSV and the figure PNG, each carrying the
+    shown state's messages when there is no solution."""
+
+    view: Any
+
+    def _problem(self) -> tuple[Any, dict[str, str]]:
+        """The shown solution and the messages of the shown state (for the downloads)."""
+        if self.view is None:
+            return None, {"": "no answer yet"}
+        errors = dict(self.view.errors)
+        if self.view.solution is None and not errors:
+            errors[""] = self.view.status or "no solution"
+        return self.view.solution, errors
+
+    def _json_file(self) -> io.StringIO:
+        solution, errors = self._problem()
+        return io.StringIO(solution_json(solution, errors))
+
+    def _csv_file(self) -> io.StringIO:
+        solution, errors = self._problem()
+        return io.StringIO(path_csv(solution, errors))
+
+    def _png_file(self) -> io.BytesIO:
+        solution, errors = self._problem()
+        return io.BytesIO(solution_png(solution, errors))

@@ -17,7 +17,7 @@ from bokeh.plotting import figure
 from glideplan.explore.solve import View
 from glideplan.plotting import wind_label
 
-__all__ = ["ASPECT_JS", "PlanFigures", "columns", "equal_scales", "follow_url"]
+__all__ = ["ASPECT_JS", "PlanFigures", "columns", "equal_scales", "follow_url", "sticky_range"]
 
 BLUE = "#1f5fa8"
 START = "#2e8540"
@@ -127,6 +127,31 @@ def columns(data: dict[str, Any]) -> dict[str, Any]:
     return {k: [] if isinstance(v, np.ndarray) and v.size == 0 else v for k, v in data.items()}
 
 
+def sticky_range(
+    shown: tuple[Any, Any] | None, values: Any, zero: bool = False, fill: float = 0.0
+) -> tuple[float, float]:
+    """An axis range for `values`: `shown` while it holds them and they fill at least `fill`
+    of it, else round bounds (steps of a fifth of a decade) around them and `shown` with 5 %
+    room (`shown` None: around them alone); from 0 when `zero` (a time axis)."""
+    v = np.asarray(values, dtype=float)
+    v = v[np.isfinite(v)]
+    if v.size == 0:
+        return (0.0, 1.0) if shown is None else (float(shown[0]), float(shown[1]))
+    lo, hi = (0.0 if zero else float(v.min())), float(v.max())
+    if shown is not None:
+        s0, s1 = float(shown[0]), float(shown[1])
+        if s0 <= lo and hi <= s1 and (hi - lo) >= fill * (s1 - s0):
+            return s0, s1
+        if (hi - lo) >= fill * (max(hi, s1) - min(lo, s0)):
+            lo, hi = min(lo, s0), max(hi, s1)
+    span = hi - lo if hi > lo else max(abs(hi), 1.0)
+    pad = 0.05 * span
+    step = 0.2 * 10.0 ** math.floor(math.log10(span + 2 * pad))
+    start = 0.0 if zero else math.floor((lo - pad) / step) * step
+    end = math.ceil((hi + pad) / step) * step
+    return float(f"{start:.12g}"), float(f"{end:.12g}")
+
+
 class PlanFigures:
     """The figures and their data sources (one set per page)."""
 
@@ -147,6 +172,19 @@ class PlanFigures:
         self.labels_src = ColumnDataSource({"x": [], "y": [], "name": [], "c": []})
         self.wind_src = ColumnDataSource({"x_start": [], "y_start": [], "x_end": [], "y_end": []})
         self.wind_label = ColumnDataSource({"x": [], "y": [], "text": []})
+        self._add_answer_layers(fig)
+        self._add_pose_layers(fig)
+        self._add_partition_legend(fig)
+        self.fig = fig
+        equal_scales(fig, self.x_range, self.y_range)
+        # The page's URL follows the state: the server sets the figure's tag, the browser
+        # replaces the address (Panel's Location pushes history entries on every drag).
+        follow_url(fig)
+        self._add_profiles()
+
+    def _add_answer_layers(self, fig: Any) -> None:
+        """The partition map, the candidates (with their hover), the air-relative and the
+        optimal paths."""
         self.part_renderer = fig.image_rgba(
             "image", x="x", y="y", dw="dw", dh="dh", source=self.part_src
         )
@@ -187,6 +225,10 @@ class PlanFigures:
             line_width=3.5,
             legend_label="optimal path",
         )
+
+    def _add_pose_layers(self, fig: Any) -> None:
+        """The heading handles' segments, the wind arrow and its label, the draggable start
+        and goal (the drag tool active) with their names, and the legend's style."""
         fig.segment("x0", "y0", "x1", "y1", source=self.heading_src, line_color="c", line_width=2)
         body: dict[str, Any] = {"line_color": WIND, "line_width": 3}  # the stubs lag the runtime
         wind = Arrow(
@@ -236,7 +278,9 @@ class PlanFigures:
         self.legend.background_fill_alpha = 0.8
         self.legend.label_text_font_size = "11px"
         self.legend.click_policy = "hide"
-        # the partition map's legend: one coloured square per word (no labels on the map)
+
+    def _add_partition_legend(self, fig: Any) -> None:
+        """The partition map's legend: one coloured square per word (no labels on the map)."""
         from glideplan.explore.solve import _WORD_COLOURS
 
         swatches = [
@@ -266,14 +310,16 @@ class PlanFigures:
             spacing=4,
         )
         fig.add_layout(self.part_legend)
-        self.fig = fig
-        equal_scales(fig, self.x_range, self.y_range)
-        # The page's URL follows the state: the server sets the figure's tag, the browser
-        # replaces the address (Panel's Location pushes history entries on every drag).
-        follow_url(fig)
+
+    def _add_profiles(self) -> None:
+        """The controls along the path: speed, turn rate (or bank) and load factor against
+        time, on one time axis."""
         self.prof_src = ColumnDataSource({"t": [], "speed": [], "second": [], "third": []})
-        self.speed_fig = self._profile_figure("speed", "speed (m/s)", BLUE)
-        x_range = self.speed_fig.x_range
+        # explicit ranges, set with the data and kept while they hold it (`sticky_range`):
+        # auto-ranging moved the axes on every answer, and each move re-laid out and
+        # repainted the three plots (2.7 paints and ~3 layouts of each per change)
+        x_range = Range1d(start=0.0, end=1.0)
+        self.speed_fig = self._profile_figure("speed", "speed (m/s)", BLUE, x_range)
         self.second_fig = self._profile_figure("second", "turn rate (deg/s)", "#8e44ad", x_range)
         self.third_fig = self._profile_figure("third", "load factor n (g)", "#d35400", x_range)
         for f in (self.speed_fig, self.second_fig, self.third_fig):
@@ -291,6 +337,8 @@ class PlanFigures:
         """A small plot of the profile column `key` against time (shared time axis)."""
         extra = {} if x_range is None else {"x_range": x_range}
         fig = figure(
+            y_range=Range1d(start=0.0, end=1.0),
+            min_border_left=56,  # tick labels of any width: the plot's frame does not move
             height=150,
             sizing_mode="stretch_width",
             min_width=200,
@@ -368,9 +416,20 @@ class PlanFigures:
         cands = view.candidates or empty_candidates()
         if self.cand_src.selected.indices:
             self.cand_src.selected.indices = []
-        self.cand_src.data = columns({k: v for k, v in cands.items() if k != "cost"} | {
-            "cost": np.asarray(cands["cost"], dtype=float)
-        })
+        # lists, not arrays: the numbers inline in the message's JSON instead of one binary
+        # frame pair per line (29 websocket frames per change before), to 6 significant
+        # digits of the largest coordinate (sub-pixel; 17 digits made 90 kB per change)
+        lines = [np.asarray(a, dtype=float) for k in ("xs", "ys") for a in cands[k]]
+        top = max((float(np.abs(a).max()) for a in lines if a.size), default=1.0)
+        decimals = max(0, 5 - math.floor(math.log10(top))) if top > 0 else 6
+        self.cand_src.data = columns(
+            {k: v for k, v in cands.items() if k not in ("xs", "ys", "cost")}
+            | {
+                k: [np.round(np.asarray(a, dtype=float), decimals).tolist() for a in cands[k]]
+                for k in ("xs", "ys")
+            }
+            | {"cost": [float(c) for c in cands["cost"]]}
+        )
         if self.cand_renderer.visible != visible:
             self.cand_renderer.visible = visible
 
@@ -389,6 +448,23 @@ class PlanFigures:
             "second": prof["second"],
             "third": third if third is not None else np.full_like(prof["t"], np.nan),
         })
+        # the axes grow to hold the answers of one vehicle (speeds, turn rates and load
+        # factors stay within its limits) and start again for another; time from 0, shrunk
+        # when a path fills less than a quarter of it
+        key = (view.state.planner, tuple(sorted(view.state.values.items())))
+        same = key == getattr(self, "_profile_key", None)
+        self._profile_key = key
+        ranges = [(self.speed_fig.x_range, prof["t"], True, 0.25)] + [
+            (f.y_range, values, False, 0.0)
+            for f, values in zip((self.speed_fig, self.second_fig, self.third_fig),
+                                 (prof["speed"], prof["second"], third), strict=True)
+            if values is not None
+        ]
+        for rng, values, zero, fill in ranges:
+            shown = (rng.start, rng.end) if same else None
+            lo, hi = sticky_range(shown, values, zero=zero, fill=fill)
+            if (lo, hi) != (rng.start, rng.end):
+                rng.update(start=lo, end=hi)
         if self.second_fig.yaxis[0].axis_label != view.profile_labels[1]:
             self.second_fig.yaxis.axis_label = view.profile_labels[1]
         if self.third_fig.visible != (third is not None):

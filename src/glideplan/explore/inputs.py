@@ -25,6 +25,7 @@ from typing import Any
 import panel as pn
 
 from glideplan.explore.catalog import Parameter
+from glideplan.explore.layout import NOT_BUSY
 from glideplan.validation import PHYSICAL_RANGES
 
 __all__ = [
@@ -71,18 +72,22 @@ class _FloatInput(pn.widgets.FloatInput):
     """A spinner whose change reaches the server at once (Panel waits 50 ms by default)."""
 
     _debounce = 0
+    _busy__ignore = NOT_BUSY
 
 
 class _IntInput(pn.widgets.IntInput):
     _debounce = 0
+    _busy__ignore = NOT_BUSY
 
 
 class _Select(pn.widgets.Select):
     _debounce = 0
+    _busy__ignore = NOT_BUSY
 
 
 class _Checkbox(pn.widgets.Checkbox):
     _debounce = 0
+    _busy__ignore = NOT_BUSY
 
 
 def _choices() -> Mapping[str, tuple[str, ...]]:
@@ -379,19 +384,10 @@ def _group_input(p: Parameter, text: str, on_text: Callable[[str], None]) -> Inp
     return InputControl(p.name, [title, *spins], get, set_)
 
 
-def _wind_input(
-    name: str,
-    text: str,
-    on_text: Callable[[str], None],
-    unit: str,
-    on_unit: Callable[[str], None] | None,
-) -> InputControl:
-    """The wind: speed (in the chosen unit), the unit, and the compass direction FROM (deg).
-
-    The URL text is `SPEED_MS,FROM_DEG` (m/s and compass degrees, as `--wind SPEED FROM`)."""
-    unit = unit if unit in WIND_UNITS else "m/s"
+def _wind_widgets(name: str, text: str, unit: str) -> tuple[Any, Any, Any]:
+    """The wind's speed spinner (in `unit`, limited to the wind-speed range), its unit
+    dropdown and the compass FROM spinner, showing the link's text `SPEED_MS,FROM_DEG`."""
     speed_ms, frm = _items(text, 2)
-    state: dict[str, Any] = {"items": str(text).replace(",", " ").split(), "unit": unit}
     wr = PHYSICAL_RANGES["wind_speed"]
     speed = _spinner(
         "wind speed", speed_ms, 1.0 / WIND_UNITS[unit], wr.low, wr.high,
@@ -409,21 +405,44 @@ def _wind_input(
         css_classes=[f"gp-input-{name}-from"],
         description="the compass direction the wind blows FROM (deg): 0 north, 90 east",
     )
+    return speed, units, direction
+
+
+def _wind_text(items: list[str], unit: str, speed: Any, direction: Any) -> str:
+    """The link's `SPEED_MS,FROM_DEG` for the shown speed (in `unit`) and direction; an item
+    the user did not change keeps its text `items` (exact to the digit)."""
+    items = list(items) if len(items) == 2 else ["", ""]
+    factor = 1.0 / WIND_UNITS[unit]
+    old = _float(items[0]) if items[0] else None
+    if speed is None:
+        items[0] = ""
+    elif old is None or not math.isclose(speed, old * factor, rel_tol=1e-12):
+        items[0] = number_text(float(speed) / factor)
+    old_dir = _float(items[1]) if items[1] else None
+    if direction is None:
+        items[1] = ""
+    elif old_dir is None or not math.isclose(direction, old_dir, rel_tol=1e-12):
+        items[1] = number_text(float(direction))
+    return ",".join(items)
+
+
+def _wind_input(
+    name: str,
+    text: str,
+    on_text: Callable[[str], None],
+    unit: str,
+    on_unit: Callable[[str], None] | None,
+) -> InputControl:
+    """The wind: speed (in the chosen unit), the unit, and the compass direction FROM (deg).
+
+    The URL text is `SPEED_MS,FROM_DEG` (m/s and compass degrees, as `--wind SPEED FROM`)."""
+    unit = unit if unit in WIND_UNITS else "m/s"
+    state: dict[str, Any] = {"items": str(text).replace(",", " ").split(), "unit": unit}
+    wr = PHYSICAL_RANGES["wind_speed"]
+    speed, units, direction = _wind_widgets(name, text, unit)
 
     def get() -> str:
-        items = list(state["items"]) if len(state["items"]) == 2 else ["", ""]
-        factor = 1.0 / WIND_UNITS[state["unit"]]
-        old = _float(items[0]) if items[0] else None
-        if speed.value is None:
-            items[0] = ""
-        elif old is None or not math.isclose(speed.value, old * factor, rel_tol=1e-12):
-            items[0] = number_text(float(speed.value) / factor)
-        old_dir = _float(items[1]) if items[1] else None
-        if direction.value is None:
-            items[1] = ""
-        elif old_dir is None or not math.isclose(direction.value, old_dir, rel_tol=1e-12):
-            items[1] = number_text(float(direction.value))
-        return ",".join(items)
+        return _wind_text(state["items"], state["unit"], speed.value, direction.value)
 
     def set_(new: str) -> None:
         state["items"] = str(new).replace(",", " ").split()

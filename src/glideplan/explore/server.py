@@ -84,8 +84,8 @@ def serve(
     """
     import panel as pn
 
-    from glideplan.explore.app import create_page
     from glideplan.explore.catalog import build_catalog
+    from glideplan.explore.page import create_page
 
     catalog = build_catalog()
     threading.Thread(target=warm_up, daemon=True, name="glideplan-warm-up").start()

@@ -26,7 +26,7 @@ __all__ = ["View", "cost_unit", "partition_image", "solve_view", "with_candidate
 
 _COST_UNITS: Mapping[str, str] = {"length": "m", "time": "s", "altitude": "m"}
 _PATH_SAMPLES = 240
-_CANDIDATE_SAMPLES = 60
+_CANDIDATE_SAMPLES = 40
 _PROFILE_SAMPLES = 160
 
 
@@ -76,6 +76,18 @@ class View:
             return ""
         s = self.solution
         return str(s.status.value) + (f": {s.message}" if not s.ok and s.message else "")
+
+    @property
+    def method_text(self) -> str:
+        """The method that answered: the planner's own, or the direct method where a
+        synthesis found no candidate (its answer's `answered_by`); '' without an answer."""
+        if self.entry is None or self.solution is None:
+            return ""
+        extras = getattr(self.solution, "extras", None) or {}
+        answered = str(extras.get("answered_by", self.entry.method))
+        if answered != self.entry.method:
+            return f"{answered} ({self.entry.method}: no candidate)"
+        return answered
 
     @property
     def endpoint_text(self) -> str:
@@ -206,7 +218,9 @@ def _candidates(solution: Any) -> dict[str, list[Any]]:
     best = solution.path
     for i, c in enumerate(solution.candidates):
         if c.path is not None and c.feasible:
-            s = c.path.sample(n=max(_CANDIDATE_SAMPLES, 20 * len(c.path.segments)))
+            # grey background lines: 10 points per segment at least (they travel as JSON
+            # numbers, whose encoding was the page's largest cost for minimum time's 13)
+            s = c.path.sample(n=max(_CANDIDATE_SAMPLES, 10 * len(c.path.segments)))
             xs, ys = s.x, s.y
         else:
             xs, ys = np.zeros(0), np.zeros(0)

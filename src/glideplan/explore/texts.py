@@ -1,6 +1,7 @@
 """The explorer's HTML: its style sheet, the result strip, the candidates table, messages.
 
 Test hooks: the optimal cost is in `gp-cost` (10 significant digits), the word in `gp-word`,
+the method that answered in `gp-method`,
 each message in `gp-error`, the busy note in `gp-busy`.
 """
 
@@ -114,6 +115,7 @@ def strip_html(view: View, stale: bool = False) -> str:
         + item("word", html.escape(view.word) or "&ndash;", "gp-word")
         + item("family", html.escape(view.family) or "&ndash;", "gp-family")
         + item("status", status, "gp-small gp-status" + bad)
+        + item("method", html.escape(view.method_text) or "&ndash;", "gp-small gp-method")
         + item("endpoint error", html.escape(view.endpoint_text), "gp-small gp-endpoint")
         + item("time", html.escape(view.time_text), "gp-small gp-time")
         + busy

@@ -31,6 +31,7 @@ class SessionWorker:
     _lock: threading.Lock
     _pending: Any
     _running: bool
+    _loop: Any = None  # the server's tornado IOLoop, taken on its thread by `_submit`
     state: Any
 
     def _locked(self, fn: Callable[[], None]) -> None:
@@ -59,6 +60,10 @@ class SessionWorker:
 
     def _submit(self, name: str) -> None:
         """Compute the current state on the worker thread `name` (started if idle)."""
+        if self._doc is not None and getattr(self, "_loop", None) is None:
+            from tornado.ioloop import IOLoop
+
+            self._loop = IOLoop.current()  # called on the server's thread: its loop
         with self._lock:
             self._pending = self.state
             start = not self._running
@@ -117,6 +122,18 @@ class SessionWorker:
             return
         if self._closed:
             return  # the tab was closed while planning: nobody to show it to
+        loop = getattr(self, "_loop", None)
+        if loop is not None:
+            # hop to the server's thread first (tornado's add_callback is the one thread-safe
+            # call): a document callback added from this thread was sometimes never run (an
+            # answer computed, never shown: 1 of ~80 load-factor changes, and fresh loads)
+            loop.add_callback(lambda: self._add_on_server(fn))
+            return
+        self._add_on_server(fn)
+
+    def _add_on_server(self, fn: Callable[[], None]) -> None:
+        if self._closed or self._doc is None:
+            return
         try:
             self._doc.add_next_tick_callback(lambda: self._held(fn))
         except Exception:  # the session went away between the check and the call
