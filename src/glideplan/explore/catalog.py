@@ -20,6 +20,9 @@ from dataclasses import dataclass
 from typing import Any, cast
 
 from glideplan.errors import InvalidParameterError
+from glideplan.explore.field_labels import CAPTION_NAMES as _CAPTION_NAMES
+from glideplan.explore.field_labels import DEGREE_FIELDS as _DEGREE_FIELDS
+from glideplan.explore.field_labels import FIELD_UNITS as _FIELD_UNITS
 from glideplan.validation import check_finite
 
 __all__ = [
@@ -69,43 +72,6 @@ _ALIASES: Mapping[str, str] = {"load-factor-synthesis": "load-factor"}
 # Syntheses that fall back to a direct method (seconds) where they find no candidate: they
 # are planned on the page's worker thread, so that a fallback never stalls the page.
 _FALLS_BACK = frozenset({"load-factor"})
-# Fields entered in degrees at the page's edge (radians inside).
-_DEGREE_FIELDS = frozenset({"bank_max"})
-# Units shown in the page's labels, by the last part of a field's name ("" = a pure number).
-# "speed" marks a speed (m/s, or units of V_ref for a nondimensional vehicle), "length" a length.
-_FIELD_UNITS: Mapping[str, str] = {
-    "speed": "speed",
-    "v_min": "speed",
-    "v_max": "speed",
-    "v_stall": "speed",
-    "turn_radius": "length",
-    "u_max": "rad/s",
-    "turn_rate_max": "rad/s",
-    "bank_max": "deg",
-    "mass_kg": "kg",
-    "reference_mass_kg": "kg",
-    "wing_area_m2": "m²",
-    "bugs_pct": "%",
-    "max_ballast_l": "L",
-    "mc": "m/s",
-    "disturbance_ratio": "ratio W/V",
-    "l_over_d_max": "ratio",
-    "n_max": "g",
-    "mesh_tol": "relative",
-    "classification_tol": "relative",
-}
-# Readable names for option names where the plain words are not enough.
-_CAPTION_NAMES: Mapping[str, str] = {
-    "l_over_d": "(L/D) max",
-    "n_max": "load factor max",
-    "u_max": "turn rate max",
-    "v_stall": "v stall",
-    "polar_mass_kg": "polar mass",
-    "polar_reference_mass_kg": "polar reference mass",
-    "polar_wing_area_m2": "polar wing area",
-    "polar_bugs_pct": "polar bugs",
-    "polar_max_ballast_l": "polar max ballast",
-}
 # Option types the page can enter as text.
 _SCALARS = (bool, int, float, str)
 
