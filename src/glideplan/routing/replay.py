@@ -111,6 +111,7 @@ class ReplaySettings:
     switch_margin: float = 0.03
     crab_fixes: bool = False
     late_replan_s: float | None = None
+    feedback: bool = False
 
     def __post_init__(self) -> None:
         if self.follow not in ("track", "headings"):
@@ -367,7 +368,8 @@ def _front_schedule(r: Any, times: FloatArray, dur: float) -> tuple[FloatArray, 
 
 
 def _fly_plan(fl: _Flyer, plan: Plan, t_stop: float, s: ReplaySettings,
-              expected: FlowField | None = None, late_s: float | None = None) -> bool:
+              expected: FlowField | None = None, late_s: float | None = None,
+              ttg: Any = None) -> bool:
     """Fly the plan until t_stop: its track (crabbing for the `expected` current, corrected
     at each fix by the current the vehicle measured) or its headings (then at the goal);
     without a plan, at the goal. With `late_s`, stop early (True) at the first fix where the
@@ -378,6 +380,8 @@ def _fly_plan(fl: _Flyer, plan: Plan, t_stop: float, s: ReplaySettings,
         return fl.fly(t_stop, _follow(plan, fl.t0, fl.m.goal), plan.t + fl.t0)
     cur = None if expected is None else _Expected(expected, s)
     steer = _tracker(plan, fl.m.goal, fl.m.speed, cur, s.lookahead_m)
+    if ttg is not None:
+        steer = _by_time_to_go(ttg, steer)
     if cur is None or not s.crab_fixes:
         return fl.fly(t_stop, steer)
     fix = s.fix_every_s
@@ -390,6 +394,17 @@ def _fly_plan(fl: _Flyer, plan: Plan, t_stop: float, s: ReplaySettings,
         seg = min(t_stop, fl.t0 + (math.floor((t - fl.t0) / fix + 1e-9) + 1) * fix)
         if not fl.fly(seg, steer) or seg >= t_stop - 1e-9:
             return fl.status is None and fl.t[-1] < fl.t_end - 1e-9
+
+
+def _by_time_to_go(ttg: Any, track: Callable[[float, float, float], float]) -> Callable[
+        [float, float, float], float]:
+    """Steer along -grad(time-to-go) where the map has a value, else by `track`."""
+
+    def heading(t: float, lat: float, lon: float) -> float:
+        h = ttg.heading(lat, lon)
+        return track(t, lat, lon) if h is None else h
+
+    return heading
 
 
 def _lateness(plan: Plan, fl: _Flyer) -> float:
@@ -494,10 +509,24 @@ def _closed_loop(truth: FlowField, forecasts: list[Forecast], m: Mission, t0: fl
             plan_end = t + plan.planned_duration_s
             if plan_end < nxt - 1.0 and fl.goal_distance(*pos) > 4 * m.goal_radius_m:
                 nxt = max(plan_end, t + 3600.0)  # the plan ran out before the goal: replan
-        if not _fly_plan(fl, plan, nxt, s, fld, s.late_replan_s):
+        ttg = _feedback_map(fld, plan, pos, m, t, s) if s.feedback else None
+        if not _fly_plan(fl, plan, nxt, s, fld, s.late_replan_s, ttg):
             break
         t = fl.t[-1]
     return fl.flight(tuple(plans)), plans[0], first_field
+
+
+def _feedback_map(fld: FlowField, plan: Plan, pos: tuple[float, float], m: Mission, t: float,
+                  s: ReplaySettings) -> Any:
+    """The time-to-go map (`replay_feedback.time_to_go`) for arriving when the plan does."""
+    from glideplan.routing.replay_feedback import time_to_go
+    from glideplan.routing.sphere import gc_distance
+
+    if plan.planned_duration_s is None or not plan.t.size:
+        return None
+    dist = float(gc_distance(*pos, *m.goal))
+    res = s.resolution or max(2000.0, dist / s.cells)
+    return time_to_go(fld, m.goal, pos, m.speed, t + plan.planned_duration_s, t, res)
 
 
 def _open_loop(truth: FlowField, m: Mission, t0: float, t_end: float, s: ReplaySettings,
