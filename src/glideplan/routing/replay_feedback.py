@@ -52,7 +52,7 @@ class TimeToGo:
         la, lo = self.lat, self.lon
         fi = (lat - la[0]) / (la[1] - la[0])
         fj = (lon - lo[0]) / (lo[1] - lo[0])
-        i, j = int(math.floor(fi)), int(math.floor(fj))
+        i, j = math.floor(fi), math.floor(fj)
         if not (0 <= i < la.size - 1 and 0 <= j < lo.size - 1):
             return None
         a, b = fi - i, fj - j
