@@ -30,7 +30,6 @@ ALLOWED_MODULES: dict[str, str] = {
     "fields/io.py": "contractB (fields/)",
     "fields/synthetic.py": "contractB (fields/)",
     "planners/load_factor_orbits.py": "kern3 (ch6, planners/)",
-    "routing/replay.py": "replay3",
     "formats/readers.py": "lead (not assigned this round)",
 }
 
