@@ -28,8 +28,8 @@ the first time, lat/lon degrees as stored in the file) are sampled at the nodes:
 - `basin_dataset` / `basin_current`: a basin-scale Copernicus-like 1/12 deg field (260 x 500
   nodes x 13 times): a meandering jet and westward Rossby-like waves, speeds <= 0.48 m/s.
 
-Module size (about 510 lines): a catalogue, one builder of 20-40 lines per product layout,
-kept together so tests and benchmarks find every layout in one place.
+Why this module is long: (about 510 lines) a catalogue, one builder of 20-40 lines per
+product layout, kept together so tests and benchmarks find every layout in one place.
 """
 
 from __future__ import annotations

@@ -36,9 +36,9 @@ next one starts (e.g. longitude 180 and -180 at the same latitude) the point is 
 a vertex glideplan interpolated on the seam carries the name `null` in `names` and is dropped.
 Parts that do not meet are still joined in order (a straight leg between them), with a warning.
 
-Module size (about 550 lines, 50 of them this text): the four readers share the waypoint
-accumulator (`_Points`), the error that names file and line, and the line-joining rule above;
-kept in one module so every format is read by the same rules.
+Why this module is long: (about 550 lines, 50 of them this text): the four readers share
+the waypoint accumulator (`_Points`), the error that names file and line, and the
+line-joining rule above; kept in one module so every format is read by the same rules.
 """
 
 from __future__ import annotations

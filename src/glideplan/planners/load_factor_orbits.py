@@ -21,9 +21,10 @@ quadrature. So each P of a grid gives the alpha roots of e1 and e2 along them; s
 e2 between neighbouring P bracket an extremal to the goal (word: start and goal branches s0,
 sg and the number j of whole periods between them), which `refine` then solves.
 
-(About 600 lines, over the usual 500: the tables, the root scan, the bracket searches and
-their solvers are numba kernels calling each other's private helpers; split across modules,
-numba's per-file cache would keep stale copies of the helpers a caller compiled in.)
+Why this module is long: (about 600 lines, over the usual 500) the tables, the root scan,
+the bracket searches and their solvers are numba kernels calling each other's private
+helpers; split across modules, numba's per-file cache would keep stale copies of the helpers
+a caller compiled in.
 """
 
 from __future__ import annotations
