@@ -216,72 +216,86 @@ def glide_ardusoar(
     announce(f"wrote {out}", json_out)
 
 
+# glide_final's options (module level keeps the command itself short)
+_GlideFinalPolarFile = Annotated[
+    pathlib.Path,
+    typer.Option("--polar", metavar="FILE", help="Polar file (.plr).", show_default=False),
+]
+_GlideFinalStart = Annotated[
+    tuple[float, float, float],
+    typer.Option(
+        "--from",
+        metavar="LAT LON ALT_M",
+        help="Start LAT LON ALT_M (WGS84 degrees, metres).",
+        show_default=False,
+    ),
+]
+_GlideFinalGoal = Annotated[
+    tuple[float, float, float],
+    typer.Option(
+        "--to",
+        metavar="LAT LON ELEV_M",
+        help="Goal LAT LON ELEV_M (WGS84 degrees, metres).",
+        show_default=False,
+    ),
+]
+_GlideFinalWind = Annotated[
+    tuple[float, float] | None,
+    typer.Option(
+        "--wind",
+        metavar="SPEED_MS FROM_DEG",
+        help="Wind SPEED_MS FROM_DEG (compass, where it blows from).",
+        show_default=False,
+    ),
+]
+_GlideFinalSafetyHeight = Annotated[
+    float, typer.Option("--safety-height", help="Arrival height above the goal (m).")
+]
+_GlideFinalArrivalHeading = Annotated[
+    float | None,
+    typer.Option("--arrival-heading", help="Heading at the goal (compass degrees)."),
+]
+_GlideFinalStartHeading = Annotated[
+    float | None,
+    typer.Option("--start-heading", help="Heading now (compass degrees); default free."),
+]
+_GlideFinalBankMax = Annotated[
+    float, typer.Option("--bank-max", help="Bank limit in turns (degrees).")
+]
+_GlideFinalPlot = Annotated[
+    pathlib.Path | None,
+    typer.Option(
+        "--plot", metavar="FILE", help="Draw the ground track and altitude profile to FILE."
+    ),
+]
+_GlideFinalCup = Annotated[
+    pathlib.Path | None,
+    typer.Option("--cup", metavar="FILE", help="Also write a SeeYou .cup task."),
+]
+_GlideFinalTsk = Annotated[
+    pathlib.Path | None,
+    typer.Option("--tsk", metavar="FILE", help="Also write an XCSoar .tsk task."),
+]
+
+
 @glide_app.command("final")
 def glide_final(
-    polar_file: Annotated[
-        pathlib.Path,
-        typer.Option("--polar", metavar="FILE", help="Polar file (.plr).", show_default=False),
-    ],
-    start: Annotated[
-        tuple[float, float, float],
-        typer.Option(
-            "--from",
-            metavar="LAT LON ALT_M",
-            help="Start LAT LON ALT_M (WGS84 degrees, metres).",
-            show_default=False,
-        ),
-    ],
-    goal: Annotated[
-        tuple[float, float, float],
-        typer.Option(
-            "--to",
-            metavar="LAT LON ELEV_M",
-            help="Goal LAT LON ELEV_M (WGS84 degrees, metres).",
-            show_default=False,
-        ),
-    ],
+    polar_file: _GlideFinalPolarFile,
+    start: _GlideFinalStart,
+    goal: _GlideFinalGoal,
     mass: MassOpt = None,
     ballast: BallastOpt = 0.0,
     bugs: BugsOpt = 0.0,
     mc: Annotated[float, typer.Option("--mc", help="MacCready setting (m/s).")] = 0.0,
-    wind: Annotated[
-        tuple[float, float] | None,
-        typer.Option(
-            "--wind",
-            metavar="SPEED_MS FROM_DEG",
-            help="Wind SPEED_MS FROM_DEG (compass, where it blows from).",
-            show_default=False,
-        ),
-    ] = None,
-    safety_height: Annotated[
-        float, typer.Option("--safety-height", help="Arrival height above the goal (m).")
-    ] = 300.0,
-    arrival_heading: Annotated[
-        float | None,
-        typer.Option("--arrival-heading", help="Heading at the goal (compass degrees)."),
-    ] = None,
-    start_heading: Annotated[
-        float | None,
-        typer.Option("--start-heading", help="Heading now (compass degrees); default free."),
-    ] = None,
-    bank_max: Annotated[
-        float, typer.Option("--bank-max", help="Bank limit in turns (degrees).")
-    ] = 45.0,
+    wind: _GlideFinalWind = None,
+    safety_height: _GlideFinalSafetyHeight = 300.0,
+    arrival_heading: _GlideFinalArrivalHeading = None,
+    start_heading: _GlideFinalStartHeading = None,
+    bank_max: _GlideFinalBankMax = 45.0,
     json_out: JsonOpt = False,
-    plot: Annotated[
-        pathlib.Path | None,
-        typer.Option(
-            "--plot", metavar="FILE", help="Draw the ground track and altitude profile to FILE."
-        ),
-    ] = None,
-    cup: Annotated[
-        pathlib.Path | None,
-        typer.Option("--cup", metavar="FILE", help="Also write a SeeYou .cup task."),
-    ] = None,
-    tsk: Annotated[
-        pathlib.Path | None,
-        typer.Option("--tsk", metavar="FILE", help="Also write an XCSoar .tsk task."),
-    ] = None,
+    plot: _GlideFinalPlot = None,
+    cup: _GlideFinalCup = None,
+    tsk: _GlideFinalTsk = None,
 ) -> None:
     """Altitude needed to reach a goal: straight final glide, or to an arrival heading."""
     from glideplan.cli.common import check_figure_file, check_output_file, flag_names

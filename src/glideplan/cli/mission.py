@@ -90,71 +90,91 @@ def check_export_options(formats: tuple[str, ...], options: Any, waypoints: int)
         )
 
 
+# mission_plan's options (module level keeps the command itself short)
+_MissionPlanRoute = Annotated[pathlib.Path, typer.Argument(
+    metavar="ROUTE",
+    help="Route file: .csv (name,lat,lon[,heading_deg] or name,x,y[,heading_deg]), .gpx, "
+         ".kml or .geojson.", show_default=False)]
+_MissionPlanSpeed = Annotated[float, typer.Option(
+    "--speed", help="Speed through the air/water (m/s).", show_default=False)]
+_MissionPlanRadius = Annotated[float, typer.Option(
+    "--radius", help="Minimum turn radius R0 (m). With --field: each routed leg becomes the "
+                     "flyable path of Dubins pieces of radius R0' = R0 (1 + eps)^2, eps = "
+                     "the leg's largest current / speed (as `glideplan route --radius`), "
+                     "joined with a continuous course at the waypoints, followed in closed "
+                     "loop through the field; the track and the vehicle files carry it.",
+    show_default=False)]
+_MissionPlanObjective = Annotated[str | None, typer.Option(
+    "--objective", help="length or time (default: length; time with --wind).")]
+_MissionPlanWind = Annotated[tuple[float, float] | None, typer.Option(
+    "--wind", metavar="SPEED DIR_DEG",
+    help="Steady wind/current: speed (m/s) and the compass direction it blows FROM (deg).",
+    show_default=False)]
+_MissionPlanField = Annotated[pathlib.Path | None, typer.Option(
+    "--field", metavar="FILE",
+    help="Current/wind field file (NetCDF or GRIB, as `glideplan route`): each "
+                    "leg is routed through it (time-optimal, headings free), departing "
+                    "when the previous leg arrives.", show_default=False)]
+_MissionPlanDepart = Annotated[str | None, typer.Option(
+    "--depart", metavar="TIME",
+    help="Departure from the first waypoint, ISO 8601 (UTC if no offset): the "
+                     "waypoints' ETAs in the JSON and files as UTC times. With --field: "
+                     "default the field's first time; must lie in its time span.",
+    show_default=False)]
+_MissionPlanDepthRange = Annotated[tuple[float, float] | None, typer.Option(
+    "--depth-range", metavar="Z0 Z1",
+    help="With --field: average the currents over depths Z0..Z1 (m, positive down; "
+         "trapezoidal over the file's levels), as `glideplan route`.",
+    show_default=False)]
+_MissionPlanHeadings = Annotated[int | None, typer.Option(
+    "--headings", help="Candidate headings per free waypoint K (default 360; 36 in wind).",
+    show_default=False)]
+_MissionPlanExport = Annotated[pathlib.Path | None, typer.Option(
+    "--export", metavar="DIR", help="Directory to write the mission files into.",
+    show_default=False)]
+_MissionPlanFormats = Annotated[str | None, typer.Option(
+    "--formats", metavar="LIST",
+    help="Comma-separated: geojson,kml,gpx,csv,qgc-wpl,qgc-plan,slocum,"
+                      "seaglider (default: all).", show_default=False)]
+_MissionPlanAcceptanceRadius = Annotated[float, typer.Option(
+    "--acceptance-radius", help="Waypoint acceptance radius in the vehicle files (m).")
+]
+_MissionPlanMaxDeviation = Annotated[float | None, typer.Option(
+    "--max-deviation", help="Largest distance of the straight legs from the planned track "
+                            "(m; default half the acceptance radius).",
+    show_default=False)]
+_MissionPlanAltitude = Annotated[float, typer.Option(
+    "--altitude", help="QGC waypoint altitude above home (m).")]
+_MissionPlanGotoNumber = Annotated[int, typer.Option(
+    "--goto-number", help="Slocum goto file number NN (goto_lNN.ma).")]
+_MissionPlanMaxGotoWaypoints = Annotated[int, typer.Option(
+    "--max-goto-waypoints", help="Most waypoints per Slocum goto file (split beyond).")]
+_MissionPlanPlot = Annotated[pathlib.Path | None, typer.Option(
+    "--plot", metavar="FILE", help="Draw the mission into FILE (.png, .pdf, .svg).",
+    show_default=False)
+]
+
+
 @mission_app.command("plan")
 def mission_plan(
-    route: Annotated[pathlib.Path, typer.Argument(
-        metavar="ROUTE",
-        help="Route file: .csv (name,lat,lon[,heading_deg] or name,x,y[,heading_deg]), .gpx, "
-             ".kml or .geojson.", show_default=False)],
-    speed: Annotated[float, typer.Option("--speed", help="Speed through the air/water (m/s).",
-                                         show_default=False)],
-    radius: Annotated[float, typer.Option(
-        "--radius", help="Minimum turn radius R0 (m). With --field: each routed leg becomes the "
-                         "flyable path of Dubins pieces of radius R0' = R0 (1 + eps)^2, eps = "
-                         "the leg's largest current / speed (as `glideplan route --radius`), "
-                         "joined with a continuous course at the waypoints, followed in closed "
-                         "loop through the field; the track and the vehicle files carry it.",
-        show_default=False)],
-    objective: Annotated[str | None, typer.Option(
-        "--objective", help="length or time (default: length; time with --wind).")] = None,
-    wind: Annotated[tuple[float, float] | None, typer.Option(
-        "--wind", metavar="SPEED DIR_DEG",
-        help="Steady wind/current: speed (m/s) and the compass direction it blows FROM (deg).",
-        show_default=False)] = None,
-    field: Annotated[pathlib.Path | None, typer.Option(
-        "--field", metavar="FILE",
-        help="Current/wind field file (NetCDF or GRIB, as `glideplan route`): each "
-                        "leg is routed through it (time-optimal, headings free), departing "
-                        "when the previous leg arrives.", show_default=False)] = None,
-    depart: Annotated[str | None, typer.Option(
-        "--depart", metavar="TIME",
-        help="Departure from the first waypoint, ISO 8601 (UTC if no offset): the "
-                         "waypoints' ETAs in the JSON and files as UTC times. With --field: "
-                         "default the field's first time; must lie in its time span.",
-        show_default=False)] = None,
-    depth_range: Annotated[tuple[float, float] | None, typer.Option(
-        "--depth-range", metavar="Z0 Z1",
-        help="With --field: average the currents over depths Z0..Z1 (m, positive down; "
-             "trapezoidal over the file's levels), as `glideplan route`.",
-        show_default=False)] = None,
-    headings: Annotated[int | None, typer.Option(
-        "--headings", help="Candidate headings per free waypoint K (default 360; 36 in wind).",
-        show_default=False)] = None,
-    export: Annotated[pathlib.Path | None, typer.Option(
-        "--export", metavar="DIR", help="Directory to write the mission files into.",
-        show_default=False)] = None,
-    formats: Annotated[str | None, typer.Option(
-        "--formats", metavar="LIST",
-        help="Comma-separated: geojson,kml,gpx,csv,qgc-wpl,qgc-plan,slocum,"
-                          "seaglider (default: all).", show_default=False)] = None,
-    acceptance_radius: Annotated[float, typer.Option(
-        "--acceptance-radius", help="Waypoint acceptance radius in the vehicle files (m).")
-    ] = 100.0,
-    max_deviation: Annotated[float | None, typer.Option(
-        "--max-deviation", help="Largest distance of the straight legs from the planned track "
-                                "(m; default half the acceptance radius).",
-        show_default=False)] = None,
-    altitude: Annotated[float, typer.Option(
-        "--altitude", help="QGC waypoint altitude above home (m).")] = 50.0,
-    goto_number: Annotated[int, typer.Option(
-        "--goto-number", help="Slocum goto file number NN (goto_lNN.ma).")] = 10,
-    max_goto_waypoints: Annotated[int, typer.Option(
-        "--max-goto-waypoints", help="Most waypoints per Slocum goto file (split beyond).")] = 8,
+    route: _MissionPlanRoute,
+    speed: _MissionPlanSpeed,
+    radius: _MissionPlanRadius,
+    objective: _MissionPlanObjective = None,
+    wind: _MissionPlanWind = None,
+    field: _MissionPlanField = None,
+    depart: _MissionPlanDepart = None,
+    depth_range: _MissionPlanDepthRange = None,
+    headings: _MissionPlanHeadings = None,
+    export: _MissionPlanExport = None,
+    formats: _MissionPlanFormats = None,
+    acceptance_radius: _MissionPlanAcceptanceRadius = 100.0,
+    max_deviation: _MissionPlanMaxDeviation = None,
+    altitude: _MissionPlanAltitude = 50.0,
+    goto_number: _MissionPlanGotoNumber = 10,
+    max_goto_waypoints: _MissionPlanMaxGotoWaypoints = 8,
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
-    plot: Annotated[pathlib.Path | None, typer.Option(
-        "--plot", metavar="FILE", help="Draw the mission into FILE (.png, .pdf, .svg).",
-        show_default=False)
-    ] = None,
+    plot: _MissionPlanPlot = None,
 ) -> None:
     """Plan a multi-leg mission through ROUTE's waypoints, choosing the free headings optimally.
 

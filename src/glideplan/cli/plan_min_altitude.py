@@ -19,64 +19,78 @@ VEHICLES = ("dg1001m",)
 METHODS = ("synthesis", "direct")
 
 
+# plan_min_altitude_command's options (module level keeps the command itself short)
+_PlanMinAltitudeGoal = Annotated[
+    common.PoseValues,
+    common.goal_option(
+        "Goal pose X Y HEADING_DEG (m, or units of R_stf with --normalized; degrees)."
+    ),
+]
+_PlanMinAltitudeStart = Annotated[
+    common.PoseValues, common.start_option("Start pose X Y HEADING_DEG (same units as --goal).")
+]
+_PlanMinAltitudeVehicle = Annotated[
+    str | None,
+    typer.Option(
+        "--vehicle",
+        help="Preset glider: dg1001m (section 5.9). The default when --polar is not given.",
+    ),
+]
+_PlanMinAltitudePolar = Annotated[
+    tuple[float, float, float] | None,
+    typer.Option(
+        "--polar",
+        metavar="A B C",
+        help="Sink-rate polar w = A v^2 + B v + C in SI: A (s/m), B (-), C (m/s); "
+        "needs --v-stall, --v-max and --u-max.",
+        show_default=False,
+    ),
+]
+_PlanMinAltitudeVStall = Annotated[
+    float | None, typer.Option("--v-stall", help="Stall speed (m/s), with --polar.")
+]
+_PlanMinAltitudeVMax = Annotated[
+    float | None, typer.Option("--v-max", help="Maximum speed (m/s), with --polar.")
+]
+_PlanMinAltitudeUMax = Annotated[
+    float | None, typer.Option("--u-max", help="Maximum turn rate (rad/s), with --polar.")
+]
+_PlanMinAltitudeNormalized = Annotated[
+    bool,
+    typer.Option(
+        "--normalized", help="Read X and Y of --goal/--start in units of R_stf = v_stf/u_max."
+    ),
+]
+_PlanMinAltitudeMethod = Annotated[
+    str, typer.Option("--method", help="synthesis (default) or direct (collocation + IPOPT).")
+]
+_PlanMinAltitudeJsonOut = Annotated[
+    bool,
+    typer.Option(
+        "--json",
+        help="Print one JSON object (cost = altitude loss in m; dubins_cost; profile).",
+    ),
+]
+_PlanMinAltitudePlot = Annotated[
+    pathlib.Path | None,
+    common.plot_option("Draw the candidates and the control history to FILE."),
+]
+
+
 @plan_app.command("min-altitude")
 def plan_min_altitude_command(
-    goal: Annotated[
-        common.PoseValues,
-        common.goal_option(
-            "Goal pose X Y HEADING_DEG (m, or units of R_stf with --normalized; degrees)."
-        ),
-    ],
-    start: Annotated[
-        common.PoseValues, common.start_option("Start pose X Y HEADING_DEG (same units as --goal).")
-    ] = (0.0, 0.0, 0.0),
-    vehicle: Annotated[
-        str | None,
-        typer.Option(
-            "--vehicle",
-            help="Preset glider: dg1001m (section 5.9). The default when --polar is not given.",
-        ),
-    ] = None,
-    polar: Annotated[
-        tuple[float, float, float] | None,
-        typer.Option(
-            "--polar",
-            metavar="A B C",
-            help="Sink-rate polar w = A v^2 + B v + C in SI: A (s/m), B (-), C (m/s); "
-            "needs --v-stall, --v-max and --u-max.",
-            show_default=False,
-        ),
-    ] = None,
-    v_stall: Annotated[
-        float | None, typer.Option("--v-stall", help="Stall speed (m/s), with --polar.")
-    ] = None,
-    v_max: Annotated[
-        float | None, typer.Option("--v-max", help="Maximum speed (m/s), with --polar.")
-    ] = None,
-    u_max: Annotated[
-        float | None, typer.Option("--u-max", help="Maximum turn rate (rad/s), with --polar.")
-    ] = None,
-    normalized: Annotated[
-        bool,
-        typer.Option(
-            "--normalized", help="Read X and Y of --goal/--start in units of R_stf = v_stf/u_max."
-        ),
-    ] = False,
-    method: Annotated[
-        str, typer.Option("--method", help="synthesis (default) or direct (collocation + IPOPT).")
-    ] = "synthesis",
+    goal: _PlanMinAltitudeGoal,
+    start: _PlanMinAltitudeStart = (0.0, 0.0, 0.0),
+    vehicle: _PlanMinAltitudeVehicle = None,
+    polar: _PlanMinAltitudePolar = None,
+    v_stall: _PlanMinAltitudeVStall = None,
+    v_max: _PlanMinAltitudeVMax = None,
+    u_max: _PlanMinAltitudeUMax = None,
+    normalized: _PlanMinAltitudeNormalized = False,
+    method: _PlanMinAltitudeMethod = "synthesis",
     time_limit: Annotated[float | None, common.time_limit_flag()] = None,
-    json_out: Annotated[
-        bool,
-        typer.Option(
-            "--json",
-            help="Print one JSON object (cost = altitude loss in m; dubins_cost; profile).",
-        ),
-    ] = False,
-    plot: Annotated[
-        pathlib.Path | None,
-        common.plot_option("Draw the candidates and the control history to FILE."),
-    ] = None,
+    json_out: _PlanMinAltitudeJsonOut = False,
+    plot: _PlanMinAltitudePlot = None,
 ) -> None:
     """Minimum-altitude-loss path of a glider with a quadratic polar (dissertation ch. 5).
 

@@ -76,126 +76,149 @@ def check_depart(flow: Any, when: Any) -> Any:
     return when
 
 
+# route_command's options (module level keeps the command itself short)
+_RouteFrom = Annotated[
+    tuple[float, float],
+    typer.Option("--from", metavar="LAT LON", help="Start LAT LON (degrees, WGS84).",
+                 show_default=False),
+]
+_RouteTo = Annotated[
+    tuple[float, float],
+    typer.Option("--to", metavar="LAT LON", help="Goal LAT LON (degrees, WGS84).",
+                 show_default=False),
+]
+_RouteSpeed = Annotated[
+    float, typer.Option("--speed", help="Speed through the water (air), V (m/s).")
+]
+_RouteField = Annotated[
+    list[pathlib.Path] | None,
+    typer.Option("--field", metavar="FILE",
+                 help="NetCDF or GRIB file (repeat to merge files).",
+                 show_default=False),
+]
+_RouteExample = Annotated[
+    str | None,
+    typer.Option("--example", metavar="NAME",
+                 help="A built-in field instead of files: double-gyre.",
+                 show_default=False),
+]
+_RouteDepart = Annotated[
+    str | None,
+    typer.Option("--depart", metavar="TIME",
+                 help="Departure time, ISO 8601 (default: the field's first).",
+                 show_default=False),
+]
+_RouteDepthRange = Annotated[
+    tuple[float, float] | None,
+    typer.Option("--depth-range", metavar="Z0 Z1",
+                 help="Average currents over depths Z0 Z1 (m, down).",
+                 show_default=False),
+]
+_RouteResolution = Annotated[
+    float | None,
+    typer.Option("--resolution", help="Grid spacing (m; default: the distance over ~250).",
+                 show_default=False),
+]
+_RouteLandClearance = Annotated[
+    float | None,
+    typer.Option("--land-clearance", metavar="METRES",
+                 help="Keep this far from the field's land nodes (m; default: one field "
+                 "cell's diagonal with a gridded field, kept at the land mask's resolution; "
+                 "else one grid spacing).",
+                 show_default=False),
+]
+_RouteMaxDuration = Annotated[
+    float | None,
+    typer.Option("--max-duration", metavar="HOURS",
+                 help="Give up after this long (h; default: the field's time span, or 10 "
+                 "still-water times for a steady field).", show_default=False),
+]
+_RouteRadius = Annotated[
+    float | None,
+    typer.Option("--radius", help="Turn radius R0 (m): build the flyable path (Dubins "
+                 "pieces of R0' for the route's largest current) and follow it in closed loop "
+                 "through the field; also the trochoid pieces (the known-current planner "
+                 "with each piece's mean current, R0' for the residual).",
+                 show_default=False),
+]
+_RoutePlot = Annotated[
+    pathlib.Path | None,
+    typer.Option("--plot", metavar="FILE", help="Draw the route to FILE (.png/.pdf/.svg)."),
+]
+_RouteGeojson = Annotated[
+    pathlib.Path | None,
+    typer.Option("--geojson", metavar="FILE",
+                 help="Write the route as GeoJSON (split at 180 deg, RFC 7946; the line's "
+                 "coordTimes and a Point per vertex carry UTC times)."),
+]
+_RouteKml = Annotated[
+    pathlib.Path | None,
+    typer.Option("--kml", metavar="FILE", help="Write the route as KML (each vertex a "
+                 "Placemark with its UTC TimeStamp)."),
+]
+_RouteGpx = Annotated[
+    pathlib.Path | None,
+    typer.Option("--gpx", metavar="FILE",
+                 help="Write the route as a GPX track (each point with its UTC time)."),
+]
+_RouteCsv = Annotated[
+    pathlib.Path | None,
+    typer.Option("--csv", metavar="FILE",
+                 help="Write the route's vertices as CSV: time_utc,t_s,lat,lon,heading_deg."),
+]
+_RouteEnsemble = Annotated[
+    str | None,
+    typer.Option("--ensemble", metavar="GLOB",
+                 help="Route on every member file matching GLOB (quoted, e.g. "
+                 "'ENS/member_*.nc'; or a folder, or one file with a member dimension; "
+                 "one grid): arrival P10/P50/P90, p_arrival within "
+                 "--max-duration, the corridor, and the member route that arrives most "
+                 "often flown in closed loop through every member.", show_default=False),
+]
+_RouteDepartRange = Annotated[
+    tuple[str, str, float] | None,
+    typer.Option("--depart-range", metavar="START END HOURS",
+                 help="Route every departure from START to END (ISO 8601) each HOURS: "
+                 "duration against departure, the best departure (with --ensemble: per "
+                 "departure the ensemble's statistics).", show_default=False),
+]
+_RouteScheduler = Annotated[
+    str | None,
+    typer.Option("--scheduler", metavar="ADDRESS",
+                 help="Dask scheduler (tcp://HOST:8786) for --ensemble/--depart-range "
+                 "(default: local processes).", show_default=False),
+]
+_RouteWorkers = Annotated[
+    int | None,
+    typer.Option("--workers", metavar="N",
+                 help="Local processes for --ensemble/--depart-range (default: one per "
+                 "core).", show_default=False),
+]
+
+
 @app.command("route")
 def route_command(
-    from_: Annotated[
-        tuple[float, float],
-        typer.Option("--from", metavar="LAT LON", help="Start LAT LON (degrees, WGS84).",
-                     show_default=False),
-    ],
-    to: Annotated[
-        tuple[float, float],
-        typer.Option("--to", metavar="LAT LON", help="Goal LAT LON (degrees, WGS84).",
-                     show_default=False),
-    ],
-    speed: Annotated[
-        float, typer.Option("--speed", help="Speed through the water (air), V (m/s).")
-    ],
-    field: Annotated[
-        list[pathlib.Path] | None,
-        typer.Option("--field", metavar="FILE",
-                     help="NetCDF or GRIB file (repeat to merge files).",
-                     show_default=False),
-    ] = None,
-    example: Annotated[
-        str | None,
-        typer.Option("--example", metavar="NAME",
-                     help="A built-in field instead of files: double-gyre.",
-                     show_default=False),
-    ] = None,
-    depart: Annotated[
-        str | None,
-        typer.Option("--depart", metavar="TIME",
-                     help="Departure time, ISO 8601 (default: the field's first).",
-                     show_default=False),
-    ] = None,
-    depth_range: Annotated[
-        tuple[float, float] | None,
-        typer.Option("--depth-range", metavar="Z0 Z1",
-                     help="Average currents over depths Z0 Z1 (m, down).",
-                     show_default=False),
-    ] = None,
-    resolution: Annotated[
-        float | None,
-        typer.Option("--resolution", help="Grid spacing (m; default: the distance over ~250).",
-                     show_default=False),
-    ] = None,
-    land_clearance: Annotated[
-        float | None,
-        typer.Option("--land-clearance", metavar="METRES",
-                     help="Keep this far from the field's land nodes (m; default: one field "
-                     "cell's diagonal with a gridded field, kept at the land mask's resolution; "
-                     "else one grid spacing).",
-                     show_default=False),
-    ] = None,
-    max_duration: Annotated[
-        float | None,
-        typer.Option("--max-duration", metavar="HOURS",
-                     help="Give up after this long (h; default: the field's time span, or 10 "
-                     "still-water times for a steady field).", show_default=False),
-    ] = None,
-    radius: Annotated[
-        float | None,
-        typer.Option("--radius", help="Turn radius R0 (m): build the flyable path (Dubins "
-                     "pieces of R0' for the route's largest current) and follow it in closed loop "
-                     "through the field; also the trochoid pieces (the known-current planner "
-                     "with each piece's mean current, R0' for the residual).",
-                     show_default=False),
-    ] = None,
+    from_: _RouteFrom,
+    to: _RouteTo,
+    speed: _RouteSpeed,
+    field: _RouteField = None,
+    example: _RouteExample = None,
+    depart: _RouteDepart = None,
+    depth_range: _RouteDepthRange = None,
+    resolution: _RouteResolution = None,
+    land_clearance: _RouteLandClearance = None,
+    max_duration: _RouteMaxDuration = None,
+    radius: _RouteRadius = None,
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
-    plot: Annotated[
-        pathlib.Path | None,
-        typer.Option("--plot", metavar="FILE", help="Draw the route to FILE (.png/.pdf/.svg)."),
-    ] = None,
-    geojson: Annotated[
-        pathlib.Path | None,
-        typer.Option("--geojson", metavar="FILE",
-                     help="Write the route as GeoJSON (split at 180 deg, RFC 7946; the line's "
-                     "coordTimes and a Point per vertex carry UTC times)."),
-    ] = None,
-    kml: Annotated[
-        pathlib.Path | None,
-        typer.Option("--kml", metavar="FILE", help="Write the route as KML (each vertex a "
-                     "Placemark with its UTC TimeStamp)."),
-    ] = None,
-    gpx: Annotated[
-        pathlib.Path | None,
-        typer.Option("--gpx", metavar="FILE",
-                     help="Write the route as a GPX track (each point with its UTC time)."),
-    ] = None,
-    csv: Annotated[
-        pathlib.Path | None,
-        typer.Option("--csv", metavar="FILE",
-                     help="Write the route's vertices as CSV: time_utc,t_s,lat,lon,heading_deg."),
-    ] = None,
-    ensemble: Annotated[
-        str | None,
-        typer.Option("--ensemble", metavar="GLOB",
-                     help="Route on every member file matching GLOB (quoted, e.g. "
-                     "'ENS/member_*.nc'; or a folder, or one file with a member dimension; "
-                     "one grid): arrival P10/P50/P90, p_arrival within "
-                     "--max-duration, the corridor, and the member route that arrives most "
-                     "often flown in closed loop through every member.", show_default=False),
-    ] = None,
-    depart_range: Annotated[
-        tuple[str, str, float] | None,
-        typer.Option("--depart-range", metavar="START END HOURS",
-                     help="Route every departure from START to END (ISO 8601) each HOURS: "
-                     "duration against departure, the best departure (with --ensemble: per "
-                     "departure the ensemble's statistics).", show_default=False),
-    ] = None,
-    scheduler: Annotated[
-        str | None,
-        typer.Option("--scheduler", metavar="ADDRESS",
-                     help="Dask scheduler (tcp://HOST:8786) for --ensemble/--depart-range "
-                     "(default: local processes).", show_default=False),
-    ] = None,
-    workers: Annotated[
-        int | None,
-        typer.Option("--workers", metavar="N",
-                     help="Local processes for --ensemble/--depart-range (default: one per "
-                     "core).", show_default=False),
-    ] = None,
+    plot: _RoutePlot = None,
+    geojson: _RouteGeojson = None,
+    kml: _RouteKml = None,
+    gpx: _RouteGpx = None,
+    csv: _RouteCsv = None,
+    ensemble: _RouteEnsemble = None,
+    depart_range: _RouteDepartRange = None,
+    scheduler: _RouteScheduler = None,
+    workers: _RouteWorkers = None,
 ) -> None:
     """Time-optimal route through a current or wind field, on the sphere (front propagation
     on a lat/lon grid that grows with the front, refined, verified through the field).

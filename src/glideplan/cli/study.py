@@ -78,72 +78,83 @@ _CROSS_TRACK_FLAGS = {
 }
 
 
+# cross_track_command's options (module level keeps the command itself short)
+_CrossTrackOut = Annotated[
+    pathlib.Path,
+    typer.Option(
+        "--out",
+        metavar="DIR",
+        help="Directory for samples.sqlite and summary.json.",
+        show_default=False,
+    ),
+]
+_CrossTrackEps = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--eps",
+        metavar="LIST",
+        help="Disturbance bounds eps = delta_max / v (repeat or a,b,c).",
+        show_default="0.25,0.5,0.75,0.95",
+    ),
+]
+_CrossTrackRPlan = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--r-plan",
+        metavar="LIST",
+        help="Planning radii / R0 (repeat, a,b,c or START:STOP:STEP).",
+        show_default="1:4:0.1",
+    ),
+]
+_CrossTrackScheduler = Annotated[
+    str | None,
+    typer.Option("--scheduler", help="Dask scheduler ADDRESS (default: local processes)."),
+]
+_CrossTrackProcesses = Annotated[
+    int | None, typer.Option("--processes", help="Local worker processes (default: cores).")
+]
+_CrossTrackDt = Annotated[
+    float,
+    typer.Option(
+        "--dt",
+        help=f"Simulation time step (s); at most {MAX_DT_FRACTION:g} / u_max, a tenth of "
+        "the time to turn one radian.",
+    ),
+]
+_CrossTrackGustScale = Annotated[
+    float,
+    typer.Option(
+        "--gust-scale",
+        help="SENSITIVITY OPTION, not the dissertation's model: multiply the Dryden gust "
+        "RMS (eps v) by F; the saturation stays eps v. 1 = the model as stated.",
+        metavar="F",
+    ),
+]
+_CrossTrackProgress = Annotated[
+    bool, typer.Option("--progress/--no-progress", help="Show a progress bar.")
+]
+
+
 @study_app.command(
     "cross-track",
     epilog="Table columns: " + "; ".join(f"{name}: {text}" for name, text in TABLE_COLUMNS) + ".",
 )
 def cross_track_command(
-    out: Annotated[
-        pathlib.Path,
-        typer.Option(
-            "--out",
-            metavar="DIR",
-            help="Directory for samples.sqlite and summary.json.",
-            show_default=False,
-        ),
-    ],
-    eps: Annotated[
-        list[str] | None,
-        typer.Option(
-            "--eps",
-            metavar="LIST",
-            help="Disturbance bounds eps = delta_max / v (repeat or a,b,c).",
-            show_default="0.25,0.5,0.75,0.95",
-        ),
-    ] = None,
-    r_plan: Annotated[
-        list[str] | None,
-        typer.Option(
-            "--r-plan",
-            metavar="LIST",
-            help="Planning radii / R0 (repeat, a,b,c or START:STOP:STEP).",
-            show_default="1:4:0.1",
-        ),
-    ] = None,
+    out: _CrossTrackOut,
+    eps: _CrossTrackEps = None,
+    r_plan: _CrossTrackRPlan = None,
     samples: Annotated[int, typer.Option("--samples", help="Goals per (case, eps, r_plan).")] = 900,
     case: Annotated[str, typer.Option("--case", help="steady, unsteady or both.")] = "both",
     seed: Annotated[int, typer.Option("--seed", help="Master random seed.")] = 0,
-    scheduler: Annotated[
-        str | None,
-        typer.Option("--scheduler", help="Dask scheduler ADDRESS (default: local processes)."),
-    ] = None,
-    processes: Annotated[
-        int | None, typer.Option("--processes", help="Local worker processes (default: cores).")
-    ] = None,
+    scheduler: _CrossTrackScheduler = None,
+    processes: _CrossTrackProcesses = None,
     chunk: Annotated[int, typer.Option("--chunk", help="Samples per work unit.")] = 100,
     speed: Annotated[float, typer.Option("--speed", help="Airspeed v (m/s).")] = 20.0,
     u_max: Annotated[float, typer.Option("--u-max", help="Turn-rate bound u_max (rad/s).")] = 0.3,
-    dt: Annotated[
-        float,
-        typer.Option(
-            "--dt",
-            help=f"Simulation time step (s); at most {MAX_DT_FRACTION:g} / u_max, a tenth of "
-            "the time to turn one radian.",
-        ),
-    ] = 0.05,
-    gust_scale: Annotated[
-        float,
-        typer.Option(
-            "--gust-scale",
-            help="SENSITIVITY OPTION, not the dissertation's model: multiply the Dryden gust "
-            "RMS (eps v) by F; the saturation stays eps v. 1 = the model as stated.",
-            metavar="F",
-        ),
-    ] = 1.0,
+    dt: _CrossTrackDt = 0.05,
+    gust_scale: _CrossTrackGustScale = 1.0,
     json_out: Annotated[bool, typer.Option("--json", help="Print the summary as JSON.")] = False,
-    progress: Annotated[
-        bool, typer.Option("--progress/--no-progress", help="Show a progress bar.")
-    ] = True,
+    progress: _CrossTrackProgress = True,
 ) -> None:
     """Mean final cross-track error vs planning radius, steady and Dryden disturbances (3.4).
 
