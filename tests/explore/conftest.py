@@ -1,10 +1,12 @@
-"""Fixtures shared by the explorer's browser tests: one explorer server per test module."""
+"""Fixtures shared by the explorer's browser tests: one explorer server and one Chromium per
+test module (`server`, `open_context`)."""
 
 from __future__ import annotations
 
 import socket
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from typing import Any
 
 import pytest
 
@@ -27,3 +29,30 @@ def server() -> Iterator[str]:
             time.sleep(0.1)
     yield f"http://127.0.0.1:{port}"
     srv.stop()
+
+
+CHROMIUM = "/usr/bin/chromium"
+# No background traffic of Chromium's own: the tests count every request the pages make.
+CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking",
+                 "--disable-component-update", "--disable-sync", "--no-first-run",
+                 "--disable-quic"]
+
+
+@pytest.fixture(scope="module")
+def open_context() -> Iterator[Callable[..., Any]]:
+    """A function giving a new Chromium context (`Browser.new_context` keywords) of one
+    browser per module; every context and the browser are closed at the module's end."""
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+        contexts: list[Any] = []
+
+        def make(**kw: Any) -> Any:
+            contexts.append(browser.new_context(**kw))
+            return contexts[-1]
+
+        yield make
+        for ctx in contexts:
+            ctx.close()
+        browser.close()

@@ -17,7 +17,7 @@ import os
 import pathlib
 import socket
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import Any
 from urllib.parse import parse_qsl, urlparse
 
@@ -39,15 +39,6 @@ from glideplan import (  # noqa: E402
 from glideplan.units import wind_from_compass  # noqa: E402
 from glideplan.vehicles import QuadraticPolarGlider  # noqa: E402
 
-ARGS = [
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--no-first-run",
-    "--disable-quic",
-]
 # JavaScript: the main figure's frame on the page and its data ranges.
 FRAME_JS = """() => {
   const found = [];
@@ -101,16 +92,10 @@ def requests_seen() -> list[str]:
 
 
 @pytest.fixture(scope="module")
-def browser_context(requests_seen: list[str]) -> Iterator[Any]:
-    with playwright_api.sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
-        context = browser.new_context(
-            viewport={"width": 1500, "height": 1000}, accept_downloads=True
-        )
-        context.on("request", lambda r: requests_seen.append(r.url))
-        yield context
-        context.close()
-        browser.close()
+def browser_context(requests_seen: list[str], open_context: Callable[..., Any]) -> Any:
+    context = open_context(viewport={"width": 1500, "height": 1000}, accept_downloads=True)
+    context.on("request", lambda r: requests_seen.append(r.url))
+    return context
 
 
 @pytest.fixture(scope="module")

@@ -14,7 +14,7 @@ from __future__ import annotations
 import os
 import pathlib
 import time
-from collections.abc import Iterator
+from collections.abc import Callable
 from typing import Any
 
 import pytest
@@ -49,14 +49,8 @@ PAN_JS = """(dx) => { for (const d of Bokeh.documents) for (const m of d.all_mod
 
 
 @pytest.fixture(scope="module")
-def context() -> Iterator[Any]:
-    with playwright_api.sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox",
-                                                                   "--disable-gpu"])
-        ctx = browser.new_context(viewport={"width": 1400, "height": 950})
-        yield ctx
-        ctx.close()
-        browser.close()
+def context(open_context: Callable[..., Any]) -> Any:
+    return open_context(viewport={"width": 1400, "height": 950})
 
 
 def _load(context: Any, url: str, errors: list[str], timeout: float = 180.0) -> Any:
