@@ -39,3 +39,30 @@ def test_warnings_are_listed_in_the_strip():
     text = warnings_item(r)
     assert "gp-warn" in text and "footprint clipped" in text and "&lt;not&gt;" in text
     assert warnings_item(types.SimpleNamespace(warnings=())) == ""
+
+
+def test_hidden_load_factor_plot_is_sent_no_data():
+    """Minimum time has no load factor: its plot is hidden and its source stays empty (a
+    hidden Bokeh plot fed its siblings' data re-laid out the whole page on every change);
+    the load-factor page fills it with the vehicle's n(V, u) along the answer's path."""
+    e = Explorer(build_catalog(), {"planner": "time-optimal", "goal": "2,1,90"}, sync=True)
+    assert not e.figs.third_fig.visible and len(e.figs.third_src.data["t"]) == 0
+    assert len(e.figs.prof_src.data["t"]) > 2 and "third" not in e.figs.prof_src.data
+    lf = Explorer(build_catalog(), {"planner": "load-factor", "goal": "3,2,60"}, sync=True)
+    data = lf.figs.third_src.data
+    assert lf.figs.third_fig.visible and len(data["t"]) == len(lf.figs.prof_src.data["t"]) > 2
+    assert np.nanmin(np.asarray(data["third"], dtype=float)) >= 1.0 - 1e-12  # n >= 1 in a turn
+
+
+def test_candidates_wait_until_no_newer_answer_came():
+    """A candidates timer set for an answer that a newer one replaced does nothing; the
+    newest answer's own timer adds its candidates (lines and table)."""
+    e = Explorer(build_catalog(), {"planner": "time-optimal", "goal": "2,1,90"}, sync=True)
+    shown = replace(e.view, candidates=None, candidates_pending=True)
+    older = replace(shown)
+    e.view, e._candidates_for = shown, shown
+    e._add_candidates(older)
+    assert e.view is shown and e.view.candidates_pending
+    e._add_candidates(shown)
+    assert not e.view.candidates_pending
+    assert len(e.figs.cand_src.data["word"]) == len(e.view.solution.candidates) > 8

@@ -394,8 +394,13 @@ class Explorer(PoseHandles, DownloadFiles, SessionWorker):
             if self._doc is not None:
                 self._push_url()
             if view.candidates_pending and self._doc is not None:
+                # once the input rests: each answer's timer acts only if no newer answer
+                # came (a timer set 120 ms before sampled the answer of 60 ms before, and
+                # its message raced the next change's while the goal was being dragged)
+                self._candidates_for = view
                 self._doc.add_timeout_callback(
-                    lambda: self._held(self._add_candidates), CANDIDATES_DELAY_MS
+                    lambda v=view: self._held(lambda: self._add_candidates(v)),
+                    CANDIDATES_DELAY_MS,
                 )
             return
         if self.entry.slow:
@@ -417,9 +422,12 @@ class Explorer(PoseHandles, DownloadFiles, SessionWorker):
     def _deliver(self, answer: tuple[View, Any]) -> None:
         self._apply(*answer)
 
-    def _add_candidates(self) -> None:
-        """The shown answer's candidates: lines, table and the view fitted to them."""
+    def _add_candidates(self, answer: View | None = None) -> None:
+        """The shown answer's candidates (`answer`'s, if it is still the newest answer):
+        lines, table and the view fitted to them."""
         view = self.view
+        if answer is not None and getattr(self, "_candidates_for", None) is not answer:
+            return  # a newer answer came meanwhile: its own timer will follow
         if view is None or not view.candidates_pending or view.state != self.state:
             return  # a newer change came meanwhile: its own candidates will follow
         self.view = view = with_candidates(view)

@@ -314,14 +314,20 @@ class PlanFigures:
     def _add_profiles(self) -> None:
         """The controls along the path: speed, turn rate (or bank) and load factor against
         time, on one time axis."""
-        self.prof_src = ColumnDataSource({"t": [], "speed": [], "second": [], "third": []})
+        self.prof_src = ColumnDataSource({"t": [], "speed": [], "second": []})
+        # the load factor in a source of its own, written only while its plot is shown: a
+        # hidden Bokeh plot repainted with its siblings' data measured a changed size on
+        # every paint and re-laid out the whole page (one layout of 46 views per change)
+        self.third_src = ColumnDataSource({"t": [], "third": []})
         # explicit ranges, set with the data and kept while they hold it (`sticky_range`):
         # auto-ranging moved the axes on every answer, and each move re-laid out and
         # repainted the three plots (2.7 paints and ~3 layouts of each per change)
         x_range = Range1d(start=0.0, end=1.0)
         self.speed_fig = self._profile_figure("speed", "speed (m/s)", BLUE, x_range)
         self.second_fig = self._profile_figure("second", "turn rate (deg/s)", "#8e44ad", x_range)
-        self.third_fig = self._profile_figure("third", "load factor n (g)", "#d35400", x_range)
+        self.third_fig = self._profile_figure(
+            "third", "load factor n (g)", "#d35400", x_range, self.third_src
+        )
         for f in (self.speed_fig, self.second_fig, self.third_fig):
             f.background_fill_color = "#fbfcfe"
             f.grid.grid_line_color = "#e3e9f0"
@@ -333,8 +339,11 @@ class PlanFigures:
             sizing_mode="stretch_width",
         )
 
-    def _profile_figure(self, key: str, label: str, color: str, x_range: Any | None = None) -> Any:
-        """A small plot of the profile column `key` against time (shared time axis)."""
+    def _profile_figure(
+        self, key: str, label: str, color: str, x_range: Any | None = None, source: Any = None
+    ) -> Any:
+        """A small plot of the profile column `key` of `source` (the profile's) against time
+        (shared time axis)."""
         extra = {} if x_range is None else {"x_range": x_range}
         fig = figure(
             y_range=Range1d(start=0.0, end=1.0),
@@ -348,7 +357,8 @@ class PlanFigures:
             tools="save,reset",
             toolbar_location=None,
         )
-        fig.line("t", key, source=self.prof_src, line_color=color, line_width=2)
+        src = self.prof_src if source is None else source
+        fig.line("t", key, source=src, line_color=color, line_width=2)
         return fig
 
     def box(self) -> tuple[float, float, float, float]:
@@ -437,17 +447,18 @@ class PlanFigures:
         prof = view.profile
         if self.profile_col.visible != (prof is not None):
             self.profile_col.visible = prof is not None
+        third = None if prof is None else prof.get("third")
+        if prof is not None and third is not None:
+            self.third_src.data = columns({"t": prof["t"], "third": third})
+        elif len(self.third_src.data["t"]):
+            self.third_src.data = {"t": [], "third": []}
         if prof is None:
             if len(self.prof_src.data["t"]):
-                self.prof_src.data = {"t": [], "speed": [], "second": [], "third": []}
+                self.prof_src.data = {"t": [], "speed": [], "second": []}
             return
-        third = prof.get("third")
-        self.prof_src.data = columns({
-            "t": prof["t"],
-            "speed": prof["speed"],
-            "second": prof["second"],
-            "third": third if third is not None else np.full_like(prof["t"], np.nan),
-        })
+        self.prof_src.data = columns(
+            {"t": prof["t"], "speed": prof["speed"], "second": prof["second"]}
+        )
         # the axes grow to hold the answers of one vehicle (speeds, turn rates and load
         # factors stay within its limits) and start again for another; time from 0, shrunk
         # when a path fills less than a quarter of it
