@@ -103,3 +103,21 @@ def test_a_sea_across_the_seam_is_one_water(tmp_path):
         return sea(lat, lon) | (np.isclose(np.mod(lon, 360.0), 0.0) & (np.abs(lat) <= 10.0))
 
     assert field_cut_off(_global(tmp_path, split), 0.0, start, goal, 10e3) == "land"
+
+
+def test_a_strait_at_high_latitude_is_measured_in_its_own_metres(tmp_path):
+    """Land at 70..80 N all round a global 0.5 deg file but for the columns 0, 0.5 and 1 E.
+    At the strait's latitudes dx = 55.6 km x cos(lat): 19.0 km at 70 N, 9.7 km at 80 N, so
+    its middle column lies 2 dx = 19.3..38.0 km from land on either side. A 50 km clearance
+    closes it ("clearance"); a 15 km one leaves it open (None). The check before measured it
+    at the file's mean latitude (the equator: 111 km) and called it open at 50 km."""
+    from glideplan.routing.cutoff import field_cut_off
+
+    def land(lat, lon):
+        band = (lat >= 70.0) & (lat <= 80.0)
+        return band & ~np.isin(np.round(np.mod(lon, 360.0), 6), [0.0, 0.5, 1.0])
+
+    f = _global(tmp_path, land)
+    start, goal = (60.0, 0.5), (85.0, 0.5)
+    assert field_cut_off(f, 0.0, start, goal, 50e3) == "clearance"
+    assert field_cut_off(f, 0.0, start, goal, 15e3) is None

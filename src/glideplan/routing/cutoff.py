@@ -9,8 +9,12 @@ A route whose front runs out of time ("time_span", "max_duration") may never hav
 to the goal: the land clearance can close the only strait. This check answers at the field's
 own resolution, over the whole field (not the front's window): water nodes are the finite
 ones at the departure's time level; a node is free when its distance to the nearest land
-node (`scipy.ndimage.distance_transform_edt` with the node spacings in metres at the field's
-mean latitude) exceeds the clearance; free water is joined through 8-neighbours. The goal is
+node exceeds the clearance; free water is joined through 8-neighbours. The distance is
+`scipy.ndimage.distance_transform_edt` with the node spacings in metres at the node's own
+latitude: rows are taken in bands over which the east-west spacing R dlon cos(lat) varies
+by at most 1 % (each band's transform over its rows and the rows within the clearance of
+them, where any land within the clearance lies), so a strait at 75 N of a global file is
+measured in its own metres, not in the equator's (3.9 times wider). The goal is
 cut off when no free component holds both the start's and the goal's nodes (or their
 neighbours); "clearance" when water alone joins them, "land" when nothing does. A global
 field whose columns close the circle (`periodic_lon`) wraps: the distance to land is taken
@@ -44,6 +48,31 @@ def _ids(labels: np.ndarray, lat: np.ndarray, lon: np.ndarray, point: tuple[floa
         j = int(np.argmin(np.abs(lon - lo)))
         near = labels[max(i - 1, 0):i + 2, max(j - 1, 0):j + 2]
     return set(np.unique(near[near > 0]).tolist())
+
+
+def _distance_by_band(water: np.ndarray, dy: float, dx_rows: np.ndarray, reach_m: float,
+                      periodic: bool, band_ratio: float = 0.01) -> np.ndarray:
+    """Distance (m) from each node to the nearest non-water node, exact to `band_ratio` within
+    `reach_m` (beyond it: at least reach_m, or inf): row i's east-west spacing dx_rows[i] (m),
+    rows in bands whose spacings lie within `band_ratio` of the band's first, each band's
+    transform over its rows and ceil(reach / dy) + 1 rows on either side."""
+    ny = water.shape[0]
+    pad = min(ny, math.ceil(reach_m / dy) + 1)
+    out = np.empty(water.shape)
+    i = 0
+    while i < ny:
+        j = i + 1
+        while j < ny and abs(dx_rows[j] / dx_rows[i] - 1.0) <= band_ratio:
+            j += 1
+        lo, hi = max(0, i - pad), min(ny, j + pad)
+        window = water[lo:hi]
+        if window.all():
+            out[i:j] = np.inf  # no land within the clearance of these rows
+        else:
+            dx = float(np.mean(dx_rows[i:j]))
+            out[i:j] = _distance_to_land(window, dy, dx, reach_m, periodic)[i - lo:j - lo]
+        i = j
+    return out
 
 
 def _distance_to_land(water: np.ndarray, dy: float, dx: float, reach_m: float,
@@ -102,10 +131,11 @@ def field_cut_off(field_: Any, t: float, start: tuple[float, float],
     if water.all() or not water.any():
         return None
     lat, lon = np.asarray(field_.lat, float), np.asarray(field_.lon, float)
-    dy = math.radians(float(np.mean(np.diff(lat)))) * EARTH_RADIUS_M
-    dx = math.radians(float(np.mean(np.diff(lon)))) * EARTH_RADIUS_M * math.cos(
-        math.radians(float(np.mean(lat))))
-    free = water & (_distance_to_land(water, dy, dx, clearance_m, periodic) > clearance_m)
+    dy = math.radians(abs(float(np.mean(np.diff(lat))))) * EARTH_RADIUS_M
+    dx_rows = math.radians(abs(float(np.mean(np.diff(lon))))) * EARTH_RADIUS_M * np.maximum(
+        np.cos(np.radians(lat)), 1e-6)  # a pole's row: a metre-scale spacing, not zero
+    distance = _distance_by_band(water, dy, dx_rows, clearance_m, periodic)
+    free = water & (distance > clearance_m)
     labels = _label(free, periodic)
     if _ids(labels, lat, lon, start, periodic) & _ids(labels, lat, lon, goal, periodic):
         return None
