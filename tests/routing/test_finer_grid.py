@@ -171,3 +171,43 @@ def test_cli_warns_of_the_finer_grid_or_fails_in_one_line(tmp_path, run_cli, err
     assert data["duration_s"] is None and data["arrive"] is None
     code, out, err = run_cli(*args)
     assert code == 1 and "status: not_verified" in out and "inf" not in out
+
+
+def _fake(status: str, spacing: float, reason: str | None = None):
+    from glideplan.results import Reason
+    from glideplan.routing.result import RouteResult
+
+    return RouteResult(status=status, reason=None if reason is None else Reason(reason),
+                       duration_s=None if status == "unreachable" else 3600.0,
+                       grid_duration_s=3000.0, stats={"spacing_m": spacing})
+
+
+def test_ladder_halves_down_to_the_default_grid_and_stops_where_no_grid_helps():
+    """The ladder (by hand): 3000 m to a 617 m default -> 1500, 750, 617; none from the
+    default itself. An unreachable answer by the front's own limit (max_duration) runs the
+    ladder, and when every grid agrees the answer is the finest one's, with a warning naming
+    the grids; a window_limit (no finer grid helps) is returned as it is, nothing rerun."""
+    from glideplan.routing.finer_grid import Attempt, finer, ladder
+    from glideplan.routing.problem import RouteProblem
+    from glideplan.routing.settings import RouteSettings
+
+    assert ladder(3000.0, 617.0) == [1500.0, 750.0, 617.0]
+    assert ladder(617.0, 617.0) == [] and ladder(1000.0, 617.0) == [617.0]
+    problem = RouteProblem(None, START, GOAL, 0.05, 0.0, 3.6e6, "max_duration",
+                           154_250.0, RouteSettings(resolution=3000.0), None)  # default 617 m
+    ran: list[float] = []
+
+    def run(p):
+        ran.append(p.settings.resolution)
+        return Attempt(_fake("unreachable", p.settings.resolution, "max_duration"), True, 0.45)
+
+    first = Attempt(_fake("unreachable", 3000.0, "max_duration"), True, 0.45)
+    r = finer(problem, first, run)
+    assert ran == [1500.0, 750.0, 617.0]
+    assert r.stats["spacing_m"] == 617.0 and r.unreachable_reason == "max_duration"
+    assert [g["spacing_m"] for g in r.stats["grids"]] == [3000.0, 1500.0, 750.0, 617.0]
+    (w,) = r.warnings
+    assert "on the 3000 m grid (max_duration)" in w and "the 617 m grid's" in w
+    ran.clear()
+    limited = Attempt(_fake("unreachable", 3000.0, "window_limit"), True, 0.45)
+    assert finer(problem, limited, run) is limited.result and ran == []

@@ -97,7 +97,7 @@ def route(
                            warnings=tuple(warnings), best_distance_m=problem.distance_m,
                            reason=Reason(cone.reason), stats=clock.stats, **common)
     attempt = _on_grid(problem, clock, list(warnings), dict(common))
-    if attempt.strong and attempt.result.status is Status.NOT_VERIFIED:
+    if attempt.strong and attempt.result.status in (Status.NOT_VERIFIED, Status.UNREACHABLE):
         from glideplan.routing import finer_grid  # the grid too coarse for the current
 
         return finer_grid.finer(problem, attempt, lambda p: _on_grid(
@@ -118,7 +118,9 @@ def _on_grid(problem: Any, clock: _Clock, warnings: list[str],
                   front=FrontMap(rg.window.lat, rg.window.lon, fo.arrival - problem.t0,
                                  rg.obstacle.astype(float)))
     if fo.goal_time is None:
-        return Attempt(_unreachable(problem, rg, fo, warnings, clock.stats, common))
+        res = _unreachable(problem, rg, fo, warnings, clock.stats, common)
+        peak = rg.currents.peak_speed()  # the window's nodes over the levels held
+        return Attempt(res, peak >= problem.speed, peak)
     grid_T = fo.goal_time - problem.t0
     # where the current reaches the vehicle's speed, the characteristic's own controls
     # (extract.py); else (or when it fails) the polyline held leg by leg
