@@ -8,24 +8,24 @@ has its front arrive in 517.6 h on a 3000 m grid and 512.8 h on 1500 m (both rou
 the field when flown; their held legs claim 24,959 h and 17,989 h), 345.6 h on 750 m
 (solved), 339.3 h on the default 617 m (solved).
 
-The criterion is the one that decides `solved`: verification. A spacing rule such as
-h <= k L V / |c|max would need k between 0.045 and 0.09 on that one field (0.05 m/s fails at
-1500 m, 0.07 m/s flies at 1500 m and fails at 3000 m), so it would refine routes that fly
-and keep ones that do not. When a route in such a current does not verify on a grid coarser
-than the default one (the start-goal distance over the default `RouteSettings.cells`),
-`route()` runs again at half the spacing, down to the default grid, and keeps the first
-route that verifies, with a warning naming the grid used and why. The same holds when the
-front on such a grid stops short of the goal by its own limits (front_stopped, field_extent,
-time_span, max_duration: the double gyre at 0.05 m/s on a 12 km grid is "unreachable within
-8,564 h", a 345.6 h route on 750 m); when every finer grid agrees, the answer is the finest
-grid's, with a warning naming the grids tried. The front's cost grows about as h^-3
-(nodes x steps), so the coarser fronts add about 1/8 + 1/64 + ... of the last one, but each
-grid also pays its backtrack, tracking and verification: the 0.05 m/s case from 3000 m took
-11.0 s against 21.1 s for the default grid alone in one run, 17.3 s against 13.5 s in
-another (a shared machine, load 1-6). Routes that verify
-(every route on the default grid that does) pay nothing: the ladder starts only after a
-failed verification. Without refinement (`refine=False`, the replanner's quick routes) there
-is no ladder.
+The criterion is the one that decides `solved`: verification. A spacing rule such as h <= k
+L V / |c|max would need k between 0.045 and 0.09 on that one field (0.05 m/s fails at 1500
+m, 0.07 m/s flies at 1500 m and fails at 3000 m), so it would refine routes that fly and
+keep ones that do not. When a route in such a current does not verify on a grid coarser than
+the default one (the start-goal distance over the default `RouteSettings.cells`), `route()`
+runs again at half the spacing, down to the default grid, and keeps the first route that
+verifies, with a warning naming the grid used and why. A front on such a grid can also stop
+short of the goal by its own limits (the double gyre at 0.05 m/s on a 12 km grid is
+"unreachable within 8,564 h", a 345.6 h route on 750 m): that answer is not rerun (the
+default grid's front to the time limit costs a minute and more: 62 s for 0.02 m/s from an 8
+km grid, which then ends not verified), its message advises the default grid's --resolution.
+The front's cost grows about as h^-3 (nodes x steps), so the coarser fronts add about 1/8 +
+1/64 + ... of the last one, but each grid also pays its backtrack, tracking and
+verification: the 0.05 m/s case from 3000 m took 11.0 s against 21.1 s for the default grid
+alone in one run, 17.3 s against 13.5 s in another (a shared machine, load 1-6). Routes that
+verify (every route on the default grid that does) pay nothing: the ladder starts only after
+a failed verification. Without refinement (`refine=False`, the replanner's quick routes)
+there is no ladder.
 
 When no grid verifies, the answer stays `not_verified` with one sentence naming the grid,
 why, and a `--resolution` that may fly it (half the finest tried), and carries no duration
@@ -47,8 +47,8 @@ from glideplan.solution import Status
 __all__ = ["Attempt", "default_spacing", "finer", "ladder"]
 
 
-#: The unreachable answers a finer grid may overturn (the front's own limits); the others
-#: (window_limit, missing_data, polar_limit, outside_drift_cone) no finer grid changes.
+#: The unreachable answers of the front's own limits, which a finer grid may overturn (the
+#: others -- window_limit, missing_data, polar_limit, outside_drift_cone -- it cannot).
 RETRY_REASONS = ("front_stopped", "field_extent", "time_span", "max_duration")
 
 
@@ -80,21 +80,17 @@ def ladder(h0: float, floor: float) -> list[float]:
     return out
 
 
-def _retry(result: Any) -> bool:
-    """Whether a finer grid may change this answer (not verified, or the front's limit)."""
-    return result.status is Status.NOT_VERIFIED or (
-        result.status is Status.UNREACHABLE and result.unreachable_reason in RETRY_REASONS)
-
-
 def finer(problem: Any, first: Attempt, run: Callable[[Any], Attempt]) -> Any:
-    """The route when `first` (not verified, or unreachable by the front's own limit, in a
-    current stronger than the vehicle) failed: the first finer grid's route that verifies
-    (with a warning); else the finest grid's unreachable answer, or the first not-verified
-    one without a duration, in the one sentence of the module docstring."""
+    """The route when `first` (in a current stronger than the vehicle) failed. Not
+    verified: the first finer grid's route that verifies (with a warning), else `first`'s
+    result without a duration in the one sentence of the module docstring. Unreachable by
+    the front's own limit on a grid coarser than the default: `first`'s result with the
+    advice to check on the default grid (nothing rerun)."""
     h0 = float(first.result.stats["spacing_m"])
-    steps = ladder(h0, default_spacing(problem)) if problem.settings.refine else []
-    if not _retry(first.result) or (first.result.status is Status.UNREACHABLE and not steps):
-        return first.result
+    floor = default_spacing(problem)
+    if first.result.status is Status.UNREACHABLE:
+        return _advised(problem, first, h0, floor)
+    steps = ladder(h0, floor) if problem.settings.refine else []
     tried: list[tuple[float, Attempt, float]] = [(h0, first, _wall(first.result))]
     for h in steps:
         t = time.perf_counter()
@@ -102,14 +98,28 @@ def finer(problem: Any, first: Attempt, run: Callable[[Any], Attempt]) -> Any:
             att = run(replace(problem, settings=replace(problem.settings, resolution=h)))
         except InvalidParameterError:  # e.g. the window would exceed max_nodes
             break
-        if not (att.result.ok or _retry(att.result)):  # e.g. window_limit: no finer grid
+        if att.result.status is Status.UNREACHABLE:  # a finer front stops short: stop here
             break
         tried.append((h, att, time.perf_counter() - t))
         if att.result.ok:
             return _used(problem, tried)
-    if tried[-1][1].result.status is Status.UNREACHABLE:
-        return _unreached(problem, tried)
     return _not_flown(problem, tried)
+
+
+def _advised(problem: Any, first: Attempt, h0: float, floor: float) -> Any:
+    """An unreachable answer of the front's own limit on a grid coarser than the default,
+    with the advice to check it there (a coarse front can stall short of a reachable goal:
+    the double gyre at 0.05 m/s on 12 km is unreachable within 8,564 h, a 345.6 h route on
+    750 m); rerunning it would cost the default grid's front to the time limit (62 s for
+    the double gyre at 0.02 m/s from 8 km), so it is advice only."""
+    res = first.result
+    if res.unreachable_reason not in RETRY_REASONS or h0 <= floor * (1 + 1e-9):
+        return res
+    advice = (f"; the front ran on a {h0:.0f} m grid in a current faster than the vehicle "
+              f"({first.peak_mps:.2g} against {problem.speed:g} m/s), where a coarse grid "
+              f"can stall it short of a reachable goal: --resolution {floor:.0f} (the "
+              "default grid) checks")
+    return replace(res, message=res.message + advice)
 
 
 def _clause(a: Attempt) -> str:
@@ -146,22 +156,6 @@ def _used(problem: Any, tried: list[tuple[float, Attempt, float]]) -> Any:
         + (f" ({', '.join(middle)} gave no flyable route either)" if middle else "")
         + f"; --resolution {h:.0f} gives this route at once")
     res = att.result
-    return replace(res, warnings=(*res.warnings, warning), stats=_stats(res, tried))
-
-
-def _unreached(problem: Any, tried: list[tuple[float, Attempt, float]]) -> Any:
-    """The finest grid's unreachable answer, warning that coarser grids were tried."""
-    h0, first, _ = tried[0]
-    h, att, _ = tried[-1]
-    res = att.result
-    if len(tried) == 1:
-        return res
-    warning = (
-        f"the front did not reach the goal on the {h0:.0f} m grid "
-        f"({first.result.unreachable_reason}) in a current faster than the vehicle "
-        f"({first.peak_mps:.2g} against {problem.speed:g} m/s), where a coarse grid can stall "
-        f"it: it ran again on {', '.join(f'{g:.0f} m' for g, _, _ in tried[1:])}, and the "
-        f"answer is the {h:.0f} m grid's")
     return replace(res, warnings=(*res.warnings, warning), stats=_stats(res, tried))
 
 
