@@ -55,8 +55,8 @@ RETRY_REASONS = ("front_stopped", "field_extent", "time_span", "max_duration")
 @dataclass(frozen=True)
 class Attempt:
     """One grid's answer: the result, whether the current reached the vehicle's speed on
-    its window (`strong`), that peak (m/s) and how the flown controls missed ("" if they did
-    not, or when no route was found)."""
+    its window (`strong`), that peak (m/s) and how the flown controls missed ("" when no
+    route was found)."""
 
     result: Any
     strong: bool = False
@@ -122,13 +122,6 @@ def _advised(problem: Any, first: Attempt, h0: float, floor: float) -> Any:
     return replace(res, message=res.message + advice)
 
 
-def _clause(a: Attempt) -> str:
-    """What went wrong on a grid, as a clause of the warnings."""
-    if a.result.status is Status.UNREACHABLE:
-        return f"the front on it did not reach the goal ({a.result.unreachable_reason})"
-    return f"the route the front found on it cannot be flown ({a.miss})"
-
-
 def _wall(result: Any) -> float:
     """The phases' wall time (s) recorded in a result's stats."""
     return float(sum(v for k, v in result.stats.items()
@@ -152,7 +145,8 @@ def _used(problem: Any, tried: list[tuple[float, Attempt, float]]) -> Any:
     warning = (
         f"the {h0:.0f} m routing grid is too coarse for this route: the current reaches "
         f"{first.peak_mps:.2g} m/s, faster than the vehicle's {problem.speed:g} m/s, and "
-        f"{_clause(first)}; routed on a {h:.0f} m grid instead"
+        f"the route the front found on it cannot be flown ({first.miss}); routed on a "
+        f"{h:.0f} m grid instead"
         + (f" ({', '.join(middle)} gave no flyable route either)" if middle else "")
         + f"; --resolution {h:.0f} gives this route at once")
     res = att.result
@@ -160,11 +154,11 @@ def _used(problem: Any, tried: list[tuple[float, Attempt, float]]) -> Any:
 
 
 def _not_flown(problem: Any, tried: list[tuple[float, Attempt, float]]) -> Any:
-    """The first not-verified grid's result: one sentence, no duration."""
-    i0 = next(i for i, (_, a, _) in enumerate(tried) if a.result.status is Status.NOT_VERIFIED)
-    h0, first, _ = tried[i0]
+    """The first grid's result (every grid tried was not verified): one sentence, no
+    duration."""
+    h0, first, _ = tried[0]
     finest = min(h for h, _, _ in tried)
-    finer_ones = [f"{h:.0f} m" for h, _, _ in tried[i0 + 1:]]
+    finer_ones = [f"{h:.0f} m" for h, _, _ in tried[1:]]
     message = (
         f"the route the front found on the {h0:.0f} m grid cannot be flown ({first.miss})"
         + (f", nor can those on {', '.join(finer_ones)}" if finer_ones else "")
