@@ -369,7 +369,7 @@ def _print_summary(out: dict[str, Any]) -> None:
     elif out["status"] == "not_verified":
         err = out["endpoint_error_m"]
         typer.echo("endpoint error (controls flown through the field): " + (
-            "n/a" if err is None else f"{err:.2f} m") + f", tolerance "
+            "n/a" if err is None or not math.isfinite(err) else f"{err:.2f} m") + f", tolerance "
             f"{out['endpoint_tolerance_m']:.2f} m")
     else:
         typer.echo(f"unreachable ({out['unreachable_reason']}): best reachable distance to "

@@ -154,8 +154,8 @@ def write_route_kml(result: RouteResult, path: pathlib.Path) -> pathlib.Path:
     """KML 2.2: the line Placemark, then a timestamped Point Placemark per vertex."""
     v = route_vertices(result)
     p = _properties(result)
-    desc = (f"{p['status']}, {result.duration_s or 0:.0f} s, depart {p['depart']}, "
-            f"arrive {p['arrive']}")
+    took = "no duration" if result.duration_s is None else f"{result.duration_s:.0f} s"
+    desc = f"{p['status']}, {took}, depart {p['depart']}, arrive {p['arrive']}"
     parts = [KML_HEAD, "<Document>", "<name>glideplan route</name>",
              '<Style id="track"><LineStyle><color>ff0000ff</color><width>2</width>'
              "</LineStyle></Style>",

@@ -66,6 +66,7 @@ __all__ = [
     "characteristic_candidate",
     "drift_cone",
     "drift_disk_time",
+    "peak_current",
     "rescue",
     "swept",
     "tracking_candidate",
@@ -236,6 +237,13 @@ def swept(problem: Any, rg: Any, t_end: float) -> bool:
     """Whether the current reaches the vehicle's speed somewhere on the routing window
     between departure and `t_end` (s since epoch), sampled on a 9 x 9 sub-grid of the window
     at 33 times."""
+    return peak_current(problem, rg, t_end) >= problem.speed
+
+
+def peak_current(problem: Any, rg: Any, t_end: float) -> float:
+    """The largest current speed (m/s) on the routing window between departure and `t_end`
+    (s since epoch), sampled on a 9 x 9 sub-grid of the window at 33 times (0 where the
+    field refuses a point or has no data)."""
     win = rg.window
     la = win.lat[np.linspace(0, win.lat.size - 1, 9).astype(int)]
     lo = win.lon[np.linspace(0, win.lon.size - 1, 9).astype(int)]
@@ -250,9 +258,9 @@ def swept(problem: Any, rg: Any, t_end: float) -> bool:
         with np.errstate(invalid="ignore"):
             u, v = problem.field_.velocity(T.ravel(), LA.ravel(), LO.ravel())
     except InvalidParameterError:
-        return False
+        return 0.0
     s = np.hypot(u, v)
-    return bool(np.any(np.isfinite(s)) and float(np.nanmax(s)) >= problem.speed)
+    return float(np.nanmax(s)) if np.any(np.isfinite(s)) else 0.0
 
 
 def rescue(problem: Any, rg: Any, fo: Any, tolerance: float, tried: bool,

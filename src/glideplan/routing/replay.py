@@ -228,7 +228,10 @@ def _plan(fld: FlowField, pos: tuple[float, float], goal: tuple[float, float], s
     if r.status.value == "unreachable" or not r.track.size:
         return Plan(float(t - t0), issued, r.status.value, None, empty, empty, empty, empty)
     chi = math.pi / 2 - np.asarray(r.track.heading, dtype=float)
-    times, dur = np.asarray(r.track.t, dtype=float), float(r.duration_s or 0.0)
+    times = np.asarray(r.track.t, dtype=float)
+    # a route not verified in a current stronger than the vehicle carries no duration
+    # (finer_grid): its held legs' own time is its track's end
+    dur = float(times[-1] if r.duration_s is None else r.duration_s)
     if r.status.value != "solved":  # its legs' times are not flown ones: the front's
         times, dur = _front_schedule(r, times, dur)
     return Plan(float(t - t0), issued, r.status.value, dur, times + t - t0,

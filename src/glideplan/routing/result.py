@@ -3,7 +3,9 @@
 Built by keyword, frozen. status: `Status.SOLVED` (the heading controls, flown through the
 field itself, end within `endpoint_tolerance_m` of the goal, in the water and in the field),
 `Status.NOT_VERIFIED` (they miss by more, or touch land, or leave the field: the track and
-times are kept, `message` says by how much) or `Status.UNREACHABLE` (`reason`, a
+times are kept, `message` says by how much; in a current stronger than the vehicle
+`duration_s` is None, the held legs' time being no flown time: `routing.finer_grid`) or
+`Status.UNREACHABLE` (`reason`, a
 `glideplan.results.Reason`; `unreachable_reason` its word: "front_stopped" -- the
 reachable set stopped growing; "field_extent" -- it reached the field's edge (or +-85 deg
 latitude) without the goal; "time_span" -- the field's last time came first;

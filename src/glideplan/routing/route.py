@@ -96,19 +96,38 @@ def route(
         return RouteResult(status=Status.UNREACHABLE, message=cone.message,
                            warnings=tuple(warnings), best_distance_m=problem.distance_m,
                            reason=Reason(cone.reason), stats=clock.stats, **common)
+    attempt = _on_grid(problem, clock, list(warnings), dict(common))
+    if attempt.strong and attempt.result.status in (Status.NOT_VERIFIED, Status.UNREACHABLE):
+        from glideplan.routing import finer_grid  # the grid too coarse for the current
+
+        return finer_grid.finer(problem, attempt, lambda p: _on_grid(
+            p, _Clock(), list(warnings), dict(common)))
+    return attempt.result
+
+
+def _on_grid(problem: Any, clock: _Clock, warnings: list[str],
+             common: dict[str, Any]) -> Any:
+    """Front, backtrack, refine and verify on the problem's grid: a `finer_grid.Attempt`
+    (the result, the current's peak on the window against the vehicle's speed, the miss)."""
+    from glideplan.routing import extract, phases
+    from glideplan.routing.finer_grid import Attempt
+
     rg, fo, g0, tolerance = _front(problem, clock)
     warnings += [w for w in rg.warnings if w not in warnings]
     common.update(land_clearance_m=rg.clearance_m, endpoint_tolerance_m=tolerance,
                   front=FrontMap(rg.window.lat, rg.window.lon, fo.arrival - problem.t0,
                                  rg.obstacle.astype(float)))
     if fo.goal_time is None:
-        return _unreachable(problem, rg, fo, warnings, clock.stats, common)
+        res = _unreachable(problem, rg, fo, warnings, clock.stats, common)
+        peak = rg.currents.peak_speed()  # the window's nodes over the levels held
+        return Attempt(res, peak >= problem.speed, peak)
     grid_T = fo.goal_time - problem.t0
     # where the current reaches the vehicle's speed, the characteristic's own controls
     # (extract.py); else (or when it fails) the polyline held leg by leg
-    strong = extract.swept(problem, rg, fo.goal_time)
+    peak = extract.peak_current(problem, rg, fo.goal_time)
+    strong = peak >= problem.speed
     swept_route = extract.rescue(problem, rg, fo, tolerance, tried=False,
-                                 track=settings.refine) if strong else None
+                                 track=problem.settings.refine) if strong else None
     g = swept_route[0] if swept_route is not None else g0
     if g is None:
         g = _grid_route(problem, rg, fo)
@@ -117,15 +136,27 @@ def route(
     ok = phases.flown_ok(flown, tolerance)
     # refine=False: the grid route's legs only (a coarse, quick route): when they miss, the
     # characteristic tracked in closed loop (its flown controls) -- also when swept
-    if not ok and (not strong or not settings.refine):
+    if not ok and (not strong or not problem.settings.refine):
         rescued, note = _rescue(problem, rg, fo, tolerance, strong, grid_T, note, clock)
         if rescued is not None:
             best, flown = rescued
             ok = True
     note = _verification_note(flown, tolerance, note, warnings)
-    return _solved(problem, rg, best, flown, ok, note, warnings, clock,
-                   {**common, "grid_duration_s": float(grid_T),
-                    "refined_duration_s": refined_T})
+    result = _solved(problem, rg, best, flown, ok, note, warnings, clock,
+                     {**common, "grid_duration_s": float(grid_T),
+                      "refined_duration_s": refined_T})
+    if not ok:  # a narrow jet may pass between the 9 x 9 samples: the window's nodes too
+        peak = max(peak, rg.currents.peak_speed())
+    return Attempt(result, peak >= problem.speed, peak, _miss(flown))
+
+
+def _miss(flown: Any) -> str:
+    """How the flown controls failed, as a phrase ("" when they did not)."""
+    if flown.on_land:
+        return "its controls cross land"
+    if flown.left_field:
+        return "its controls leave the field"
+    return f"its controls end {flown.endpoint_error_m / 1000:.3g} km from the goal"
 
 
 def _settings(settings: RouteSettings | None, resolution: float | None,

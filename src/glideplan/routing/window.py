@@ -385,6 +385,16 @@ class WindowCurrents:
             self._cache[k] = self._cache.pop(k)
         return self._cache[k]
 
+    def peak_speed(self) -> float:
+        """The largest current speed (m/s) on the window's nodes over the levels held (0
+        where none is finite)."""
+        best = 0.0
+        for u, v in self._cache.values():
+            s = np.hypot(u, v)
+            if np.isfinite(s).any():
+                best = max(best, float(np.nanmax(s)))
+        return best
+
     def at(self, t: float) -> tuple[FloatArray, FloatArray]:
         """(u, v) on the window at time t, linear between levels."""
         k, w = self.bracket(t)
