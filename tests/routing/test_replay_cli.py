@@ -100,3 +100,21 @@ def test_route_replay_help_reads_as_documented(run_cli):
     code, out, _ = run_cli("route", "replay", "--help")
     assert code == 0
     assert "glideplan route replay" in out and "route-replay" not in out
+
+
+def test_study_replay_missions_file_as_saved_by_a_spreadsheet_or_wrong(twin, cli_error,
+                                                                       tmp_path):
+    """A binary file given as --missions is bad input (exit 2, one line naming it), not an
+    internal error; a CSV saved with a UTF-8 byte-order mark (Excel's "CSV UTF-8") reads."""
+    from glideplan.studies.replay import read_missions
+
+    fc = str(twin.truth.parent / "forecasts" / "*.nc")
+    png = tmp_path / "map.png"
+    png.write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR" + bytes(range(256)))
+    line = cli_error("study", "replay", "--truth", str(twin.truth), "--forecasts", fc,
+                     "--missions", str(png), "--out", str(tmp_path / "s"))
+    assert "--missions" in line and "map.png" in line and "not a UTF-8 text CSV" in line
+    text = (twin.truth.parent / "missions.csv").read_text(encoding="utf-8")
+    bom = tmp_path / "excel.csv"
+    bom.write_bytes(b"\xef\xbb\xbf" + text.encode("utf-8"))
+    assert read_missions(bom) == read_missions(twin.truth.parent / "missions.csv")
