@@ -118,3 +118,29 @@ def test_study_replay_missions_file_as_saved_by_a_spreadsheet_or_wrong(twin, cli
     bom = tmp_path / "excel.csv"
     bom.write_bytes(b"\xef\xbb\xbf" + text.encode("utf-8"))
     assert read_missions(bom) == read_missions(twin.truth.parent / "missions.csv")
+
+
+def test_route_replay_forecasts_wrong_file_or_elsewhere(twin, cli_error, tmp_path):
+    """A forecast that is not NetCDF/GRIB says so as the truth does; a forecast that does not
+    cover the start or goal is named as the forecast (was: "position latitude=...")."""
+    import numpy as np
+
+    from glideplan.fields.synthetic import copernicus_dataset
+
+    base = ["route", "replay", "--truth", str(twin.truth), "--from", "29.5", "-60.5", "--to",
+            "30.1", "-59.7", "--speed", "0.5", "--max-duration", "20", "--depart",
+            "2026-03-01T00:00Z"]
+    png = tmp_path / "fc.png"
+    png.write_bytes(b"\x89PNG\r\n\x1a\n" + bytes(64))
+    line = cli_error(*base, "--forecasts", str(png))
+    assert "--forecasts" in line and "fc.png" in line and "not a NetCDF or GRIB file" in line
+    lat, lon = np.arange(44.0, 45.01, 0.25), np.arange(-9.0, -7.99, 0.25)
+    times = np.datetime64("2026-03-01T00") + np.arange(3) * np.timedelta64(1, "D")
+    zero = np.zeros((3, 1, lat.size, lon.size))
+    copernicus_dataset(lat, lon, times, [0.5], zero, zero).to_netcdf(tmp_path / "far.nc")
+    line = cli_error(*base, "--forecasts", str(tmp_path / "far.nc"))
+    assert line.startswith("glideplan: error: --forecasts") and "far.nc" in line
+    assert "--from latitude=29.5" in line and "south bound 44" in line
+    (tmp_path / "d" / "sub").mkdir(parents=True)  # a glob that matches a folder
+    line = cli_error(*base, "--forecasts", str(tmp_path / "d" / "*"))
+    assert "--forecasts" in line and "sub" in line and "directory" in line
