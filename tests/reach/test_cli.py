@@ -96,6 +96,17 @@ def test_turnback_unreachable_exit_1(cli_error, polar_file):
     assert "unreachable" in line
 
 
+@pytest.mark.parametrize("home,fragment", [
+    (("46.2", "7.2", "nan"), "--home elevation=nan: must be finite"),
+    (("nan", "7.2", "200"), "--home"),
+])
+def test_turnback_bad_home_names_the_flag(cli_error, polar_file, home, fragment):
+    """A bad --home value is reported under --home (was "landable 'HOME' elevation=nan")."""
+    line = cli_error("glide", "turnback", "--polar", str(polar_file), "--from", "46.2", "7.2",
+                     "1500", "--course", "90", "--home", *home)
+    assert fragment in line and "HOME" not in line
+
+
 def test_reach_hgt_voids_refused_then_filled(run_cli, cli_error, polar_file, tmp_path):
     """An SRTM3 tile with a void: refused naming --terrain; --fill-voids fills it and warns."""
     from glideplan.terrain import write_hgt

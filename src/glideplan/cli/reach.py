@@ -94,6 +94,7 @@ _FLAGS = {
     "wind north": "--wind", "wind speed": "--wind SPEED_MS", "wind direction": "--wind FROM_DEG",
     "course": "--course", "home": "--home", "voids": "--fill-voids", "terrain": "--terrain",
     "example": "--example", "directory": "--write-example",
+    "landable 'HOME'": "--home",  # turnback's home (`reach.turnback`: Landable("HOME", ...))
 }
 DEFAULT_MC = 0.0
 DEFAULT_SAFETY_M = 300.0
