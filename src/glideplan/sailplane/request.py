@@ -84,11 +84,11 @@ class FinalGlide(Outcome):
     def to_dict(self) -> dict[str, Any]:
         """The JSON object of `glideplan glide final --json`."""
         return {
+            **super().to_dict(),  # the base keys first, as every product's (README)
             **self.details,
             "altitude_required_m": self.altitude_required_m,
             "arrival_margin_m": self.arrival_margin_m,
             "glide_ratio_required": self.glide_ratio_required,
-            **super().to_dict(),
         }
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Figure:
