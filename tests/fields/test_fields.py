@@ -164,6 +164,15 @@ def test_bad_files(tmp_path):
         open_field(trunc)
 
 
+def test_one_row_of_latitudes_is_named_as_such():
+    """A file with a single latitude (a 1-row subset) says so; it said "no latitude
+    coordinate found" while listing 'latitude' among the coordinates."""
+    ds = copernicus_dataset([30.0], [0.0, 0.5, 1.0], TIMES, [0.5], np.zeros((TIMES.size, 1, 1, 3)),
+                            np.zeros((TIMES.size, 1, 1, 3)))
+    with pytest.raises(InvalidParameterError, match=r"latitude.*has one value.*at least two"):
+        from_xarray(ds)
+
+
 def test_standard_names_found_under_other_names():
     """Components are found by standard_name whatever the variable names (cf-xarray)."""
     ds = xr.Dataset(

@@ -157,11 +157,15 @@ def _candidates(ds: Any, da: Any, names: Sequence[str], units: Sequence[str],
     return list(dict.fromkeys(out))
 
 
+#: Per horizontal axis: names, units, the axis's name and its CF axis letter (`_candidates`).
+_AXES = {"latitude": (_LAT, _LAT_UNITS, "latitude", "Y"),
+         "longitude": (_LON, _LON_UNITS, "longitude", "X")}
+
+
 def _horizontal(ds: Any, da: Any, name: str) -> tuple[str, Any, Any]:
     """("regular", lat 1-D DataArray, lon 1-D) or ("curvilinear", lat 2-D, lon 2-D) of `da`."""
     found = {}
-    for what, names, units, axis in (("latitude", _LAT, _LAT_UNITS, "Y"),
-                                     ("longitude", _LON, _LON_UNITS, "X")):
+    for what, (names, units, _, axis) in _AXES.items():
         cands = _candidates(ds, da, names, units, what, axis)
         one = [c for c in cands if c in da.coords and da[c].ndim == 1
                and da[c].dims[0] in da.dims and da[c].size > 1
@@ -181,6 +185,13 @@ def _horizontal(ds: Any, da: Any, name: str) -> tuple[str, Any, Any]:
                 if la.dims == lo.dims:
                     return "curvilinear", la, lo
     for what, (one, two) in found.items():
+        single = [c for c in _candidates(ds, da, *_AXES[what]) if c in da.coords
+                  and da[c].ndim <= 1 and da[c].size == 1]
+        if not one and not two and single:  # a subset one row or column wide
+            raise InvalidParameterError(
+                f"field {what}", float(np.asarray(da[single[0]].values).ravel()[0]),
+                f"coordinate {single[0]!r} of {name!r} has one value: a field needs at least "
+                "two rows and two columns to interpolate (download a wider box)")
         if not one and not two:
             raise InvalidParameterError(
                 f"field {what}", sorted(str(c) for c in da.coords),
