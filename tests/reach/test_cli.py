@@ -153,3 +153,14 @@ def test_turnback_heights_range_checked(cli_error, polar_file, flag):
     line = cli_error("glide", "turnback", "--polar", str(polar_file), "--from", "46.2", "7.2",
                      "1500", "--course", "90", "--home", "46.2", "7.2", "200", flag, "-5")
     assert flag in line
+
+
+@pytest.mark.parametrize("command", ["reach", "turnback"])
+def test_safety_height_help_tells_the_defaults(run_cli, command):
+    """--help of --safety-height: it sets both heights; without it the clearance is 150 m
+    (the JSON's terrain_clearance_m); it said "Default 300" for a height kept all along."""
+    code, out, _ = run_cli("glide", command, "--help")
+    assert code == 0
+    row = out.split("│ --safety-height", 1)[1].split("│ --terrain-clearance", 1)[0]
+    text = " ".join(row.replace("│", " ").split())
+    assert "Sets both" in text and "150 and 300" in text and "Default 300" not in text

@@ -54,8 +54,8 @@ McOpt = Annotated[float | None, typer.Option(
     "--example).", show_default=False)]
 SafetyOpt = Annotated[float | None, typer.Option(
     "--safety-height",
-    help="Height kept above the terrain all along and above the field (m). Default 300 "
-         "(the example's with --example).", show_default=False)]
+    help="Sets both --terrain-clearance and --arrival-height (m; the former single option). "
+         "Without it they are 150 and 300 (the example's with --example).", show_default=False)]
 ClearanceOpt = Annotated[float | None, typer.Option(
     "--terrain-clearance", metavar="M",
     help="Height kept above the terrain en route (m). Default 150 (XCSoar's); "
