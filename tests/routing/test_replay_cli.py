@@ -100,6 +100,8 @@ def test_route_replay_help_reads_as_documented(run_cli):
     code, out, _ = run_cli("route", "replay", "--help")
     assert code == 0
     assert "glideplan route replay" in out and "route-replay" not in out
+    # --follow track (the default) steers by the time-to-go map (ReplaySettings.feedback)
+    assert "time-to-go" in " ".join(out.replace("│", " ").split())
 
 
 def test_study_replay_missions_file_as_saved_by_a_spreadsheet_or_wrong(twin, cli_error,
