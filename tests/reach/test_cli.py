@@ -164,3 +164,16 @@ def test_safety_height_help_tells_the_defaults(run_cli, command):
     row = out.split("│ --safety-height", 1)[1].split("│ --terrain-clearance", 1)[0]
     text = " ".join(row.replace("│", " ").split())
     assert "Sets both" in text and "150 and 300" in text and "Default 300" not in text
+
+
+def test_terrain_folder_or_pattern_named_once(cli_error, files, polar_file, tmp_path):
+    """An empty folder or a pattern matching nothing: `--terrain='X': ...` (it read
+    `--terrain X='X': ...`, the path twice)."""
+    _, _, cup = files
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    for terrain, rule in ((str(empty), "the folder holds no terrain file"),
+                          (str(tmp_path / "N9*.hgt"), "the pattern matches no file")):
+        line = cli_error("glide", "reach", "--polar", str(polar_file), "--from", "46.15",
+                         "7.2", "900", "--terrain", terrain, "--landables", str(cup))
+        assert line.startswith(f"glideplan: error: --terrain='{terrain}': {rule}")

@@ -136,8 +136,9 @@ def _terrain(files: list[pathlib.Path] | None, voids: str | None, required: bool
             from glideplan.errors import InvalidParameterError
 
             if isinstance(exc, InvalidParameterError):
-                raise InvalidParameterError(f"--terrain {exc.name}", exc.value,
-                                            exc.rule) from None
+                whole = str(exc.name) == str(exc.value)  # a folder or pattern: named once
+                raise InvalidParameterError("--terrain" if whole else f"--terrain {exc.name}",
+                                            exc.value, exc.rule) from None
             raise
 
 
