@@ -48,7 +48,8 @@ mission_app = typer.Typer(
     no_args_is_help=True,
 )
 glide_app = typer.Typer(
-    help="Sailplane polars and final glide (MacCready, wind, arrival heading).",
+    help="Sailplane polars, final glide (MacCready, wind, arrival heading), glide reach over "
+         "terrain and the turn-back point.",
     no_args_is_help=True,
 )
 
