@@ -484,6 +484,7 @@ def open_field(
     if len(dsets) == 1:
         ds = dsets[0]
     else:
+        _check_one_lattice(dsets, items)
         try:
             ds = xr.merge(dsets, compat="no_conflicts", join="outer", combine_attrs="override")
         except Exception as exc:
@@ -498,6 +499,41 @@ def open_field(
 
         out = replace(out, warnings=out.warnings + tuple(skipped))
     return out
+
+
+def _check_one_lattice(dsets: list[Any], items: list[Any]) -> None:
+    """Refuse files whose 1-D latitude/longitude axes leave nodes of their union in no file:
+    the outer join would fill them with NaN, which a route reads as land. (u and v apart,
+    time chunks and adjacent boxes of one lattice cover every node.)"""
+    axes = []
+    for names in (_LAT, _LON):
+        name = next((n for n in names if all(n in d.dims and n in d.coords for d in dsets)),
+                    None)
+        if name is None:
+            return  # curvilinear or unnamed axes: merged (or refused) as before
+        axes.append([np.asarray(d[name].values, dtype=float) for d in dsets])
+    lat_all, lon_all = (np.unique(np.concatenate(vals)) for vals in axes)
+    for what, vals, union in (("latitude", axes[0], lat_all), ("longitude", axes[1], lon_all)):
+        own = max((float(np.max(np.abs(np.diff(v)))) for v in vals if v.size > 1), default=0.0)
+        steps = np.diff(union)
+        if own > 0 and steps.size and float(steps.max()) > 1.5 * own:
+            k = int(np.argmax(steps))
+            raise InvalidParameterError(
+                "field", [str(p) for p in items],
+                f"a gap between the files' {what}s {union[k]:g} and {union[k + 1]:g} (their "
+                f"own spacing at most {own:g}) would be interpolated across: merge only files "
+                "on one grid (u and v apart, time chunks, adjacent boxes)")
+    covered = np.zeros((lat_all.size, lon_all.size), bool)
+    for la, lo in zip(*axes, strict=True):
+        covered |= np.isin(lat_all, la)[:, None] & np.isin(lon_all, lo)[None, :]
+    if not covered.all():
+        i, j = np.argwhere(~covered)[0]
+        raise InvalidParameterError(
+            "field", [str(p) for p in items],
+            f"their grids leave {int((~covered).sum())} of {covered.size} nodes of the merged "
+            f"grid in no file (e.g. {lat_all[i]:g}, {lon_all[j]:g}: a gap between the files' "
+            "areas or different spacings), which would read as land: merge only files on one "
+            "grid (u and v apart, time chunks, adjacent boxes)")
 
 
 def _merge_staggered(dsets: list[Any]) -> Any:
