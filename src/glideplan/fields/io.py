@@ -24,7 +24,7 @@ water_v` (HYCOM), `u10/v10` (ERA5/GFS), `u_eastward/v_northward` and `u/v` (ROMS
 - Curvilinear grids (2-D `lat_rho/lon_rho`, `nav_lat/nav_lon`, staggered `lat_u`, `lat_v`):
   regridded to a regular lat/lon grid (`regrid_curvilinear`), with a warning.
 
-Why this module is long: (about 520 lines, a third of them the name tables and this text): every
+Why this module is long: (about 570 lines, a third of them the name tables and this text): every
 convention above is a few lines of detection in one walk over the dataset, kept together so
 a reader sees every rule a file passes through; the depth layer (`fields.vertical`), the
 grid helpers (`fields.io_grids`), the regridding (`fields.regrid`) and the reading notes
