@@ -192,7 +192,8 @@ class LocalProjection:
         h = np.asarray(f.meridional_scale, dtype=float)
         k = np.asarray(f.parallel_scale, dtype=float)
         worst = np.nanmax(np.abs(np.concatenate([h - 1.0, k - 1.0])))
-        return float(worst) if np.isfinite(worst) else 0.0
+        # infinite at the centre's antipode (the projection is singular there), not 0
+        return float(worst) if not np.isnan(worst) else 0.0
 
     def check_extent(
         self, lat: ArrayLike, lon: ArrayLike, max_distortion: float = MAX_SCALE_DISTORTION

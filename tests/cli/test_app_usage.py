@@ -28,6 +28,18 @@ def test_option_that_takes_the_next_option_says_what_it_got(cli_error) -> None:
     assert line.endswith("got 1 (4) before --radius")
 
 
+def test_comma_separated_values_say_what_the_option_got(cli_error) -> None:
+    """`--from 30.45,-39.8 --to 30.45 -38.2`: --from swallows `--to`, and `-38.2` then read as
+    an option gave "No such option: -3"; now the multi-value message, with the hint."""
+    line = cli_error("route", "--example", "double-gyre", "--from", "30.45,-39.8", "--to",
+                     "30.45", "-38.2", "--speed", "0.5")
+    assert line == ("glideplan: error: --from needs 2 values (lat lon), got 1 (30.45,-39.8) "
+                    "before --to; separate the values by spaces, not commas")
+    line = cli_error("plan", "dubins", "--goal", "4,3,90", "--radius", "1")
+    assert line.endswith("got 1 (4,3,90) before --radius; separate the values by spaces, "
+                         "not commas")
+
+
 def test_negative_numbers_are_values_not_option_names(run_cli) -> None:
     """`--goal 4 -3 -90` is a goal below the x axis heading south, not a missing value."""
     code, out, err = run_cli(

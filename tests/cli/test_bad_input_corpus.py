@@ -315,6 +315,9 @@ CASES: dict[str, Case] = {
         ("design", "tank", "--params", "{binary}"), 2, "is not a TOML text file"
     ),
     "design init a directory": Case(("design", "init", "{tmp}"), 2, "is a directory"),
+    "explore --route a foreign file": Case(
+        ("explore", "--no-show", "--route", "{a_file}"), 2, "--route='"
+    ),  # named the file as the option: "README.md='.md': unknown route file type"
     "--time-limit on a synthesis method": Case(
         (*TMIN, "--goal", "1", "2", "0", "--time-limit", "5"), 2, "takes no time limit"
     ),

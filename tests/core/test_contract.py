@@ -165,6 +165,8 @@ def test_a_failure_prints_json_and_exits_with_its_status_code(name, run_cli, mon
     code, out, err = run_cli(*argv, "--json")
     data = json.loads(out)
     assert data["status"] == status and data["ok"] is False and data["message"]
+    # README "Exit codes": every JSON object starts with the same keys
+    assert list(data)[:5] == ["status", "ok", "message", "warnings", "reason"]
     assert code == Status(status).exit_code == 1
     errors = [line for line in err.splitlines() if line.startswith("glideplan: error:")]
     assert len(errors) == 1 and f": {status}: " in errors[0] and "Traceback" not in err

@@ -164,6 +164,39 @@ def test_bad_files(tmp_path):
         open_field(trunc)
 
 
+def test_one_row_of_latitudes_is_named_as_such():
+    """A file with a single latitude (a 1-row subset) says so; it said "no latitude
+    coordinate found" while listing 'latitude' among the coordinates."""
+    ds = copernicus_dataset([30.0], [0.0, 0.5, 1.0], TIMES, [0.5], np.zeros((TIMES.size, 1, 1, 3)),
+                            np.zeros((TIMES.size, 1, 1, 3)))
+    with pytest.raises(InvalidParameterError, match=r"latitude.*has one value.*at least two"):
+        from_xarray(ds)
+
+
+def test_files_of_different_areas_do_not_merge_into_fake_land(tmp_path):
+    """Two files of different areas or grids are refused naming the files: two boxes apart
+    (the merged grid interpolated across the gap), a 1/4 deg and a 1/12 deg grid (nodes in no
+    file, filled with NaN by the outer join: read as land; `route --field a.nc --field b.nc`
+    answered "solved" with a 16.8 km land clearance). Adjacent boxes of one lattice merge."""
+    lat, lon = np.arange(40.0, 41.01, 0.25), np.arange(-10.0, -8.99, 0.25)
+    times = TIMES[:2]
+    zero = np.zeros((2, 1, lat.size, lon.size))
+    copernicus_dataset(lat, lon, times, [0.5], zero + 0.1, zero).to_netcdf(tmp_path / "a.nc")
+    copernicus_dataset(lat + 3, lon, times, [0.5], zero + 0.1, zero).to_netcdf(tmp_path / "b.nc")
+    with pytest.raises(InvalidParameterError, match=r"field=.*: a gap between the files' "
+                       r"latitudes 41 and 43 \(their own spacing at most 0\.25\)"):
+        open_field([tmp_path / "a.nc", tmp_path / "b.nc"])
+    fine = np.arange(40.0, 41.01, 1 / 12)
+    z = np.zeros((2, 1, fine.size, fine.size))
+    copernicus_dataset(fine, fine - 50.0, times, [0.5], z, z).to_netcdf(tmp_path / "c.nc")
+    with pytest.raises(InvalidParameterError, match="in no file"):
+        open_field([tmp_path / "a.nc", tmp_path / "c.nc"])
+    copernicus_dataset(lat + 1.25, lon, times, [0.5], zero + 0.1, zero).to_netcdf(
+        tmp_path / "north.nc")  # the next box north on the same 0.25 deg lattice
+    f = open_field([tmp_path / "a.nc", tmp_path / "north.nc"])
+    assert f.lat.size == 2 * lat.size and np.isfinite(f.u).all()
+
+
 def test_standard_names_found_under_other_names():
     """Components are found by standard_name whatever the variable names (cf-xarray)."""
     ds = xr.Dataset(

@@ -37,6 +37,13 @@ def test_too_large_mission_is_refused():
         Route.from_geographic(["a", "b"], [0.0, 15.0], [0.0, 10.0], source="big.csv")
 
 
+def test_antipodal_waypoint_is_refused():
+    """At the first waypoint's antipode the azimuthal equidistant scale is infinite (the
+    projection is singular); it was reported as 0 distortion and the mission was planned."""
+    with pytest.raises(InvalidParameterError, match="split the mission"):
+        Route.from_geographic(["a", "b"], [47.0, -47.0], [8.0, -172.0], source="far.csv")
+
+
 def test_identical_consecutive_free_waypoints_are_an_error():
     with pytest.raises(InvalidParameterError, match="identical to the previous"):
         Route.from_local(["a", "b", "c"], [0, 5, 5], [0, 0, 0])

@@ -96,6 +96,17 @@ def test_turnback_unreachable_exit_1(cli_error, polar_file):
     assert "unreachable" in line
 
 
+@pytest.mark.parametrize("home,fragment", [
+    (("46.2", "7.2", "nan"), "--home elevation=nan: must be finite"),
+    (("nan", "7.2", "200"), "--home"),
+])
+def test_turnback_bad_home_names_the_flag(cli_error, polar_file, home, fragment):
+    """A bad --home value is reported under --home (was "landable 'HOME' elevation=nan")."""
+    line = cli_error("glide", "turnback", "--polar", str(polar_file), "--from", "46.2", "7.2",
+                     "1500", "--course", "90", "--home", *home)
+    assert fragment in line and "HOME" not in line
+
+
 def test_reach_hgt_voids_refused_then_filled(run_cli, cli_error, polar_file, tmp_path):
     """An SRTM3 tile with a void: refused naming --terrain; --fill-voids fills it and warns."""
     from glideplan.terrain import write_hgt
@@ -142,3 +153,27 @@ def test_turnback_heights_range_checked(cli_error, polar_file, flag):
     line = cli_error("glide", "turnback", "--polar", str(polar_file), "--from", "46.2", "7.2",
                      "1500", "--course", "90", "--home", "46.2", "7.2", "200", flag, "-5")
     assert flag in line
+
+
+@pytest.mark.parametrize("command", ["reach", "turnback"])
+def test_safety_height_help_tells_the_defaults(run_cli, command):
+    """--help of --safety-height: it sets both heights; without it the clearance is 150 m
+    (the JSON's terrain_clearance_m); it said "Default 300" for a height kept all along."""
+    code, out, _ = run_cli("glide", command, "--help")
+    assert code == 0
+    row = out.split("│ --safety-height", 1)[1].split("│ --terrain-clearance", 1)[0]
+    text = " ".join(row.replace("│", " ").split())
+    assert "Sets both" in text and "150 and 300" in text and "Default 300" not in text
+
+
+def test_terrain_folder_or_pattern_named_once(cli_error, files, polar_file, tmp_path):
+    """An empty folder or a pattern matching nothing: `--terrain='X': ...` (it read
+    `--terrain X='X': ...`, the path twice)."""
+    _, _, cup = files
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    for terrain, rule in ((str(empty), "the folder holds no terrain file"),
+                          (str(tmp_path / "N9*.hgt"), "the pattern matches no file")):
+        line = cli_error("glide", "reach", "--polar", str(polar_file), "--from", "46.15",
+                         "7.2", "900", "--terrain", terrain, "--landables", str(cup))
+        assert line.startswith(f"glideplan: error: --terrain='{terrain}': {rule}")

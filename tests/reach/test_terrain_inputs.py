@@ -233,5 +233,5 @@ def test_cli_terrain_folder_errors_in_one_line(cli_error, polar_file, tmp_path, 
                      "700", "--terrain", str(d))
     expect = (f"--terrain {d}/tile7.hgt='tile7.hgt': an SRTM tile must be named by its "
               "south-west corner" if kind == "bad name" else
-              f"--terrain {d}='{d}': the folder holds no terrain file")
+              f"--terrain='{d}': the folder holds no terrain file")  # the folder named once
     assert expect in line, line

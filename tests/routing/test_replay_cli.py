@@ -100,3 +100,49 @@ def test_route_replay_help_reads_as_documented(run_cli):
     code, out, _ = run_cli("route", "replay", "--help")
     assert code == 0
     assert "glideplan route replay" in out and "route-replay" not in out
+    # --follow track (the default) steers by the time-to-go map (ReplaySettings.feedback)
+    assert "time-to-go" in " ".join(out.replace("│", " ").split())
+
+
+def test_study_replay_missions_file_as_saved_by_a_spreadsheet_or_wrong(twin, cli_error,
+                                                                       tmp_path):
+    """A binary file given as --missions is bad input (exit 2, one line naming it), not an
+    internal error; a CSV saved with a UTF-8 byte-order mark (Excel's "CSV UTF-8") reads."""
+    from glideplan.studies.replay import read_missions
+
+    fc = str(twin.truth.parent / "forecasts" / "*.nc")
+    png = tmp_path / "map.png"
+    png.write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR" + bytes(range(256)))
+    line = cli_error("study", "replay", "--truth", str(twin.truth), "--forecasts", fc,
+                     "--missions", str(png), "--out", str(tmp_path / "s"))
+    assert "--missions" in line and "map.png" in line and "not a UTF-8 text CSV" in line
+    text = (twin.truth.parent / "missions.csv").read_text(encoding="utf-8")
+    bom = tmp_path / "excel.csv"
+    bom.write_bytes(b"\xef\xbb\xbf" + text.encode("utf-8"))
+    assert read_missions(bom) == read_missions(twin.truth.parent / "missions.csv")
+
+
+def test_route_replay_forecasts_wrong_file_or_elsewhere(twin, cli_error, tmp_path):
+    """A forecast that is not NetCDF/GRIB says so as the truth does; a forecast that does not
+    cover the start or goal is named as the forecast (was: "position latitude=...")."""
+    import numpy as np
+
+    from glideplan.fields.synthetic import copernicus_dataset
+
+    base = ["route", "replay", "--truth", str(twin.truth), "--from", "29.5", "-60.5", "--to",
+            "30.1", "-59.7", "--speed", "0.5", "--max-duration", "20", "--depart",
+            "2026-03-01T00:00Z"]
+    png = tmp_path / "fc.png"
+    png.write_bytes(b"\x89PNG\r\n\x1a\n" + bytes(64))
+    line = cli_error(*base, "--forecasts", str(png))
+    assert "--forecasts" in line and "fc.png" in line and "not a NetCDF or GRIB file" in line
+    lat, lon = np.arange(44.0, 45.01, 0.25), np.arange(-9.0, -7.99, 0.25)
+    times = np.datetime64("2026-03-01T00") + np.arange(3) * np.timedelta64(1, "D")
+    zero = np.zeros((3, 1, lat.size, lon.size))
+    copernicus_dataset(lat, lon, times, [0.5], zero, zero).to_netcdf(tmp_path / "far.nc")
+    line = cli_error(*base, "--forecasts", str(tmp_path / "far.nc"))
+    assert line.startswith("glideplan: error: --forecasts") and "far.nc" in line
+    assert "--from latitude=29.5" in line and "south bound 44" in line
+    (tmp_path / "d" / "sub").mkdir(parents=True)  # a glob that matches a folder
+    line = cli_error(*base, "--forecasts", str(tmp_path / "d" / "*"))
+    assert "--forecasts" in line and "sub" in line and "directory" in line

@@ -252,3 +252,11 @@ def test_wind_stronger_than_the_glider_is_unreachable(run_cli, dg_file):
         assert d["altitude_loss_m"] is None and "wind" in d["message"]
         assert "headwind 45.0 m/s" in d["message"] and "150 km/h" in d["message"]
         assert err.strip() == f"glideplan: error: final glide: unreachable: {d['message']}"
+
+
+def test_final_goal_beyond_one_local_plane_names_to(cli_error, dg_file):
+    """A goal half the Earth away is refused under --to (was "extent='scale error ...': ...
+    split the mission", a mission's words for a final glide)."""
+    line = cli_error("glide", "final", "--polar", str(dg_file), "--from", "47", "8", "1500",
+                     "--to", "-47", "-172", "400")
+    assert "--to=" in line and "km from the start" in line and "mission" not in line

@@ -48,7 +48,8 @@ mission_app = typer.Typer(
     no_args_is_help=True,
 )
 glide_app = typer.Typer(
-    help="Sailplane polars and final glide (MacCready, wind, arrival heading).",
+    help="Sailplane polars, final glide (MacCready, wind, arrival heading), glide reach over "
+         "terrain and the turn-back point.",
     no_args_is_help=True,
 )
 
@@ -120,6 +121,10 @@ def _usage_message(exc: click_exc.ClickException, root: Any, argv: list[str]) ->
     param = getattr(exc, "param", None)
     if param is None and isinstance(exc, click_exc.BadOptionUsage):
         param = _find_option(root, argv, exc.option_name)
+    if isinstance(exc, click_exc.NoSuchOption):  # `--from 30.45,-39.8 --to 30.45 -38.2`:
+        swallowed = _swallowed(root, argv)  # --from took `--to`, then `-38.2` looked an option
+        if swallowed is not None:
+            return swallowed
     nargs = getattr(param, "nargs", 1)
     if param is None or not isinstance(nargs, int) or nargs <= 1:
         return exc.format_message()
@@ -132,8 +137,36 @@ def _usage_message(exc: click_exc.ClickException, root: Any, argv: list[str]) ->
     taken = _words_after(argv, list(getattr(param, "opts", None) or []), nargs)
     cut = next((i for i, word in enumerate(taken) if _is_option_name(word)), None)
     if cut is not None:  # `--goal 4 3 --radius 1`: the option took the next option's name
-        return f"{head}, got {cut} ({' '.join(taken[:cut]) or 'none'}) before {taken[cut]}"
+        return _got_before(head, taken, cut)
     return f"{head}: {detail.split(': ', 1)[-1]}"
+
+
+def _got_before(head: str, taken: list[str], cut: int) -> str:
+    """"--goal needs 3 values (...), got 2 (4 3) before --radius" (and the hint for commas)."""
+    got = f"{head}, got {cut} ({' '.join(taken[:cut]) or 'none'}) before {taken[cut]}"
+    if any("," in word for word in taken[:cut]):
+        got += "; separate the values by spaces, not commas"
+    return got
+
+
+def _swallowed(root: Any, argv: list[str]) -> str | None:
+    """The message for the first multi-value option of the command that took an option's
+    name as one of its values, or None."""
+    command = root
+    for arg in argv:
+        command = getattr(command, "commands", {}).get(arg, command)
+    for i, arg in enumerate(argv):
+        param = next((p for p in command.params if arg in getattr(p, "opts", ())), None)
+        nargs = getattr(param, "nargs", 1)
+        if param is None or not isinstance(nargs, int) or nargs <= 1:
+            continue
+        taken = argv[i + 1 : i + 1 + nargs]
+        cut = next((k for k, word in enumerate(taken) if _is_option_name(word)), None)
+        if cut is not None:
+            metavar = getattr(param, "metavar", None) or " ".join(["VALUE"] * nargs)
+            head = f"{max(param.opts, key=len)} needs {nargs} values ({metavar.lower()})"
+            return _got_before(head, taken, cut)
+    return None
 
 
 def _words_after(argv: list[str], opts: list[str], nargs: int) -> list[str]:

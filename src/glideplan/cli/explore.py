@@ -59,11 +59,12 @@ def explore_command(
         with flag_names(field="--field"):
             open_field(field)  # a foreign or broken file: one line now, not on the page
     if route is not None:
-        from glideplan.cli.common import check_input_file
+        from glideplan.cli.common import check_input_file, file_flag
         from glideplan.formats.readers import read_route
 
         check_input_file(route, "--route")
-        read_route(route)  # a foreign or broken file: one line now, not on the page
+        with file_flag("--route", route):  # named as the option, as `mission plan`'s ROUTE
+            read_route(route)  # a foreign or broken file: one line now, not on the page
     check_address(host, port)  # a busy port or a foreign host: one line, before announcing
     typer.echo(f"glideplan explore: serving http://{host}:{port}/ (Ctrl-C to stop)", err=True)
     serve(

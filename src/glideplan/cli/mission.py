@@ -218,7 +218,6 @@ def mission_plan(
                     field="--field", wind="--wind", speed="--speed", radius="--radius"):
         fmts = parse_formats(formats, r.geographic) if export is not None else ()
         skipped = skipped_formats(formats, r.geographic) if export is not None else ()
-        print_warnings([skipped_warning(skipped)] if skipped else [])
         check_export_options(fmts, options, r.n)
         if field is not None:
             mission = _plan_in_field(r, field, speed, radius, when, depth_range)

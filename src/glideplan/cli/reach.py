@@ -54,8 +54,8 @@ McOpt = Annotated[float | None, typer.Option(
     "--example).", show_default=False)]
 SafetyOpt = Annotated[float | None, typer.Option(
     "--safety-height",
-    help="Height kept above the terrain all along and above the field (m). Default 300 "
-         "(the example's with --example).", show_default=False)]
+    help="Sets both --terrain-clearance and --arrival-height (m; the former single option). "
+         "Without it they are 150 and 300 (the example's with --example).", show_default=False)]
 ClearanceOpt = Annotated[float | None, typer.Option(
     "--terrain-clearance", metavar="M",
     help="Height kept above the terrain en route (m). Default 150 (XCSoar's); "
@@ -94,6 +94,7 @@ _FLAGS = {
     "wind north": "--wind", "wind speed": "--wind SPEED_MS", "wind direction": "--wind FROM_DEG",
     "course": "--course", "home": "--home", "voids": "--fill-voids", "terrain": "--terrain",
     "example": "--example", "directory": "--write-example",
+    "landable 'HOME'": "--home",  # turnback's home (`reach.turnback`: Landable("HOME", ...))
 }
 DEFAULT_MC = 0.0
 DEFAULT_SAFETY_M = 300.0
@@ -135,8 +136,9 @@ def _terrain(files: list[pathlib.Path] | None, voids: str | None, required: bool
             from glideplan.errors import InvalidParameterError
 
             if isinstance(exc, InvalidParameterError):
-                raise InvalidParameterError(f"--terrain {exc.name}", exc.value,
-                                            exc.rule) from None
+                whole = str(exc.name) == str(exc.value)  # a folder or pattern: named once
+                raise InvalidParameterError("--terrain" if whole else f"--terrain {exc.name}",
+                                            exc.value, exc.rule) from None
             raise
 
 

@@ -106,8 +106,10 @@ def route_replay_command(
         "--resolution", metavar="METRES", show_default=False,
         help="Planner grid spacing (m; default: distance / 60, at least 2 km).")] = None,
     follow: Annotated[str, typer.Option(
-        "--follow", metavar="HOW", help="track: steer along each plan's track with the crab "
-        "angle for the expected current; headings: its headings in time, open loop.")
+        "--follow", metavar="HOW", help="track: the replanning loop steers by each plan's "
+        "time-to-go map (-grad tau, feedback), along the plan's track with the crab angle for "
+        "the expected current where the map has none (the baselines: by the track); "
+        "headings: its headings in time, open loop.")
     ] = "track",
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
     plot: Annotated[pathlib.Path | None, typer.Option(

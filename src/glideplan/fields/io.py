@@ -24,7 +24,7 @@ water_v` (HYCOM), `u10/v10` (ERA5/GFS), `u_eastward/v_northward` and `u/v` (ROMS
 - Curvilinear grids (2-D `lat_rho/lon_rho`, `nav_lat/nav_lon`, staggered `lat_u`, `lat_v`):
   regridded to a regular lat/lon grid (`regrid_curvilinear`), with a warning.
 
-Why this module is long: (about 520 lines, a third of them the name tables and this text): every
+Why this module is long: (about 570 lines, a third of them the name tables and this text): every
 convention above is a few lines of detection in one walk over the dataset, kept together so
 a reader sees every rule a file passes through; the depth layer (`fields.vertical`), the
 grid helpers (`fields.io_grids`), the regridding (`fields.regrid`) and the reading notes
@@ -157,11 +157,15 @@ def _candidates(ds: Any, da: Any, names: Sequence[str], units: Sequence[str],
     return list(dict.fromkeys(out))
 
 
+#: Per horizontal axis: names, units, the axis's name and its CF axis letter (`_candidates`).
+_AXES = {"latitude": (_LAT, _LAT_UNITS, "latitude", "Y"),
+         "longitude": (_LON, _LON_UNITS, "longitude", "X")}
+
+
 def _horizontal(ds: Any, da: Any, name: str) -> tuple[str, Any, Any]:
     """("regular", lat 1-D DataArray, lon 1-D) or ("curvilinear", lat 2-D, lon 2-D) of `da`."""
     found = {}
-    for what, names, units, axis in (("latitude", _LAT, _LAT_UNITS, "Y"),
-                                     ("longitude", _LON, _LON_UNITS, "X")):
+    for what, (names, units, _, axis) in _AXES.items():
         cands = _candidates(ds, da, names, units, what, axis)
         one = [c for c in cands if c in da.coords and da[c].ndim == 1
                and da[c].dims[0] in da.dims and da[c].size > 1
@@ -181,6 +185,13 @@ def _horizontal(ds: Any, da: Any, name: str) -> tuple[str, Any, Any]:
                 if la.dims == lo.dims:
                     return "curvilinear", la, lo
     for what, (one, two) in found.items():
+        single = [c for c in _candidates(ds, da, *_AXES[what]) if c in da.coords
+                  and da[c].ndim <= 1 and da[c].size == 1]
+        if not one and not two and single:  # a subset one row or column wide
+            raise InvalidParameterError(
+                f"field {what}", float(np.asarray(da[single[0]].values).ravel()[0]),
+                f"coordinate {single[0]!r} of {name!r} has one value: a field needs at least "
+                "two rows and two columns to interpolate (download a wider box)")
         if not one and not two:
             raise InvalidParameterError(
                 f"field {what}", sorted(str(c) for c in da.coords),
@@ -473,6 +484,7 @@ def open_field(
     if len(dsets) == 1:
         ds = dsets[0]
     else:
+        _check_one_lattice(dsets, items)
         try:
             ds = xr.merge(dsets, compat="no_conflicts", join="outer", combine_attrs="override")
         except Exception as exc:
@@ -487,6 +499,41 @@ def open_field(
 
         out = replace(out, warnings=out.warnings + tuple(skipped))
     return out
+
+
+def _check_one_lattice(dsets: list[Any], items: list[Any]) -> None:
+    """Refuse files whose 1-D latitude/longitude axes leave nodes of their union in no file:
+    the outer join would fill them with NaN, which a route reads as land. (u and v apart,
+    time chunks and adjacent boxes of one lattice cover every node.)"""
+    axes = []
+    for names in (_LAT, _LON):
+        name = next((n for n in names if all(n in d.dims and n in d.coords for d in dsets)),
+                    None)
+        if name is None:
+            return  # curvilinear or unnamed axes: merged (or refused) as before
+        axes.append([np.asarray(d[name].values, dtype=float) for d in dsets])
+    lat_all, lon_all = (np.unique(np.concatenate(vals)) for vals in axes)
+    for what, vals, union in (("latitude", axes[0], lat_all), ("longitude", axes[1], lon_all)):
+        own = max((float(np.max(np.abs(np.diff(v)))) for v in vals if v.size > 1), default=0.0)
+        steps = np.diff(union)
+        if own > 0 and steps.size and float(steps.max()) > 1.5 * own:
+            k = int(np.argmax(steps))
+            raise InvalidParameterError(
+                "field", [str(p) for p in items],
+                f"a gap between the files' {what}s {union[k]:g} and {union[k + 1]:g} (their "
+                f"own spacing at most {own:g}) would be interpolated across: merge only files "
+                "on one grid (u and v apart, time chunks, adjacent boxes)")
+    covered = np.zeros((lat_all.size, lon_all.size), bool)
+    for la, lo in zip(*axes, strict=True):
+        covered |= np.isin(lat_all, la)[:, None] & np.isin(lon_all, lo)[None, :]
+    if not covered.all():
+        i, j = np.argwhere(~covered)[0]
+        raise InvalidParameterError(
+            "field", [str(p) for p in items],
+            f"their grids leave {int((~covered).sum())} of {covered.size} nodes of the merged "
+            f"grid in no file (e.g. {lat_all[i]:g}, {lon_all[j]:g}: a gap between the files' "
+            "areas or different spacings), which would read as land: merge only files on one "
+            "grid (u and v apart, time chunks, adjacent boxes)")
 
 
 def _merge_staggered(dsets: list[Any]) -> Any:

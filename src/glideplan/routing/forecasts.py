@@ -53,6 +53,14 @@ def forecast_issue_time(path: str | pathlib.Path) -> np.datetime64:
     else its first time step (datetime64[s])."""
     import xarray as xr
 
+    from glideplan.fields.io import _engine
+
+    try:  # a PNG or a text file: "not a NetCDF or GRIB file", as --truth and --field say
+        _engine(pathlib.Path(path))
+    except InvalidParameterError as exc:
+        raise InvalidParameterError("--forecasts", str(path), exc.rule) from None
+    except OSError as exc:  # a folder the glob matched, an unreadable file
+        raise InvalidParameterError("--forecasts", str(path), str(exc.strerror)) from None
     try:
         with xr.open_dataset(path) as ds:
             for name in ds.variables:

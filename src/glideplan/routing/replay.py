@@ -423,6 +423,14 @@ def check_coverage(truth: FlowField, forecasts: list[Forecast], m: Mission) -> t
             "give a longer truth, a later --depart or a shorter --max-duration")
     truth.check_position(*m.start, name="--from")
     truth.check_position(*m.goal, name="--to")
+    for fc in forecasts:  # a forecast of another sea: named, before any plan asks it
+        for name, where in (("--from", m.start), ("--to", m.goal)):
+            try:
+                fc.field.check_position(*where, name=name)
+            except InvalidParameterError as exc:
+                raise InvalidParameterError(
+                    "--forecasts", ", ".join(fc.paths),
+                    f"does not cover {exc.name}={exc.value}: {exc.rule}") from None
     if newest(forecasts, m.depart) is None:
         first = str(forecasts[0].issued) + "Z" if forecasts else "none"
         raise InvalidParameterError(

@@ -84,11 +84,11 @@ class FinalGlide(Outcome):
     def to_dict(self) -> dict[str, Any]:
         """The JSON object of `glideplan glide final --json`."""
         return {
+            **super().to_dict(),  # the base keys first, as every product's (README)
             **self.details,
             "altitude_required_m": self.altitude_required_m,
             "arrival_margin_m": self.arrival_margin_m,
             "glide_ratio_required": self.glide_ratio_required,
-            **super().to_dict(),
         }
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Figure:
@@ -234,13 +234,19 @@ def final_glide_request(
 def _frame(req: FinalGlideRequest) -> _Frame:
     """The local plane about the start and the goal in it; a start = goal with a free (or
     the same) start heading needs no turn: no arrival heading to plan."""
-    from glideplan.geodesy import LocalProjection
+    from glideplan.geodesy import MAX_SCALE_DISTORTION, LocalProjection
 
     (lat0, lon0, _), (lat1, lon1, _) = req.start, req.goal
     proj = LocalProjection(lat0, lon0)
     gx, gy = (float(v) for v in proj.to_local(lat1, lon1))
-    proj.check_extent(np.array([lat0, lat1]), np.array([lon0, lon1]))
     dist = math.hypot(gx, gy)
+    try:
+        proj.check_extent(np.array([lat0, lat1]), np.array([lon0, lon1]))
+    except InvalidParameterError as exc:  # named as the goal, in a final glide's words
+        raise InvalidParameterError(
+            "goal", (lat1, lon1), f"is {dist / 1000:.0f} km from the start: too far for the "
+            f"final glide's one local plane about the start ({exc.value} > "
+            f"{MAX_SCALE_DISTORTION:g})") from None
     arrival_heading, start_heading = req.arrival_heading, req.start_heading
     same_heading = start_heading is None or (arrival_heading is not None and abs(
         math.remainder(float(start_heading) - float(arrival_heading), 360.0)) < 1e-9)

@@ -17,6 +17,7 @@ median of replan duration / hindsight duration over the missions both reached.
 from __future__ import annotations
 
 import csv
+import io
 import json
 import math
 import pathlib
@@ -47,7 +48,13 @@ def read_missions(path: str | pathlib.Path) -> list[dict[str, Any]]:
     p = pathlib.Path(path)
     if not p.is_file():
         raise InvalidParameterError("--missions", str(p), "no such file")
-    with p.open(newline="", encoding="utf-8") as fh:
+    try:  # utf-8-sig: a byte-order mark (a spreadsheet's "CSV UTF-8") is not a column name
+        text = p.read_text(encoding="utf-8-sig")
+    except UnicodeDecodeError:
+        raise InvalidParameterError("--missions", str(p), "not a UTF-8 text CSV file") from None
+    if "\x00" in text:
+        raise InvalidParameterError("--missions", str(p), "not a UTF-8 text CSV file (got binary)")
+    with io.StringIO(text, newline="") as fh:
         reader = csv.DictReader(fh)
         names = [n.strip() for n in (reader.fieldnames or [])]
         missing = [c for c in COLUMNS if c not in names]
