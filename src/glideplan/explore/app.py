@@ -29,7 +29,7 @@ import panel as pn
 from bokeh.events import Pan, PanEnd, PanStart
 
 from glideplan.explore.catalog import Catalog, PlannerEntry, build_catalog, planner_key
-from glideplan.explore.downloads import DownloadFiles
+from glideplan.explore.downloads import DownloadFiles, download_button
 from glideplan.explore.figures import (
     PlanFigures,
     empty_candidates,
@@ -68,13 +68,6 @@ BUSY_AFTER_MS = 250
 # more candidates follow in a second message once the input rests CANDIDATES_DELAY_MS.
 INLINE_CANDIDATES = 8
 CANDIDATES_DELAY_MS = 120
-
-
-def _download_button(callback: Callable[[], Any], filename: str, label: str) -> Any:
-    """A download button that builds the file `filename` on click (not embedded in the page)."""
-    return pn.widgets.FileDownload(
-        callback=callback, filename=filename, label=label, color="primary", width=92, embed=False
-    )
 
 
 class Explorer(PoseHandles, DownloadFiles, SessionWorker):
@@ -186,9 +179,9 @@ class Explorer(PoseHandles, DownloadFiles, SessionWorker):
         self.table = FastHtml()
         self.strip = FastHtml()
         self.downloads = pn.Row(
-            _download_button(self._json_file, "glideplan-solution.json", "JSON"),
-            _download_button(self._csv_file, "glideplan-path.csv", "CSV"),
-            _download_button(self._png_file, "glideplan-figure.png", "PNG"),
+            download_button(self._json_file, "glideplan-solution.json", "JSON"),
+            download_button(self._csv_file, "glideplan-path.csv", "CSV"),
+            download_button(self._png_file, "glideplan-figure.png", "PNG"),
             margin=(5, 0),
         )
 

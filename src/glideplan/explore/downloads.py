@@ -5,12 +5,22 @@ from __future__ import annotations
 import csv
 import io
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
 
-__all__ = ["DownloadFiles", "path_csv", "solution_json", "solution_png"]
+__all__ = ["DownloadFiles", "download_button", "path_csv", "solution_json", "solution_png"]
+
+
+def download_button(callback: Callable[[], Any], filename: str, label: str) -> Any:
+    """A download button that builds the file `filename` on click (not embedded in the page)."""
+    import panel as pn
+
+    return pn.widgets.FileDownload(
+        callback=callback, filename=filename, label=label, color="primary", width=92, embed=False
+    )
+
 
 _CSV_SAMPLES = 400
 
