@@ -88,7 +88,7 @@ def dp_leg(value: np.ndarray, x: np.ndarray, y: np.ndarray, a: np.ndarray, b: np
     vmin = np.full(nblk, np.inf)
     for r in range(k):
         vmin[r // _BLOCK] = min(vmin[r // _BLOCK], vs[r])
-    prev = np.int64(-1)  # not Literal[int](-1): _exact is compiled once
+    prev = -1
     for j in range(b.size):
         bj, sbj, cbj = b[j], sb[j], cb[j]
         warm = np.inf

@@ -265,7 +265,7 @@ def min_total(x: float, y: float, psi: float, sp: float, cp: float,
     best, bk = cap, -1
     done = 0
     for _ in range(6):
-        k, low = np.int64(-1), INF  # not Literal[int](-1): word_total is compiled once
+        k, low = -1, INF
         for j in range(6):
             if not (done >> j) & 1 and lb[j] < low:
                 k, low = j, lb[j]
