@@ -260,7 +260,7 @@ def nodes(w0: float, py: float, length: float, n: int, prm: np.ndarray) -> np.nd
 def w_of_g_star(q: float, prm: np.ndarray) -> float:
     """|w| >= 0 with G*(w) = q (q <= 1), tabulated on the stall part (`extend_parameters`)."""
     if prm.size > 9 and prm[7] < q < prm[6]:
-        return _table(q, prm[7], prm[6], np.int64(9), prm)  # not a literal (see _put)
+        return _table(q, prm[7], prm[6], 9, prm)
     return w_newton(q, prm)
 
 
@@ -382,10 +382,8 @@ def kink_nodes(w0: float, py: float, length: float, n: int, prm: np.ndarray) -> 
     st[3] = w0
     k1, k2, k3, k4, tmp = np.zeros(6), np.zeros(6), np.zeros(6), np.zeros(6), np.zeros(6)
     h = length / n
-    # np.int64, not a literal: numba types a constant argument as Literal[int] and compiles the
-    # callee once more for it (a counter starting at 1 too, while its loop is being typed)
-    out = _put(out, np.int64(0), st, 0.0, prm)
-    m = np.int64(1)
+    out = _put(out, 0, st, 0.0, prm)
+    m = 1
     for _ in range(n):
         save[:] = st
         r0 = _signed_region(st[3], prm)

@@ -40,9 +40,6 @@ __all__ = ["brackets", "build_tables", "ends", "refine", "refine_z", "search"]
 
 TWO_PI = 2.0 * math.pi
 NCOL = 10  # phi, w, xi, c, t and their s-derivatives
-# _LIT: np.int64(0) / np.bool_(...) instead of a literal argument or counter start: numba types a
-# constant as Literal[...] and compiles the callee once more for it (with load_factor_kernel:
-# 8 extra compilations of a cold start).
 
 
 @njit(cache=True)
@@ -119,7 +116,7 @@ def orbit_table(p: float, h: float, prm: np.ndarray, max_len: float) -> np.ndarr
     else:
         y[0] = math.acos(1.0 / p)
     d = np.zeros(6)
-    _record(tab, np.int64(0), y, p, prm, d)  # np.int64: no Literal[int] compile (_LIT)
+    _record(tab, 0, y, p, prm, d)
     i = 0
     while i < nmax - 1:
         _ostep(y, h, p, prm, ws)
@@ -159,7 +156,7 @@ def _lookup(tab: np.ndarray, h: float, key: float, out: np.ndarray) -> None:
     """(s, xi, c, t) where phi (non-decreasing in the table) equals key (clamped)."""
     n = tab.shape[0]
     if key <= tab[0, 0]:
-        _at(tab, np.int64(0), 0.0, h, out)
+        _at(tab, 0, 0.0, h, out)
         return
     if key >= tab[n - 1, 0]:
         _at(tab, n - 2, 1.0, h, out)
@@ -171,7 +168,7 @@ def _lookup(tab: np.ndarray, h: float, key: float, out: np.ndarray) -> None:
             lo = mid
         else:
             hi = mid
-    _at(tab, lo, _hroot(tab, lo, np.int64(0), h, key), h, out)
+    _at(tab, lo, _hroot(tab, lo, 0, h, key), h, out)
 
 
 @njit(cache=True)
@@ -182,7 +179,7 @@ def period_info(tab: np.ndarray, p: float, h: float) -> np.ndarray:
     if p < 1.0:
         _lookup(tab, h, TWO_PI, out)
     else:  # the half period ends where w returns to 0
-        _at(tab, n - 2, _hroot(tab, n - 2, np.int64(1), h, 0.0), h, out)
+        _at(tab, n - 2, _hroot(tab, n - 2, 1, h, 0.0), h, out)
         out *= 2.0
     return out
 
@@ -304,7 +301,7 @@ def search(rows_t, off, info, ps, h, prm, xg, yg, psig, lmax, n_alpha):
     """For every tabulated P, word (s0, sg) and root alpha of e1, the extremals of up to
     lmax: rows (k, word, j, alpha, e2, L, C = cost / 2 p1, t, T)."""
     out = np.zeros((256, 9))
-    m = np.int64(0)  # _LIT
+    m = 0
     a0 = np.zeros(4)
     ag = np.zeros(4)
     half = np.zeros(4)
@@ -370,7 +367,7 @@ def brackets(rows: np.ndarray, ps: np.ndarray, psig: float, prm: np.ndarray) -> 
     root of a `_linked` word): rows (row a, row b, interpolated C), cheapest first."""
     m = rows.shape[0]
     out = np.zeros((64, 3))
-    c = np.int64(0)  # _LIT
+    c = 0
     vals = np.zeros(3)
     start = 0
     while start < m:
@@ -490,10 +487,10 @@ def refine_z(za, zb, lib, ra, rb, xg, yg, psig, h, lmax, prm) -> np.ndarray:
         frac = (z - za) / (zb - za) if zb != za else 0.5
         guess = aa + ((ab - aa + math.pi) % TWO_PI - math.pi) * frac
         s0, sg = _word_signs(int(ra[1]))
-        al = _near_root(guess, p, s0, sg, xg, yg, psig, prm, 0.6, np.bool_(True))
+        al = _near_root(guess, p, s0, sg, xg, yg, psig, prm, 0.6, True)
         if math.isnan(al) and rb[1] != ra[1]:
             s0, sg = _word_signs(int(rb[1]))
-            al = _near_root(guess, p, s0, sg, xg, yg, psig, prm, 0.6, np.bool_(True))
+            al = _near_root(guess, p, s0, sg, xg, yg, psig, prm, 0.6, True)
         if math.isnan(al):
             return out
         st = pass_state(al, p, s0, sg, la + (lb - la) * frac, psig, h, lmax, prm)
@@ -555,7 +552,7 @@ def ends(rows, ps, xg, yg, psig, h, lmax, prm, c_max) -> np.ndarray:
     e2, L, C, t, T) at its ends: rows (za, zb, lib, row a..., row b...)."""
     m = rows.shape[0]
     out = np.zeros((16, 21))
-    c = np.int64(0)  # _LIT
+    c = 0
     vals = np.zeros(21)
     first = np.full(ps.size + 1, m, dtype=np.int64)  # rows are sorted by k
     for r in range(m - 1, -1, -1):
@@ -584,7 +581,7 @@ def ends(rows, ps, xg, yg, psig, h, lmax, prm, c_max) -> np.ndarray:
             for _ in range(18):  # the end to 4e-6 of the grid step: enough to bracket
                 zm = 0.5 * (zlo + zhi)
                 pm = 1.0 + math.exp(zm) if lib else 1.0 - math.exp(zm)
-                am = _near_root(al, pm, s0, sg, xg, yg, psig, prm, 0.25, np.bool_(False))
+                am = _near_root(al, pm, s0, sg, xg, yg, psig, prm, 0.25, False)
                 if math.isnan(am):
                     zhi = zm
                 else:
