@@ -61,16 +61,16 @@ typecheck: $(STAMP)
 warm-up: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/glideplan warm-up --jobs 2
 
-# The warm-up alone on both cores, then mypy (one process, ~45 s of CPU) beside the tests: it
-# needs no kernels, and the test workers leave CPU idle while they wait for Chromium, servers
-# and subprocesses. (Its one line of output may land among pytest's dots.)
+# mypy (one process, ~45 s of CPU) runs beside the warm-up and then beside the tests: it needs
+# no kernels, and the test workers leave CPU idle while they wait for Chromium, servers and
+# subprocesses. Waiting for it before the tests left a core idle at the end of the warm-up.
+# (Its one line of output may land among pytest's dots.)
 test: $(STAMP) test-setup lint
-	$(MAKE) --no-print-directory warm-up
 	$(MAKE) --no-print-directory -j2 typecheck test-suite
 
-# The suite alone (after `make warm-up`). Two pytest workers keep both cores busy: numba's
-# kernels run single-threaded inside them.
-test-suite: $(STAMP)
+# The suite alone, after the warm-up. Two pytest workers keep both cores busy: numba's kernels
+# run single-threaded inside them.
+test-suite: warm-up
 	MPLBACKEND=Agg NUMBA_NUM_THREADS=1 $(BIN)/python -m pytest -n 2 -q -m "not heavy"
 
 bench: $(STAMP)
