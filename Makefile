@@ -57,7 +57,7 @@ typecheck: $(STAMP)
 	$(BIN)/mypy src
 
 # Compile the numba kernels once, so that the two test workers load them from the cache
-# instead of compiling them each (~50 s of CPU on a fresh checkout).
+# instead of compiling them each (~65 s of CPU on a fresh checkout).
 warm-up: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/glideplan warm-up --jobs 2
 
