@@ -8,7 +8,7 @@ STAMP := $(VENV)/.installed
 LOCK := requirements.lock
 EXTRAS := all,test,bench
 
-.PHONY: install demo test test-setup lint typecheck warm-up bench validate lock clean
+.PHONY: install demo test test-setup test-suite lint typecheck warm-up bench validate lock clean
 
 $(STAMP): pyproject.toml $(LOCK)
 	$(PYTHON) -m venv $(VENV)
@@ -56,14 +56,21 @@ lint: $(STAMP)
 typecheck: $(STAMP)
 	$(BIN)/mypy src
 
-# Compile the numba kernels once, beside mypy (one core each), so that the two test workers
-# load them from the cache instead of compiling them each (~70 s of CPU on a fresh checkout).
+# Compile the numba kernels once, so that the two test workers load them from the cache
+# instead of compiling them each (~65 s of CPU on a fresh checkout).
 warm-up: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/glideplan warm-up --jobs 2
 
-# Two pytest workers keep both cores busy: numba's kernels run single-threaded inside them.
+# mypy (one process, ~45 s of CPU) runs beside the warm-up and then beside the tests: it needs
+# no kernels, and the test workers leave CPU idle while they wait for Chromium, servers and
+# subprocesses. Waiting for it before the tests left a core idle at the end of the warm-up.
+# (Its one line of output may land among pytest's dots.)
 test: $(STAMP) test-setup lint
-	$(MAKE) --no-print-directory -j2 typecheck warm-up
+	$(MAKE) --no-print-directory -j2 typecheck test-suite
+
+# The suite alone, after the warm-up. Two pytest workers keep both cores busy: numba's kernels
+# run single-threaded inside them.
+test-suite: warm-up
 	MPLBACKEND=Agg NUMBA_NUM_THREADS=1 $(BIN)/python -m pytest -n 2 -q -m "not heavy"
 
 bench: $(STAMP)

@@ -44,13 +44,9 @@ WARM_UP_CASES: tuple[WarmUpCase, ...] = (  # the longest compilations first
     WarmUpCase("chapter 5 synthesis", ("plan", "min-altitude", "--vehicle", "dg1001m", "--goal",
                                        "0", "1", "120", "--normalized", "--json")),
     WarmUpCase("turn-back search", ("glide", "turnback", "--example", "ridge")),
-    WarmUpCase("wind (trochoids)", ("plan", "wind", "--goal", "3", "3", "90", "--speed", "1",
-                                    "--radius", "1", "--wind", "0.3", "270", "--json")),
     WarmUpCase("chapter 4 synthesis", ("plan", "time-optimal", "--goal", "0", "2", "120",
                                        "--v-min", "0.3", "--v-max", "1", "--u-max", "1")),
-    WarmUpCase("Dubins words", ("plan", "dubins", "--goal", "4", "3", "90", "--radius", "1",
-                                "--json")),
-)
+)  # `plan wind` and `plan dubins` compile nothing (NumPy paths: cold CPU = warm CPU)
 
 
 # The CLI with numba loaded first: planners that keep a one-off call on NumPy (the chapter 4

@@ -35,7 +35,7 @@ INF = np.inf
 SNAP = 0.97
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _blk(t: float, tb: float, arr: float, lo: float, has_drift: bool) -> bool:
     """Blocked, from scalars: not reached and past its block time, or no drift data (NaN)."""
     if t > tb and arr == INF:
@@ -43,7 +43,7 @@ def _blk(t: float, tb: float, arr: float, lo: float, has_drift: bool) -> bool:
     return has_drift and lo != lo
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _minmod(a: float, b: float) -> float:
     if a * b <= 0.0:
         return 0.0
@@ -52,7 +52,7 @@ def _minmod(a: float, b: float) -> float:
     return b
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _one_sided(c: float, vm1: float, vm2: float, vp1: float, vp2: float, bm1: bool, bm2: bool,
                bp1: bool, bp2: bool, ih: float, ih2: float, hh: float) -> tuple[float, float]:
     """ENO2 (D-, D+) at a node from values at -2..+2 (ih = 1/h, ih2 = 1/h^2, hh = h/2);

@@ -46,12 +46,12 @@ INF = np.inf
 _NEAR = 16.0 + 8.0 * FEAS  # |V|^2 at most this: the CCC words exist
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _mod(a: float) -> float:
     return a - TWO_PI * math.floor(a * _INV_2PI + SNAP)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _tot(t: float, p: float, q: float) -> float:
     return (max(t, 0.0) + p) + max(q, 0.0)
 
@@ -102,7 +102,7 @@ def word_total(k: int, x: float, y: float, psi: float, sp: float, cp: float) -> 
     return _tot(t, pm, _mod(psi - t + pm))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _atan2_near(y: float, x: float) -> float:
     """atan2(y, x) within 3e-8 rad (odd series of atan to t^15 on |t| <= tan(pi/8), after
     atan a = pi/4 + atan((a - 1)/(a + 1)); the first term left out is below 2e-8)."""
@@ -130,14 +130,14 @@ def _atan2_near(y: float, x: float) -> float:
 _DELTA = 1e-7  # bound on |_atan2_near - atan2| (3e-8) with room for rounding
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _mod_low(a: float) -> float:
     """A lower bound of mod(b) for every b within _DELTA of a (0 where b may wrap)."""
     u = _mod(a - _DELTA)
     return 0.0 if u > TWO_PI - 4.0 * _DELTA else u
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _in_sweep(vx: float, vy: float, p: float, psi: float, sp: float, cp: float) -> int:
     """Whether the direction of V lies in [0, psi] (CCW): 1 yes, 0 no, -1 too close to say."""
     tol = 1e-9 * p
@@ -150,7 +150,7 @@ def _in_sweep(vx: float, vy: float, p: float, psi: float, sp: float, cp: float) 
     return 1 if (s1 > 0.0 or s2 > 0.0) else 0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _bounds(x: float, y: float, psi: float, sp: float, cp: float,
             cap: float) -> tuple[float, ...]:
     """Lower bounds of the six words' totals (module docstring), inf where infeasible.
@@ -196,7 +196,7 @@ def _bounds(x: float, y: float, psi: float, sp: float, cp: float,
     return (b0, b1, b2, b3, b4, b5)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _ccc_low(vx: float, vy: float, v2: float, psi: float, cap: float, right: bool) -> float:
     """Lower bound of RLR (`right`) or LRL: pi, and when that is not above `cap`, the middle
     arc pm exactly plus t and q from `_atan2_near` (inf where the word does not exist)."""
@@ -216,7 +216,7 @@ def _ccc_low(vx: float, vy: float, v2: float, psi: float, cap: float, right: boo
     return low_t + pm * (1.0 - 1e-15) + low_q - 1e-9
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _may_beat(x: float, y: float, psi: float, sp: float, cp: float, cap: float) -> bool:
     """Whether any word's bound (`_bounds`) is <= cap, stopping at the first that is."""
     slack = 1e-9

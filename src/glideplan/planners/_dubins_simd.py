@@ -10,6 +10,13 @@ branches, only selects; `error_model="numpy"`):
         |t| <= tan(pi/16), odd Taylor series to t^25 (first term left out < 1e-17 t);
     atan2 from atan(min/max) by octant; acos c = atan2(sqrt((1 - c)(1 + c)), c).
 
+`six_words`, `_sincos` and the small `_mod`, `_edge`, `_pick` are inlined by numba
+(`inline="always"`): left as calls, LLVM does not inline the first two and the flat loop is not
+vectorised (7x slower); the small ones measured ~3 % faster inlined. The arc tangents (`_atan2`,
+`_atan01`, eight per query) are left to LLVM's inliner, which inlines them all the same;
+inlining them in numba's IR as well made the cold compile of the Dubins and DP kernels 2.3x
+longer (19.7 s -> 8.5 s CPU without it, the same speed).
+
 Each is within a few ulp of glibc, so the words' totals agree with `dubins_kernel`'s to
 ~1e-15 relative. The word formulas and the 2 pi snap are `dubins_kernel`'s (eq. 2.11).
 
@@ -86,7 +93,7 @@ def _sincos(x: float) -> tuple[float, float]:
     return sn, cs
 
 
-@njit(cache=True, error_model="numpy", fastmath={"contract"}, inline="always")
+@njit(cache=True, error_model="numpy", fastmath={"contract"})
 def _atan01(a: float) -> float:
     """atan a for 0 <= a <= 1 (module docstring)."""
     mid = a > _TAN_PI_16
@@ -111,7 +118,7 @@ def _atan01(a: float) -> float:
     return hi + (r + lo)
 
 
-@njit(cache=True, error_model="numpy", fastmath={"contract"}, inline="always")
+@njit(cache=True, error_model="numpy", fastmath={"contract"})
 def _atan2(y: float, x: float) -> float:
     """atan2(y, x) (0 at the origin)."""
     ax, ay = abs(x), abs(y)

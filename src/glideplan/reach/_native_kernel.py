@@ -34,7 +34,7 @@ __all__ = ["CONE", "dial_chunk"]
 CONE = 0.5
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True)
 def _bilinear(b: Any, fi: float, fj: float) -> float:
     """Bilinear B at fractional (row, column); -inf when a corner with weight is -inf."""
     ny, nx = b.shape
@@ -161,7 +161,7 @@ def dial_chunk(block: Any, bmin: Any, costs: Any, stencil: Any, loss: Any, paren
     return ent_node, ent_next, free, n_ent, cur, settled, last
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True)
 def _bilinear_up(f: Any, fi: float, fj: float) -> float:
     """Bilinear floor at fractional (row, column); +inf when a corner with weight is +inf."""
     ny, nx = f.shape
@@ -180,7 +180,7 @@ def _bilinear_up(f: Any, fi: float, fj: float) -> float:
     return acc
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True)
 def _edge_floor(floor: Any, i: int, j: int, di: int, dj: int, c: float) -> float:
     """Least altitude at node (i, j) for the straight flight to (i + di, j + dj) (loss c)
     to keep the floor at its half-cell samples: max_s floor(s) + s c (its ends excluded)."""
@@ -281,7 +281,7 @@ def dial_back_chunk(floor: Any, fmax: Any, costs: Any, stencil: Any, need: Any, 
     return ent_node, ent_next, free, n_ent, cur, settled
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True)
 def _ratio(rtab: Any, th: float) -> float:
     """The ratio table (0.1 deg steps from 0 to 360 deg inclusive) at th (rad, 0..2 pi),
     linear between entries; 0 where a neighbour entry is 0 (no progress)."""

@@ -39,14 +39,14 @@ def _g(phi: float, lm: float, t: tuple, c: np.ndarray) -> tuple[float, float, fl
     return p_re, p_im, w
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _wrap(x: float, low: float) -> float:
     """x modulo 2 pi into [low, low + 2 pi) (as `_tasks._wrap`)."""
     r = (x - low) % TWO_PI
     return (0.0 if r >= TWO_PI else r) + low
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _last(n: int, s: float, a1: float, gpsi: float) -> tuple[float, float, float]:
     """The last arc's angle a_n and its heading interval (lo, hi)."""
     if n % 2 == 0:  # the last arc turns R from +s
@@ -81,7 +81,7 @@ def _point(n: int, s: float, t: float, gx: float, gy: float, gpsi: float,
     return (zr - gx) / c[9], (zi - gy) / c[9], an, lm, theta, cost
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _res(n: int, s: float, t: float, g: np.ndarray, c: np.ndarray) -> tuple[float, float]:
     """The residual (re, im) of `_point`."""
     r = _point(n, s, t, g[0], g[1], g[2], c)
@@ -134,7 +134,7 @@ def _grid(n: np.ndarray, goals: np.ndarray, S: np.ndarray, T: np.ndarray,
     return re, im
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _straddles(v: np.ndarray, k: int, i: int, j: int) -> bool:
     """The cell (i, j) of task k may hold a zero of v (corners' range widened by half)."""
     a, b, e, f = v[k, i, j], v[k, i + 1, j], v[k, i, j + 1], v[k, i + 1, j + 1]

@@ -28,7 +28,7 @@ __all__ = ["primitives"]
 TWO_PI = 2.0 * math.pi
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _principal(r: float, lam: float, phi_s: float, phi_m: float, vms: float, v_stall: float,
                v_max: float, a: float, w_ms: float, w_stall: float,
                w_max: float) -> tuple[complex, float, float]:
@@ -87,7 +87,7 @@ def _one(phi: float, lm: float, phi_s: float, phi_m: float, per0: float, per1: f
     return p_re + k * 2.0 * per0, p_im, w + k * 2.0 * per1, sv + k * 2.0 * per2
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _lam_terms(lm: float, vms: float, v_stall: float, v_max: float, a: float, w_ms: float,
                w_stall: float, w_max: float) -> tuple[float, float, float, float, float]:
     """Band half-widths phi_s, phi_m and one period (Re G(pi), W(pi), S(pi)) of lambda."""
