@@ -8,7 +8,7 @@ over headings beyond one period.
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from glideplan.planners.min_altitude import extremals
@@ -38,6 +38,7 @@ def test_compiled_primitives_equal_numpy(rows):
 
 @settings(max_examples=25, deadline=None)
 @given(st.just(0.0) | st.floats(0.01, 5.0), st.floats(-np.pi, np.pi), st.floats(-np.pi, np.pi))
+@example(0.0, 0.0, 2.2e-313)  # a subnormal heading on the start: np.roots overflowed (both paths)
 def test_compiled_synthesis_equals_numpy(r, bearing, heading):
     """The compiled chain solver (`_chains_jit`) finds the NumPy path's candidates: the same
     families and words, costs within 1e-12 relative (goals nearer than 0.01 R_stf but not on

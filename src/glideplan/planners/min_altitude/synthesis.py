@@ -176,12 +176,15 @@ def _bsb_coefficients(goal: Pose, st: _Setup, sg: float) -> tuple[float, ...]:
 def _bsb_angles(coeffs: tuple[float, ...], st: _Setup) -> list[float]:
     """The distinct roots alpha in [0, 2 pi) of g: roots z = e^{i alpha} of the quartic
     z^2 g (all of them, `numpy.roots`), those on the unit circle polished by Newton's method
-    on g (a failure leaves a residual, checked); alpha within 1e-9 of 0 or 2 pi is 0."""
+    on g (a failure leaves a residual, checked); alpha within 1e-9 of 0 or 2 pi is 0.
+    Coefficients below 1e-14 of the largest, or all of them below 1e-14 R_stf, are zero."""
     c0, c1, s1, c2, s2 = coeffs
     poly = np.array(
         [(c2 - 1j * s2) / 2, (c1 - 1j * s1) / 2, c0, (c1 + 1j * s1) / 2, (c2 + 1j * s2) / 2]
     )
     big = np.max(np.abs(poly))
+    if big < 1e-14 * st.scale:  # g = 0 to rounding (a goal on the start, heading ~1e-300):
+        big = np.inf  # as the exact zero, no isolated root (np.roots overflowed: LinAlgError)
     poly = np.where(np.abs(poly) < 1e-14 * big, 0.0, poly)
     nz = np.flatnonzero(poly)
     roots = np.roots(poly[nz[0] :]) if nz.size > 1 else np.array([])
