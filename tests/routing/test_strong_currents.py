@@ -112,11 +112,9 @@ def test_steady_current_faster_than_the_vehicle():
         assert "drift cone" in r.message and "any resolution" in r.message
 
 
-def test_cli_answers_strong_currents(tmp_path, run_cli):
-    """`glideplan route --field` on a Copernicus-like file of a uniform 0.6 m/s tide (hourly
-    levels: the current linear between them, the drift disk of those levels the reference)
-    and of a steady 0.5 m/s current: solved (exit 0) downstream with the tide; upstream
-    of the steady current exit 1 with one line naming the drift cone."""
+def _hourly_tide(tmp_path):
+    """A Copernicus-like file of the uniform 0.6 m/s east-west tide in hourly levels over
+    72 h (21 x 21 nodes over 39.5..41.5 N, 71..69 W): (path, level times s, times, u)."""
     from glideplan.fields.synthetic import copernicus_dataset
 
     lat = np.linspace(39.5, 41.5, 21)
@@ -126,6 +124,40 @@ def test_cli_answers_strong_currents(tmp_path, run_cli):
     u = A * np.sin(OMEGA * ts)[:, None, None, None] * np.ones((1, 1, 21, 21))
     tide = tmp_path / "tide.nc"
     copernicus_dataset(lat, lon, times, [0.5], u, 0 * u).to_netcdf(tide)
+    return tide, ts, times, u
+
+
+def test_tide_departing_later_is_solved(tmp_path):
+    """The README's M2 example departing 5 h after the file's first level (goal 30.4 km
+    east), on a 400 m grid (the default 122 m grid fails and is fixed the same way, 33.926 h,
+    in 10 s): the grid route's held legs drift for weeks in the tide, and the shooting
+    started from that duration left the window (not_verified before); it starts from the
+    front's arrival when the legs take over 1.5 times as long. Reference: the drift disk of
+    the hourly levels from 5 h on (module docstring); tolerance h / V."""
+    from glideplan.fields import open_field
+
+    tide, ts, times, _ = _hourly_tide(tmp_path)
+    goal = (START[0], -69.84)
+    r = route(open_field(tide), START, goal, V, depart=times[5], resolution=400.0)
+    assert r.status == "solved", r.message
+    d = float(gc_distance(*START, *goal))
+    later = ts[5:]
+    ref, _ = drift_disk_time(later - later[0], A * np.sin(OMEGA * later), 0 * later,
+                             np.array([d, 0.0]), V, substeps=256)
+    h = r.stats["spacing_m"]
+    assert r.duration_s == pytest.approx(ref, abs=h / V)
+
+
+def test_cli_answers_strong_currents(tmp_path, run_cli):
+    """`glideplan route --field` on a Copernicus-like file of a uniform 0.6 m/s tide (hourly
+    levels: the current linear between them, the drift disk of those levels the reference)
+    and of a steady 0.5 m/s current: solved (exit 0) downstream with the tide; upstream
+    of the steady current exit 1 with one line naming the drift cone."""
+    from glideplan.fields.synthetic import copernicus_dataset
+
+    tide, ts, times, u = _hourly_tide(tmp_path)
+    lat = np.linspace(39.5, 41.5, 21)
+    lon = np.linspace(-71.0, -69.0, 21)
     goal = (START[0], -70.05)
     code, out, err = run_cli("route", "--field", str(tide), "--from", *map(str, START), "--to",
                              *map(str, goal), "--speed", str(V), "--resolution", "400", "--json")

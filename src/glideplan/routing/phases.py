@@ -81,19 +81,26 @@ __all__ = [
 # -------------------------------------------------------------------------------- refine
 
 
-def refine(problem: RouteProblem, rg: RouteGrid, grid_route: Candidate) -> tuple[
-    Candidate | None, str
-]:
+def refine(problem: RouteProblem, rg: RouteGrid, grid_route: Candidate,
+           front_duration: float | None = None) -> tuple[Candidate | None, str]:
     """Zermelo shooting on the sphere from the grid route (`routing.zermelo`); (None, why)
-    when it does not converge, meets land or the obstacles, or leaves the window."""
+    when it does not converge, meets land or the obstacles, or leaves the window.
+
+    The shooting starts from the grid route's first heading and duration, or from the
+    front's arrival `front_duration` (s) when the route's held legs take over 1.5 times as
+    long: in a current faster than the vehicle they can drift for weeks (3019 h for an M2
+    tide the front crosses in 33.9 h), and a shot that long leaves the window."""
     from glideplan.routing.zermelo import zermelo_shooting
 
     k = min(max(1, grid_route.chi.size // 20), grid_route.chi.size - 1)
     chi0 = float(np.arctan2(np.mean(np.sin(grid_route.chi[:k])),
                             np.mean(np.cos(grid_route.chi[:k]))))
     tol = max(1e-2 * rg.spacing_m, 0.01)  # 1 % of a cell, through the grid's current
+    T0 = grid_route.duration
+    if front_duration is not None and T0 > 1.5 * front_duration:
+        T0 = front_duration
     shot = zermelo_shooting(rg.currents, problem.speed, problem.t0, problem.start,
-                            problem.goal, chi0, grid_route.duration, tol_m=tol)
+                            problem.goal, chi0, T0, tol_m=tol)
     if not shot.converged:
         return None, shot.message
     fi, fj = rg.window.frac_index(shot.lat, shot.lon)

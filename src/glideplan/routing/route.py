@@ -132,7 +132,7 @@ def _on_grid(problem: Any, clock: _Clock, warnings: list[str],
     if g is None:
         g = _grid_route(problem, rg, fo)
     clock.lap("backtrack")
-    best, flown, note, refined_T = _refined_or_grid(problem, rg, g, tolerance, clock)
+    best, flown, note, refined_T = _refined_or_grid(problem, rg, g, tolerance, clock, grid_T)
     ok = phases.flown_ok(flown, tolerance)
     # refine=False: the grid route's legs only (a coarse, quick route): when they miss, the
     # characteristic tracked in closed loop (its flown controls) -- also when swept
@@ -284,8 +284,8 @@ def _grid_route(problem: Any, rg: Any, fo: Any) -> Any:
         return g
 
 
-def _refined_or_grid(problem: Any, rg: Any, g: Any, tolerance: float,
-                     clock: _Clock) -> tuple[Any, Any, str, float | None]:
+def _refined_or_grid(problem: Any, rg: Any, g: Any, tolerance: float, clock: _Clock,
+                     grid_T: float | None = None) -> tuple[Any, Any, str, float | None]:
     """The Zermelo-shooting route from `g` if it verifies and is not slower than the grid
     route by more than GRID_TIME_TOLERANCE, else `g`: (best, flown, note, refined duration)."""
     from glideplan.routing import phases
@@ -294,7 +294,7 @@ def _refined_or_grid(problem: Any, rg: Any, g: Any, tolerance: float,
     refined_T = None
     flown_g = None
     if problem.settings.refine:
-        shot, why_not = phases.refine(problem, rg, g)
+        shot, why_not = phases.refine(problem, rg, g, grid_T)
         clock.lap("refine")
         if shot is None:
             note = f"refinement not used: {why_not}"
