@@ -250,12 +250,51 @@ def straight_line_duration(
     """Time (s) to hold the great circle start -> goal with a crab angle: ds/dt =
     sqrt(V^2 - c_n^2) + c_t along it; None if |c_n| >= V, the along speed is <= 0, the line
     crosses land or leaves the field, or it takes longer than t_max - t0."""
+    held = _hold_line(field_, speed, t0, start, goal, t_max, dense=False)
+    return None if held is None else held[0]
+
+
+def straight_line_track(
+    field_: FlowField,
+    speed: float,
+    t0: float,
+    start: tuple[float, float],
+    goal: tuple[float, float],
+    t_max: float,
+    samples: int = 200,
+) -> tuple[float, FloatArray, FloatArray, FloatArray, FloatArray] | None:
+    """The straight line with crab angle (`straight_line_duration`) as a track: (duration s,
+    times s since epoch, lat, lon (deg), compass heading (rad) of the through-water velocity
+    w = s' b - c at `samples` times); None where the duration is None."""
+    held = _hold_line(field_, speed, t0, start, goal, t_max, dense=True)
+    if held is None:
+        return None
+    T, sol, point = held
+    t = t0 + np.linspace(0.0, T, max(samples, 2))
+    lat, lon, chi = (np.empty(t.size) for _ in range(3))
+    for k, tk in enumerate(t):
+        s_k = float(sol.sol(tk)[0]) if sol is not None else 0.0
+        la, lo, b = point(s_k)
+        u, v = _current(field_, float(tk), la, lo)
+        cn = -u * math.cos(b) + v * math.sin(b)
+        along = math.sqrt(max(speed * speed - cn * cn, 0.0)) + u * math.sin(b) + v * math.cos(b)
+        lat[k], lon[k] = la, lo
+        chi[k] = math.atan2(along * math.sin(b) - u, along * math.cos(b) - v)
+    lat[-1], lon[-1] = goal
+    return T, t, lat, lon, chi
+
+
+def _hold_line(
+    field_: FlowField, speed: float, t0: float, start: tuple[float, float],
+    goal: tuple[float, float], t_max: float, dense: bool,
+) -> tuple[float, Any, Callable[[float], tuple[float, float, float]]] | None:
+    """(duration s, the ODE solution of the arc length s(t) (None for a zero-length line),
+    the point and bearing at s) of the line held with a crab angle; None (see
+    `straight_line_duration`)."""
     from scipy.integrate import solve_ivp
 
     length = float(gc_distance(start[0], start[1], goal[0], goal[1]))
-    if length <= 0.0:
-        return 0.0
-    b0 = float(gc_bearing(start[0], start[1], goal[0], goal[1]))
+    b0 = float(gc_bearing(start[0], start[1], goal[0], goal[1])) if length > 0.0 else 0.0
 
     def point(s: float) -> tuple[float, float, float]:
         s = min(max(s, 0.0), length)
@@ -263,6 +302,9 @@ def straight_line_duration(
         la2, lo2 = destination(start[0], start[1], b0, min(s + 1.0, length + 1.0))
         b = float(gc_bearing(la, lo, la2, lo2))
         return float(la), float(lo), b
+
+    if length <= 0.0:
+        return 0.0, None, point
 
     def rhs(t: float, s: FloatArray) -> FloatArray:
         la, lo, b = point(float(s[0]))
@@ -284,9 +326,10 @@ def straight_line_duration(
     arrive.terminal = True  # type: ignore[attr-defined]
     try:
         sol = solve_ivp(rhs, (t0, t_max), np.zeros(1), rtol=1e-6, atol=1e-1,
-                        events=arrive, max_step=max((t_max - t0) / 60.0, 1e-6))
+                        events=arrive, max_step=max((t_max - t0) / 60.0, 1e-6),
+                        dense_output=dense)
     except _OffField:
         return None
     if sol.t_events[0].size == 0:
         return None
-    return float(sol.t_events[0][0] - t0)
+    return float(sol.t_events[0][0] - t0), sol, point
