@@ -80,6 +80,20 @@ def test_tide_stronger_than_the_vehicle(axis):
     assert r.duration_s == pytest.approx(_tide_first_time(d), abs=tol)
 
 
+def _steady_goal(bearing_deg: float, dist: float) -> tuple[tuple[float, float], float]:
+    """The goal `dist` m from START at compass `bearing_deg` (local flat offsets) and the
+    planar closed form of the 0.5 m/s east current: the smaller root of (|c|^2 - V^2) t^2 -
+    2 (g.c) t + |g|^2 = 0 (module docstring)."""
+    brg = math.radians(bearing_deg)
+    lat = START[0] + math.degrees(dist * math.cos(brg) / EARTH_RADIUS_M)
+    lon = START[1] + math.degrees(dist * math.sin(brg) / (EARTH_RADIUS_M * math.cos(
+        math.radians(START[0]))))
+    g = np.array([dist * math.sin(brg), dist * math.cos(brg)])
+    c = np.array([0.5, 0.0])
+    qa, qb, qc = c @ c - V * V, -2 * (g @ c), g @ g
+    return (lat, lon), (-qb - math.sqrt(qb * qb - 4 * qa * qc)) / (2 * qa)
+
+
 def test_steady_current_faster_than_the_vehicle():
     """0.5 m/s east, 0.3 m/s vehicle: downstream (east) solved in d / 0.8 within h / V; 30
     deg off the current (inside the cone, half-angle asin(0.6) = 36.9 deg) solved at the
@@ -92,15 +106,7 @@ def test_steady_current_faster_than_the_vehicle():
     assert r.status == "solved", r.message
     assert r.duration_s == pytest.approx(d / 0.8, abs=r.stats["spacing_m"] / V)
 
-    brg = math.radians(60.0)  # compass bearing 60 deg = 30 deg north of east
-    dist = 15_000.0
-    lat = START[0] + math.degrees(dist * math.cos(brg) / EARTH_RADIUS_M)
-    lon = START[1] + math.degrees(dist * math.sin(brg) / (EARTH_RADIUS_M * math.cos(
-        math.radians(START[0]))))
-    g = np.array([dist * math.sin(brg), dist * math.cos(brg)])
-    c = np.array([0.5, 0.0])
-    qa, qb, qc = c @ c - V * V, -2 * (g @ c), g @ g
-    t_ref = (-qb - math.sqrt(qb * qb - 4 * qa * qc)) / (2 * qa)
+    (lat, lon), t_ref = _steady_goal(60.0, 15_000.0)  # 30 deg north of east
     r = route(fld, START, (lat, lon), V, cells=60)
     assert r.status == "solved", r.message
     assert r.duration_s == pytest.approx(t_ref, abs=r.stats["spacing_m"] / V)
@@ -120,15 +126,7 @@ def test_coarse_grid_gives_way_to_the_straight_line():
     same route on the default grid (Zermelo shooting from the front, an independent method)
     and within 1 % of the planar closed form (near the cone's edge, 35 against 36.9 deg, the
     sphere's turning great circle and east moves it by ~0.1-0.5 %)."""
-    brg = math.radians(90.0 - 35.0)  # compass bearing: 35 deg north of east
-    dist = 30_000.0
-    lat = START[0] + math.degrees(dist * math.cos(brg) / EARTH_RADIUS_M)
-    lon = START[1] + math.degrees(dist * math.sin(brg) / (EARTH_RADIUS_M * math.cos(
-        math.radians(START[0]))))
-    g = np.array([dist * math.sin(brg), dist * math.cos(brg)])
-    c = np.array([0.5, 0.0])
-    qa, qb, qc = c @ c - V * V, -2 * (g @ c), g @ g
-    t_ref = (-qb - math.sqrt(qb * qb - 4 * qa * qc)) / (2 * qa)
+    (lat, lon), t_ref = _steady_goal(90.0 - 35.0, 30_000.0)  # 35 deg north of east
     fine = route(UniformField(0.5, 0.0), START, (lat, lon), V)
     r = route(UniformField(0.5, 0.0), START, (lat, lon), V, cells=12)
     assert r.status == "solved" and fine.status == "solved", r.message
