@@ -110,29 +110,15 @@ def _extremal(tb: _Tables, row: int, vals: tuple[float, ...], cost: float, err: 
 def solve(goal: np.ndarray, rho: float, key: str) -> list[Extremal]:
     """Every extremal of the solver key ("TST", "TTTT", "supplementary", "interiorM")."""
     goal = np.ascontiguousarray(goal, dtype=float)
-    tb = _tables(key, float(rho))
-    nb = len(tb.items)
+    tb, rows, out = _kernel_costs(goal, rho, key)
     if key == "TST":
-        assert tb.w is not None
-        rows = np.empty(2 * nb, dtype=np.int64)
-        out = np.empty((2 * nb, 5))
-        n = _jit.tst(goal, rho, tb.w, tb.geo, tb.lab, tb.dirs, tb.kind, tb.nmov, rows, out)
         return [
             _extremal(tb, row, (u1, u2, PI / 2, PI, length), cost, err, {"L": length}, rho)
-            for row, (length, u1, u2, cost, err) in zip(
-                rows[:n].tolist(), out[:n].tolist(), strict=True
-            )
+            for row, (length, u1, u2, cost, err) in zip(rows.tolist(), out.tolist(), strict=True)
         ]
-    assert tb.coef is not None and tb.degree is not None
-    assert tb.vcx is not None and tb.vcy is not None
-    cap = nb * 2 * (tb.coef.shape[1] - 1)
-    rows = np.empty(cap, dtype=np.int64)
-    out = np.empty((cap, 5))
-    n = _jit.rigid(goal, rho, tb.coef, tb.degree, tb.vcx, tb.vcy, tb.geo, tb.lab, tb.dirs,
-                   tb.kind, tb.nmov, rows, out)  # fmt: skip
     found = []
     seen: set[tuple[int, float]] = set()
-    for row, (a, u1, u2, cost, err) in zip(rows[:n].tolist(), out[:n].tolist(), strict=True):
+    for row, (a, u1, u2, cost, err) in zip(rows.tolist(), out.tolist(), strict=True):
         branch = (row, round(a, 9))
         if branch in seen:
             continue
