@@ -12,7 +12,9 @@
 - `backtrack`: the kernel's characteristic backwards from the goal, then the headings that
   hold its polyline leg by leg (`sphere.crab_controls`) -- the "grid" route (`Candidate`).
 - `refine`: Zermelo shooting on the sphere (`routing.zermelo`) in open water, started from the
-  grid route; kept by `route()` only if it verifies and is not slower.
+  grid route; kept by `route()` only if it verifies and is not slower. `straight_line`: the
+  great circle held with a crab angle, which `route()` takes when the route found is over
+  0.5 % slower and the line verifies.
 - `verify`: the controls flown through the field itself (`sphere.fly_headings`).
 
 Where they live: `setup` and the values the phases hand on in `routing.problem`, `grid` in
@@ -23,6 +25,7 @@ from here (`phases.setup`, ...).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 
 import numpy as np
@@ -73,6 +76,7 @@ __all__ = [
     "grid",
     "refine",
     "setup",
+    "straight_line",
     "verify",
 ]
 
@@ -118,6 +122,26 @@ def refine(problem: RouteProblem, rg: RouteGrid, grid_route: Candidate,
             return None, "the shooting's track enters the land clearance"
     return Candidate("zermelo-shooting", shot.t, shot.lat, shot.lon, shot.chi, False,
                      shot.duration), ""
+
+
+def straight_line(problem: RouteProblem, rg: RouteGrid, tolerance: float,
+                  T: float) -> tuple[Candidate, FlownRoute] | None:
+    """The straight line with crab angle (`sphere.straight_line_track`, searched to 3 T, at
+    least 1 h) as a candidate and its flight through the field, when it verifies within
+    `tolerance` (m) and keeps the land clearance; None otherwise."""
+    from glideplan.routing.coast import track_clearance
+    from glideplan.routing.sphere import straight_line_track
+
+    got = straight_line_track(problem.field_, problem.speed, problem.t0, problem.start,
+                              problem.goal, problem.t0 + max(3 * T, 3600.0))
+    if got is None:
+        return None
+    duration, t, lat, lon, chi = got
+    line = Candidate("straight-crab", t, lat, lon, chi, False, duration)
+    flown = verify(problem, rg, line)
+    near = track_clearance(problem, rg, lat, lon)
+    clear = near is None or not math.isfinite(near) or near >= rg.clearance_m * (1 - 1e-3)
+    return (line, flown) if flown_ok(flown, tolerance) and clear else None
 
 
 # -------------------------------------------------------------------------------- verify

@@ -147,8 +147,19 @@ def _on_grid(problem: Any, clock: _Clock, warnings: list[str],
         if rescued is not None:
             best, flown = rescued
             ok = True
+    straight = _straight_duration(problem, float(best.duration), clock)
+    if straight is not None and problem.settings.refine and \
+            straight < best.duration * (1 - STRAIGHT_MARGIN):
+        line = phases.straight_line(problem, rg, tolerance, float(best.duration))
+        if line is not None:
+            note = _join(note, f"the straight line with crab angle ({straight / 3600:.4g} h, "
+                         f"verified) is faster than the front's {best.method} route "
+                         f"({best.duration / 3600:.4g} h; the grid may be too coarse): it "
+                         "is the route")
+            (best, flown), ok = line, True
+            clock.lap("straight_line_route")
     note = _verification_note(flown, tolerance, note, warnings)
-    result = _solved(problem, rg, best, flown, ok, note, warnings, clock,
+    result = _solved(problem, rg, best, flown, ok, note, warnings, clock, straight,
                      {**common, "grid_duration_s": float(grid_T),
                       "refined_duration_s": refined_T})
     if not ok:  # a narrow jet may pass between the 9 x 9 samples: the window's nodes too
@@ -370,24 +381,25 @@ def _verification_note(flown: Any, tolerance: float, note: str, warnings: list[s
     return note
 
 
-def _solved(problem: Any, rg: Any, best: Any, flown: Any, ok: bool, note: str,
-            warnings: list[str], clock: _Clock, common: dict[str, Any]) -> RouteResult:
-    """The result of a route found: solved when verified, else not_verified."""
-    from glideplan.routing.coast import track_clearance
-    from glideplan.routing.sphere import gc_distance, straight_line_duration
+def _straight_duration(problem: Any, T: float, clock: _Clock) -> float | None:
+    """The straight line with crab angle's duration (s), searched to 3 T (at least 1 h)."""
+    from glideplan.routing.sphere import straight_line_duration
 
-    T = float(best.duration)
     straight = straight_line_duration(problem.field_, problem.speed, problem.t0, problem.start,
                                       problem.goal, problem.t0 + max(3 * T, 3600.0))
     clock.lap("straight_line")
-    if straight is not None and straight < T * (1 - STRAIGHT_MARGIN) and problem.settings.refine:
-        line = _straight_line(problem, rg, common["endpoint_tolerance_m"], T)
-        if line is not None:
-            note = _join(note, f"the straight line with crab angle ({straight / 3600:.4g} h, "
-                         f"verified) is faster than the front's {best.method} route "
-                         f"({T / 3600:.4g} h; the grid may be too coarse): it is the route")
-            (best, flown), ok, T = line, True, float(line[0].duration)
-            clock.lap("straight_line_route")
+    return straight
+
+
+def _solved(problem: Any, rg: Any, best: Any, flown: Any, ok: bool, note: str,
+            warnings: list[str], clock: _Clock, straight: float | None,
+            common: dict[str, Any]) -> RouteResult:
+    """The result of a route found: solved when verified, else not_verified (`straight`:
+    the straight line with crab angle's duration, s, or None)."""
+    from glideplan.routing.coast import track_clearance
+    from glideplan.routing.sphere import gc_distance
+
+    T = float(best.duration)
     near = track_clearance(problem, rg, best.lat, best.lon)
     if near is not None and math.isfinite(near):
         clock.stats["least_distance_to_land_m"] = round(near, 1)
@@ -401,26 +413,6 @@ def _solved(problem: Any, rg: Any, best: Any, flown: Any, ok: bool, note: str,
         distance_m=dist, track=_track(problem, best),
         endpoint_error_m=float(flown.endpoint_error_m), straight_line_duration_s=straight,
         method=best.method, stats=clock.stats, **common)
-
-
-def _straight_line(problem: Any, rg: Any, tolerance: float, T: float) -> tuple[Any, Any] | None:
-    """The straight line with crab angle as a candidate, with its flight through the field,
-    when it verifies and keeps the land clearance; None otherwise."""
-    from glideplan.routing import phases
-    from glideplan.routing.coast import track_clearance
-    from glideplan.routing.problem import Candidate
-    from glideplan.routing.sphere import straight_line_track
-
-    got = straight_line_track(problem.field_, problem.speed, problem.t0, problem.start,
-                              problem.goal, problem.t0 + max(3 * T, 3600.0))
-    if got is None:
-        return None
-    duration, t, lat, lon, chi = got
-    line = Candidate("straight-crab", t, lat, lon, chi, False, duration)
-    flown = phases.verify(problem, rg, line)
-    near = track_clearance(problem, rg, lat, lon)
-    clear = near is None or not math.isfinite(near) or near >= rg.clearance_m * (1 - 1e-3)
-    return (line, flown) if phases.flown_ok(flown, tolerance) and clear else None
 
 
 def _join(a: str, b: str) -> str:

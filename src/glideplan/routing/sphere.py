@@ -265,7 +265,10 @@ def straight_line_track(
 ) -> tuple[float, FloatArray, FloatArray, FloatArray, FloatArray] | None:
     """The straight line with crab angle (`straight_line_duration`) as a track: (duration s,
     times s since epoch, lat, lon (deg), compass heading (rad) of the through-water velocity
-    w = s' b - c at `samples` times); None where the duration is None."""
+    (`steering.crab` along the line's bearing) at `samples` times); None where the duration
+    is None."""
+    from glideplan.routing.steering import crab
+
     held = _hold_line(field_, speed, t0, start, goal, t_max, dense=True)
     if held is None:
         return None
@@ -273,13 +276,9 @@ def straight_line_track(
     t = t0 + np.linspace(0.0, T, max(samples, 2))
     lat, lon, chi = (np.empty(t.size) for _ in range(3))
     for k, tk in enumerate(t):
-        s_k = float(sol.sol(tk)[0]) if sol is not None else 0.0
-        la, lo, b = point(s_k)
+        la, lo, b = point(float(sol.sol(tk)[0]) if sol is not None else 0.0)
         u, v = _current(field_, float(tk), la, lo)
-        cn = -u * math.cos(b) + v * math.sin(b)
-        along = math.sqrt(max(speed * speed - cn * cn, 0.0)) + u * math.sin(b) + v * math.cos(b)
-        lat[k], lon[k] = la, lo
-        chi[k] = math.atan2(along * math.sin(b) - u, along * math.cos(b) - v)
+        lat[k], lon[k], chi[k] = la, lo, crab(math.sin(b), math.cos(b), u, v, speed)
     lat[-1], lon[-1] = goal
     return T, t, lat, lon, chi
 
